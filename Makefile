@@ -1,0 +1,74 @@
+# irrcache -- the only build entry.
+#   make            libirrcache.a and libirrcache.so (CC=clang works too)
+#   make test       every test; ends with "N passed, N failed"
+#   make bench-core the core benchmark (CSV on stdout)
+#   make install    PREFIX=/usr/local
+
+CC ?= cc
+CXX ?= c++
+AR ?= ar
+PREFIX ?= /usr/local
+BUILD ?= build
+OPT ?= -O2 -g
+WARN = -Wall -Wextra -Wpedantic -Werror -Wmissing-prototypes -Wshadow
+CFLAGS_LIB = -std=c99 $(WARN) $(OPT) -fPIC -Iinclude $(CFLAGS)
+
+SRC = src/config.c src/sampler.c src/record.c src/weight.c src/index.c src/cache.c
+PORT_SRC = port/posix/irc_port.c port/c11/irc_port.c port/none/irc_port.c port/irc_port_default.c
+OBJ = $(SRC:%.c=$(BUILD)/%.o)
+PORT_OBJ = $(PORT_SRC:%.c=$(BUILD)/%.o)
+LIBA = $(BUILD)/libirrcache.a
+LIBSO = $(BUILD)/libirrcache.so
+
+all: $(LIBA) $(LIBSO)
+
+$(BUILD)/src/%.o: src/%.c src/cache.h src/util.h include/irrcache.h
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_LIB) -c $< -o $@
+
+# Each port is compiled with the standard its platform needs.
+$(BUILD)/port/posix/%.o: port/posix/%.c include/irrcache.h
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_LIB) -D_POSIX_C_SOURCE=200809L -c $< -o $@
+$(BUILD)/port/c11/%.o: port/c11/%.c include/irrcache.h
+	@mkdir -p $(dir $@)
+	$(CC) $(subst -std=c99,-std=c11,$(CFLAGS_LIB)) -c $< -o $@
+$(BUILD)/port/%.o: port/%.c include/irrcache.h
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_LIB) -c $< -o $@
+
+$(LIBA): $(OBJ) $(PORT_OBJ)
+	rm -f $@
+	$(AR) rcs $@ $^
+
+$(LIBSO): $(OBJ) $(PORT_OBJ)
+	$(CC) -shared -o $@ $^ -lm -lpthread
+
+# ---------------------------------------------------------------- tests
+TEST_SRC = tests/main.c tests/scenes.c tests/t_api.c tests/t_record.c \
+           tests/t_lookup.c tests/t_index.c tests/t_threads.c
+TEST_CFLAGS = -std=c99 $(WARN) -Wno-missing-prototypes -Iinclude -Isrc -Itests \
+              -D_POSIX_C_SOURCE=200809L
+
+$(BUILD)/irc_tests: $(TEST_SRC) tests/test.h tests/scenes.h $(LIBA)
+	$(CC) $(TEST_CFLAGS) $(OPT) $(CFLAGS) $(TEST_SRC) $(LIBA) -o $@ -lm -lpthread
+
+test:
+	sh tests/run.sh
+
+# ---------------------------------------------------------------- bench
+$(BUILD)/bench_core: demo/bench_core.c tests/scenes.c tests/scenes.h $(LIBA)
+	$(CC) $(TEST_CFLAGS) -O2 -g $(CFLAGS) demo/bench_core.c tests/scenes.c $(LIBA) -o $@ -lm -lpthread
+
+bench-core: $(BUILD)/bench_core
+	$(BUILD)/bench_core
+
+install: all
+	install -d $(PREFIX)/include $(PREFIX)/lib
+	install -m 644 include/irrcache.h $(PREFIX)/include/
+	install -m 644 $(LIBA) $(LIBSO) $(PREFIX)/lib/
+
+clean:
+	rm -rf build build-*
+
+.PHONY: all test bench-core install clean

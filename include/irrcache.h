@@ -1,0 +1,347 @@
+/*
+ * irrcache.h -- an embeddable irradiance cache.
+ *
+ * irrcache caches irradiance for a host ray tracer.  The host casts rays
+ * through a callback; the library samples hemispheres through it, builds
+ * records carrying translational and rotational gradients, keeps them in one
+ * memory block the host hands over at init, and answers Ward-Heckbert
+ * weighted, gradient-extrapolated lookups.
+ *
+ *   - The library NEVER allocates.  Every structure (records, index nodes,
+ *     sampling scratch, the lock) lives in the block given to irc_init().
+ *     There is no free function for memory: the caller owns the block.
+ *   - No global mutable state.  Any number of caches may coexist.
+ *   - Thread safety: with a locking port (the default port of this build is
+ *     POSIX threads), lookups, inserts, computes and stats may be called
+ *     concurrently from any threads on one cache.  irc_init, irc_cache_clear
+ *     and irc_fini must not run concurrently with anything else on that cache.
+ *   - Determinism: a record is a pure function of (p, n, config, seed).  Its
+ *     random numbers come from a hash of the query, so the same query gives
+ *     the same record, bit for bit, in any thread and at any time.
+ *   - Errors: every call returns an int: IRC_OK (0), a positive informational
+ *     status (IRC_MISS, IRC_NOT_STORED), or a negative irc_status code.  A
+ *     call that returns a negative code has left the cache's block byte for
+ *     byte as it was.  A negative value returned by the host's trace callback
+ *     is passed through unchanged, so keep host codes below IRC_ERR_LAST.
+ *
+ * Quick start (see README.md for a complete host):
+ *
+ *   irc_config cfg = {0};
+ *   cfg.trace = my_trace; cfg.context = my_scene;
+ *   cfg.features = IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION;
+ *   size_t bytes; irc_footprint(&cfg, 100000, &bytes);
+ *   cfg.buffer = my_block; cfg.buffer_size = bytes;
+ *   irc_cache *c; irc_init(&cfg, 100000, &c);
+ *   ... irc_cache_lookup_or_compute(c, p, n, rgb, NULL); ...
+ *   irc_fini(c);
+ *
+ * All vectors are float[3] in the host's world space.  Units of length are
+ * the host's; nothing in the library depends on the scene's scale.
+ */
+#ifndef IRRCACHE_H
+#define IRRCACHE_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define IRC_VERSION_MAJOR 0
+#define IRC_VERSION_MINOR 1
+#define IRC_VERSION_PATCH 0
+
+/* ------------------------------------------------------------------------ */
+/* Status codes.  Values are stable; new codes are only ever appended.      */
+
+typedef enum irc_status {
+    IRC_OK = 0,
+    IRC_MISS = 1,             /* lookup: no record is close enough (not an error) */
+    IRC_NOT_STORED = 2,       /* lookup_or_compute: value computed but the pool is
+                                 full and eviction is off, so it was not stored */
+    IRC_ERR_NULL = -1,        /* a required pointer argument is NULL */
+    IRC_ERR_CONFIG = -2,      /* a config field is out of its documented range */
+    IRC_ERR_NONFINITE = -3,   /* a NaN or infinite coordinate or value */
+    IRC_ERR_NORMAL = -4,      /* a normal is zero (or not finite) */
+    IRC_ERR_NOMEM = -5,       /* the block is smaller than irc_footprint() asks */
+    IRC_ERR_FULL = -6,        /* insert: the record pool is full, eviction is off */
+    IRC_ERR_CALLBACK = -7,    /* the trace callback returned a positive value or
+                                 reported nonsense: negative, zero or NaN distance,
+                                 non-finite or negative radiance, zero normal,
+                                 unknown ray status */
+    IRC_ERR_NOSAMPLES = -8,   /* fewer than half of the hemisphere's rays were
+                                 usable (the host reported them as failed) */
+    IRC_ERR_BUSY = -9,        /* more concurrent record computations than
+                                 cfg.threads scratch slots */
+    IRC_ERR_UNSUPPORTED = -10,/* a feature flag this build does not implement */
+    IRC_ERR_PORT = -11,       /* the port failed to initialise its lock */
+    IRC_ERR_RANGE = -12,      /* an index argument is past the end */
+    IRC_ERR_LAST = -12        /* the most negative code the library returns */
+} irc_status;
+
+/* A one-line English description of any status code (never NULL). */
+const char *irc_strerror(int status);
+
+/* ------------------------------------------------------------------------ */
+/* Host callback: the library asks the host to cast rays.                   */
+
+typedef struct irc_ray {
+    float org[3];   /* the record's position p, exactly: offset it yourself
+                       to avoid self-intersection, as your tracer usually does */
+    float dir[3];   /* unit direction in the hemisphere around the record's n */
+} irc_ray;
+
+/* Per-ray outcome, written by the host into irc_hit.status. */
+enum irc_ray_status {
+    IRC_RAY_HIT = 0,      /* dist, normal, radiance are valid */
+    IRC_RAY_ESCAPED = 1,  /* nothing hit: radiance is the environment's along
+                             dir; dist and normal are ignored */
+    IRC_RAY_FAILED = 2    /* the host could not trace this ray; the library
+                             leaves its stratum out (see IRC_ERR_NOSAMPLES) */
+};
+
+typedef struct irc_hit {
+    float dist;        /* hit distance along dir, > 0 and finite */
+    float normal[3];   /* geometric normal at the hit, any nonzero length,
+                          either orientation */
+    float radiance[3]; /* RGB radiance leaving the hit toward org, >= 0 */
+    int status;        /* an irc_ray_status; the library sets it to -1 before
+                          the call, so a hit the host leaves untouched is
+                          IRC_ERR_CALLBACK */
+} irc_hit;
+
+typedef struct irc_trace_args {
+    void *context;          /* cfg.context, unchanged */
+    const irc_ray *rays;    /* count rays to cast (read only) */
+    irc_hit *hits;          /* count results to write, same order */
+    uint32_t count;         /* 1 <= count <= cfg.max_batch */
+} irc_trace_args;
+
+/*
+ * Cast args->count rays and fill args->hits.  The callback may touch only
+ * args->hits[0 .. count-1] and its own state; it must not call back into the
+ * same cache.  It runs on the thread that called into the library, possibly
+ * on several threads at once.  Return 0 on success or a negative code of the
+ * host's own to abort the record (the library returns it unchanged).
+ */
+typedef int (*irc_trace_fn)(const irc_trace_args *args);
+
+/* ------------------------------------------------------------------------ */
+/* Port: locks and atomics.  Implementations live in port/, not in the core. */
+
+typedef struct irc_port {
+    const char *name;
+    size_t lock_size;                     /* bytes of one lock object */
+    int (*lock_init)(void *lock);         /* 0 or negative */
+    void (*lock_destroy)(void *lock);
+    void (*read_lock)(void *lock);
+    void (*read_unlock)(void *lock);
+    void (*write_lock)(void *lock);
+    void (*write_unlock)(void *lock);
+    /* Atomics on 64-bit words that live in the cache's block. */
+    uint64_t (*load)(const uint64_t *obj);                 /* acquire */
+    void (*store)(uint64_t *obj, uint64_t v);              /* release */
+    uint64_t (*fetch_add)(uint64_t *obj, uint64_t v);      /* relaxed */
+    uint64_t (*fetch_or)(uint64_t *obj, uint64_t v);       /* relaxed */
+    int (*cas)(uint64_t *obj, uint64_t expected, uint64_t desired); /* acq_rel;
+                                                         1 if swapped */
+} irc_port;
+
+extern const irc_port irc_port_posix;  /* pthread rwlock + GCC/Clang atomics */
+extern const irc_port irc_port_c11;    /* C11 <stdatomic.h>, spinning rwlock */
+extern const irc_port irc_port_none;   /* single-threaded: no locks at all */
+extern const irc_port *const irc_port_default; /* what cfg.port = NULL means */
+
+/* ------------------------------------------------------------------------ */
+/* Configuration.  Zero in any field means its default.                    */
+
+/* Gradient terms a record carries.  A cache pays in memory and time only for
+ * the terms it enables: 32 bytes per record bare, +16 per gradient. */
+enum irc_feature {
+    IRC_FEATURE_TRANSLATION = 1u << 0, /* translational gradient (Krivanek et
+                                          al. 2005 stratified form) */
+    IRC_FEATURE_ROTATION = 1u << 1,    /* rotational gradient (Ward-Heckbert 1992) */
+    IRC_FEATURE_VISIBILITY = 1u << 2,  /* reserved: not in this build */
+    IRC_FEATURE_SH = 1u << 3           /* reserved: not in this build */
+};
+
+/* What insert does when the record pool is full. */
+enum irc_evict {
+    IRC_EVICT_NONE = 0,  /* refuse the insert: IRC_ERR_FULL (lookups go on) */
+    IRC_EVICT_CLOCK = 1  /* second-chance CLOCK: a hand sweeps the records in
+                            slot order; a record used by a lookup since the hand
+                            last passed gets a second chance, the first unused
+                            one is replaced.  Costs 1 bit per record. */
+};
+
+typedef struct irc_config {
+    irc_trace_fn trace;      /* required */
+    void *context;           /* handed to trace unchanged */
+    uint32_t max_batch;      /* rays per trace call, 1..4096 (default 1, one
+                                ray per call; larger values serve packet
+                                tracers and cost 56 bytes per ray and thread) */
+    uint32_t features;       /* IRC_FEATURE_* bits (default 0: no gradients,
+                                Ward's split-sphere radius only) */
+    float accuracy;          /* Ward's a: a record counts at p when
+                                |p-p_i|/R_i + sqrt(1-n.n_i) < a; (0, 10]
+                                (default 0.2) */
+    float min_radius;        /* R_i >= min_radius, >= 0 (default 0) */
+    float max_radius;        /* R_i <= max_radius, > min_radius (default 0:
+                                no limit but IRC_RADIUS_CAP) */
+    uint32_t strata_theta;   /* M rows in theta, 1..1024 (default 16) */
+    uint32_t strata_phi;     /* N columns in phi, 1..4096 (default 64);
+                                M * N <= IRC_MAX_STRATA */
+    uint32_t threads;        /* how many record computations may run at once,
+                                1..64 (default 1); each has its own scratch */
+    uint32_t evict;          /* an irc_evict (default IRC_EVICT_NONE) */
+    uint64_t seed;           /* mixed into every record's random numbers */
+    const irc_port *port;    /* locks and atomics (default irc_port_default) */
+    void *buffer;            /* the caller's block, any alignment; the library
+                                uses [buffer, buffer + buffer_size) only */
+    size_t buffer_size;      /* bytes, >= what irc_footprint() returned */
+} irc_config;
+
+#define IRC_MAX_STRATA 65536u
+#define IRC_MAX_BATCH 4096u
+#define IRC_MAX_THREADS 64u
+#define IRC_MAX_RECORDS 0x3fffffffu
+#define IRC_RADIUS_CAP 1e30f  /* radii are clamped to this (all rays escaped) */
+
+/* A conservative compile-time bound on irc_footprint(), for static blocks:
+ * records with every gradient, the largest index, scratch for t threads of
+ * s strata each and batches of b rays. */
+#define IRC_FOOTPRINT_BOUND(records, s, t, b) \
+    (4096u + (size_t)(t) * (64u + (size_t)(s) * 16u + (size_t)(b) * 56u) + \
+     (size_t)(records) * (64u + 4u + 8u + 1u) + ((size_t)(records) / 16u + 16u) * 128u)
+
+/* ------------------------------------------------------------------------ */
+/* Size, init, fini.                                                         */
+
+typedef struct irc_cache irc_cache; /* lives inside cfg.buffer; opaque */
+
+/*
+ * Bytes of block a cache of max_records records needs with this config
+ * (cfg->buffer and cfg->buffer_size are ignored).  max_records >= 1.
+ * Returns IRC_OK and writes *bytes, or a negative error code on failure.
+ */
+int irc_footprint(const irc_config *cfg, uint32_t max_records, size_t *bytes);
+
+/*
+ * Build an empty cache in cfg->buffer.  The config is copied; the cache
+ * handle points into the block.  Returns IRC_OK and writes *cache, or a
+ * negative error code on failure (IRC_ERR_NOMEM when the block is too small).
+ */
+int irc_init(const irc_config *cfg, uint32_t max_records, irc_cache **cache);
+
+/*
+ * Release what the port holds (the lock).  The block is the caller's again
+ * afterwards.  Returns IRC_OK, or a negative error code on failure.
+ */
+int irc_fini(irc_cache *cache);
+
+/* ------------------------------------------------------------------------ */
+/* Records.                                                                   */
+
+/* A record as the host sees it (the cache stores a packed form: positions and
+ * irradiance exactly, the normal to about 5e-5 rad, gradients to 1/32767 of
+ * their largest component). */
+typedef struct irc_record {
+    float p[3];          /* position */
+    float n[3];          /* unit normal */
+    float e[3];          /* RGB irradiance: integral of L cos over the hemisphere */
+    float radius;        /* R_i: harmonic mean hit distance, clamped by
+                            [min_radius, max_radius] and by E/|grad E| */
+    float mean_dist;     /* the harmonic mean hit distance before clamping
+                            (+inf if every ray escaped; NaN when read back
+                            from the cache, which does not store it) */
+    float grad_t[3][3];  /* grad_t[c]: dE_c/dp (zero unless TRANSLATION) */
+    float grad_r[3][3];  /* grad_r[c]: E_c(n') ~ e[c] + (n x n').grad_r[c]
+                            (zero unless ROTATION) */
+    uint32_t features;   /* which gradients are valid */
+    uint32_t rays;       /* rays cast, and how many were usable: */
+    uint32_t rays_used;
+} irc_record;
+
+/*
+ * Sample the hemisphere around (p, n) through the trace callback and build a
+ * record.  n need not be unit length.  Nothing is stored.  Returns IRC_OK, or
+ * a negative error code on failure (the host's own code if trace returned
+ * one).
+ */
+int irc_record_compute(irc_cache *cache, const float p[3], const float n[3],
+                       irc_record *out);
+
+/*
+ * Store a record (a copy, packed).  rec->radius must be > 0 (IRC_ERR_RANGE)
+ * and every field finite.  Returns IRC_OK; IRC_ERR_FULL when the pool is
+ * full and eviction is off (lookups keep working); or a negative error code
+ * on failure.
+ */
+int irc_cache_insert(irc_cache *cache, const irc_record *rec);
+
+/*
+ * Interpolate irradiance at (p, n): every record with Ward-Heckbert weight
+ * w_i = 1 / (|p - p_i|/R_i + sqrt(1 - n.n_i)) > 1/a that is not in front of p
+ * ((p - p_i).(n + n_i)/2 >= -0.05 R_i) is extrapolated with its gradients,
+ * E_i + (p - p_i).grad_t + (n_i x n).grad_r, clamped at 0 per channel, and
+ * averaged with weights w_i (w_i is capped at 1e6).  Records facing away
+ * (n.n_i <= 0) never count.  rgb gets the average and *weight (optional) the
+ * summed weight.  Returns IRC_OK, IRC_MISS (rgb = 0, weight = 0) when no
+ * record counts, or a negative error code on failure.
+ */
+int irc_cache_lookup(irc_cache *cache, const float p[3], const float n[3],
+                     float rgb[3], float *weight);
+
+/*
+ * Lookup; on a miss, compute a record at (p, n), insert it, and return its
+ * irradiance with *weight = 0.  Returns IRC_OK, IRC_NOT_STORED (value valid, pool full and
+ * eviction off), or a negative error code on failure.
+ */
+int irc_cache_lookup_or_compute(irc_cache *cache, const float p[3],
+                                const float n[3], float rgb[3], float *weight);
+
+/*
+ * The ids (slot numbers) of the records a lookup at (p, n) would use, in no
+ * particular order: up to cap of them in ids, and how many there are in
+ * *count (which may exceed cap).  For debugging and visualisation.  Returns
+ * IRC_OK, or a negative error code on failure.
+ */
+int irc_cache_neighbours(irc_cache *cache, const float p[3], const float n[3],
+                         uint32_t *ids, uint32_t cap, uint32_t *count);
+
+/*
+ * Read the record in slot id (0 <= id < capacity).  Returns IRC_OK,
+ * IRC_MISS when the slot is empty, or a negative error code on failure.
+ */
+int irc_cache_record(irc_cache *cache, uint32_t id, irc_record *out);
+
+/* Remove every record (the counters in irc_stats are kept).  Returns IRC_OK,
+ * or a negative error code on failure. */
+int irc_cache_clear(irc_cache *cache);
+
+typedef struct irc_stats {
+    uint64_t records;        /* live records */
+    uint64_t capacity;       /* max_records */
+    uint64_t inserts;        /* records stored */
+    uint64_t evictions;      /* records replaced by CLOCK */
+    uint64_t lookups;        /* lookup calls (including lookup_or_compute) */
+    uint64_t hits;           /* lookups answered from records */
+    uint64_t computes;       /* records computed */
+    uint64_t rays;           /* rays cast for the records computed */
+    uint64_t index_nodes;    /* index nodes in use */
+    uint64_t index_nodes_max;
+    size_t record_bytes;     /* bytes per stored record (feature dependent) */
+    size_t bytes_records;    /* block bytes for records */
+    size_t bytes_index;      /* block bytes for the index */
+    size_t bytes_scratch;    /* block bytes for sampling scratch */
+    size_t bytes_total;      /* all block bytes the cache uses */
+} irc_stats;
+
+/* Counters and sizes.  Returns IRC_OK, or a negative error code on failure. */
+int irc_cache_stats(irc_cache *cache, irc_stats *out);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* IRRCACHE_H */

@@ -1,0 +1,34 @@
+/*
+ * port/posix/irc_port.c -- POSIX threads: a pthread rwlock in the cache's
+ * block, and the GCC/Clang __atomic builtins on the block's 64-bit words.
+ */
+#include <pthread.h>
+
+#include "irrcache.h"
+
+#if !defined(__GNUC__) && !defined(__clang__)
+#error "port/posix needs GCC or Clang __atomic builtins; use port/c11 with another compiler"
+#endif
+
+static int posix_lock_init(void *l)
+{
+    return pthread_rwlock_init((pthread_rwlock_t *)l, NULL) == 0 ? 0 : -1;
+}
+static void posix_lock_destroy(void *l) { pthread_rwlock_destroy((pthread_rwlock_t *)l); }
+static void posix_read_lock(void *l) { pthread_rwlock_rdlock((pthread_rwlock_t *)l); }
+static void posix_write_lock(void *l) { pthread_rwlock_wrlock((pthread_rwlock_t *)l); }
+static void posix_unlock(void *l) { pthread_rwlock_unlock((pthread_rwlock_t *)l); }
+
+static uint64_t posix_load(const uint64_t *o) { return __atomic_load_n(o, __ATOMIC_ACQUIRE); }
+static void posix_store(uint64_t *o, uint64_t v) { __atomic_store_n(o, v, __ATOMIC_RELEASE); }
+static uint64_t posix_add(uint64_t *o, uint64_t v) { return __atomic_fetch_add(o, v, __ATOMIC_RELAXED); }
+static uint64_t posix_or(uint64_t *o, uint64_t v) { return __atomic_fetch_or(o, v, __ATOMIC_RELAXED); }
+static int posix_cas(uint64_t *o, uint64_t e, uint64_t d)
+{
+    return __atomic_compare_exchange_n(o, &e, d, 0, __ATOMIC_ACQ_REL, __ATOMIC_ACQUIRE);
+}
+
+const irc_port irc_port_posix = {
+    "posix", sizeof(pthread_rwlock_t), posix_lock_init, posix_lock_destroy,
+    posix_read_lock, posix_unlock, posix_write_lock, posix_unlock,
+    posix_load, posix_store, posix_add, posix_or, posix_cas};

@@ -1,0 +1,264 @@
+/*
+ * cache.c -- the cache's public calls: insert (with CLOCK eviction), lookup,
+ * lookup-or-compute, and the read-only views.  Lookups hold the port's read
+ * lock; anything that changes records or the index holds its write lock.
+ * Counters are updated only once a call has succeeded, so a call that fails
+ * leaves the block as it was.
+ */
+#include "cache.h"
+
+static int irc__check_cache(const irc_cache *c)
+{
+    if (!c)
+        return IRC_ERR_NULL;
+    return c->magic == IRC__MAGIC ? IRC_OK : IRC_ERR_CONFIG;
+}
+
+static void irc__count(irc_cache *c, int which, uint64_t v)
+{
+    c->port->fetch_add(&c->ctr[which], v);
+}
+
+/* Second-chance CLOCK: the hand clears the bit of every used record it
+ * passes and stops at the first unused one.  Two turns at most. */
+static uint32_t irc__clock_victim(irc_cache *c)
+{
+    for (;;) {
+        uint32_t id = c->hand;
+        uint64_t *w = &c->used[id >> 6], bit = 1ull << (id & 63u);
+        c->hand = id + 1 == c->capacity ? 0 : id + 1;
+        if (!(c->port->load(w) & bit))
+            return id;
+        c->port->store(w, c->port->load(w) & ~bit);
+    }
+}
+
+int irc_cache_insert(irc_cache *c, const irc_record *rec)
+{
+    uint32_t id;
+    int st;
+    if ((st = irc__check_cache(c)) < 0)
+        return st;
+    if (!rec)
+        return IRC_ERR_NULL;
+    if ((st = irc__record_check(rec)) < 0)
+        return st;
+    c->port->write_lock(c->lock);
+    if (c->count < c->capacity) {
+        id = c->count++;
+    } else if (c->used) {
+        id = irc__clock_victim(c);
+        irc__index_remove(c, id);
+        irc__count(c, IRC__C_EVICTIONS, 1);
+    } else {
+        c->port->write_unlock(c->lock);
+        return IRC_ERR_FULL;
+    }
+    irc__record_pack(c, rec, irc__rec_at(c, id));
+    irc__index_insert(c, id);
+    irc__count(c, IRC__C_INSERTS, 1);
+    c->port->write_unlock(c->lock);
+    return IRC_OK;
+}
+
+typedef struct irc__acc {
+    irc_cache *c;
+    const float *p, *n;
+    double sum[3], w;
+    uint32_t *ids, cap, found;
+} irc__acc;
+
+static int irc__visit_lookup(void *ud, uint32_t id)
+{
+    irc__acc *a = (irc__acc *)ud;
+    const irc__rec *r = irc__rec_at(a->c, id);
+    double w, v[3];
+    float ni[3];
+    if (!irc__weigh(a->c, r, a->p, a->n, &w, ni))
+        return 0;
+    irc__extrapolate(a->c, r, ni, a->p, a->n, v);
+    a->sum[0] += w * v[0];
+    a->sum[1] += w * v[1];
+    a->sum[2] += w * v[2];
+    a->w += w;
+    if (a->c->used) {
+        uint64_t *word = &a->c->used[id >> 6], bit = 1ull << (id & 63u);
+        if (!(a->c->port->load(word) & bit))
+            a->c->port->fetch_or(word, bit);
+    }
+    return 0;
+}
+
+static int irc__visit_ids(void *ud, uint32_t id)
+{
+    irc__acc *a = (irc__acc *)ud;
+    double w;
+    float ni[3];
+    if (irc__weigh(a->c, irc__rec_at(a->c, id), a->p, a->n, &w, ni)) {
+        if (a->found < a->cap)
+            a->ids[a->found] = id;
+        a->found++;
+    }
+    return 0;
+}
+
+/* Validates the query and turns n into a unit float normal. */
+static int irc__query_init(irc_cache *c, const float p[3], const float n[3],
+                           float un[3], irc__acc *a)
+{
+    double d[3];
+    int st;
+    if ((st = irc__check_cache(c)) < 0 || (st = irc__check_vec(p)) < 0 ||
+        (st = irc__check_normal(n, d)) < 0)
+        return st;
+    un[0] = (float)d[0];
+    un[1] = (float)d[1];
+    un[2] = (float)d[2];
+    IRC_MEMSET(a, 0, sizeof *a);
+    a->c = c;
+    a->p = p;
+    a->n = un;
+    return IRC_OK;
+}
+
+static int irc__lookup(irc_cache *c, const float p[3], const float n[3],
+                       float rgb[3], float *weight)
+{
+    irc__acc a;
+    float un[3];
+    int st = irc__query_init(c, p, n, un, &a), ch;
+    if (st < 0)
+        return st;
+    if (!rgb)
+        return IRC_ERR_NULL;
+    c->port->read_lock(c->lock);
+    irc__index_query(c, p, irc__visit_lookup, &a);
+    c->port->read_unlock(c->lock);
+    for (ch = 0; ch < 3; ch++)
+        rgb[ch] = a.w > 0.0 ? (float)(a.sum[ch] / a.w) : 0.0f;
+    if (weight)
+        *weight = (float)a.w;
+    return a.w > 0.0 ? IRC_OK : IRC_MISS;
+}
+
+int irc_cache_lookup(irc_cache *c, const float p[3], const float n[3],
+                     float rgb[3], float *weight)
+{
+    int st = irc__lookup(c, p, n, rgb, weight);
+    if (st < 0)
+        return st;
+    irc__count(c, IRC__C_LOOKUPS, 1);
+    if (st == IRC_OK)
+        irc__count(c, IRC__C_HITS, 1);
+    return st;
+}
+
+int irc_cache_lookup_or_compute(irc_cache *c, const float p[3],
+                                const float n[3], float rgb[3], float *weight)
+{
+    irc_record rec;
+    int st = irc__lookup(c, p, n, rgb, weight), ins;
+    if (st < 0)
+        return st;
+    if (st == IRC_OK) {
+        irc__count(c, IRC__C_LOOKUPS, 1);
+        irc__count(c, IRC__C_HITS, 1);
+        return IRC_OK;
+    }
+    if ((st = irc_record_compute(c, p, n, &rec)) < 0)
+        return st;
+    ins = irc_cache_insert(c, &rec);
+    if (ins < 0 && ins != IRC_ERR_FULL)
+        return ins;
+    irc__count(c, IRC__C_LOOKUPS, 1);
+    rgb[0] = rec.e[0];
+    rgb[1] = rec.e[1];
+    rgb[2] = rec.e[2];
+    if (weight)
+        *weight = 0.0f;
+    return ins == IRC_ERR_FULL ? IRC_NOT_STORED : IRC_OK;
+}
+
+int irc_cache_neighbours(irc_cache *c, const float p[3], const float n[3],
+                         uint32_t *ids, uint32_t cap, uint32_t *count)
+{
+    irc__acc a;
+    float un[3];
+    int st = irc__query_init(c, p, n, un, &a);
+    if (st < 0)
+        return st;
+    if (!count || (!ids && cap))
+        return IRC_ERR_NULL;
+    a.ids = ids;
+    a.cap = cap;
+    c->port->read_lock(c->lock);
+    irc__index_query(c, p, irc__visit_ids, &a);
+    c->port->read_unlock(c->lock);
+    *count = a.found;
+    return IRC_OK;
+}
+
+int irc_cache_record(irc_cache *c, uint32_t id, irc_record *out)
+{
+    int st = irc__check_cache(c);
+    if (st < 0)
+        return st;
+    if (!out)
+        return IRC_ERR_NULL;
+    if (id >= c->capacity)
+        return IRC_ERR_RANGE;
+    c->port->read_lock(c->lock);
+    st = id < c->count ? IRC_OK : IRC_MISS;
+    if (st == IRC_OK)
+        irc__record_unpack(c, irc__rec_at(c, id), out);
+    c->port->read_unlock(c->lock);
+    return st;
+}
+
+int irc_cache_clear(irc_cache *c)
+{
+    int st = irc__check_cache(c);
+    if (st < 0)
+        return st;
+    c->port->write_lock(c->lock);
+    c->count = 0;
+    c->hand = 0;
+    IRC_MEMSET(c->records, 0, (size_t)c->capacity * c->rec_size);
+    IRC_MEMSET(c->next, 0, (size_t)c->capacity * sizeof *c->next);
+    IRC_MEMSET(c->nodes, 0, (size_t)c->nodes_used * sizeof *c->nodes);
+    if (c->used)
+        IRC_MEMSET(c->used, 0, ((size_t)c->capacity + 63u) / 64u * sizeof *c->used);
+    irc__index_reset(c);
+    c->port->write_unlock(c->lock);
+    return IRC_OK;
+}
+
+int irc_cache_stats(irc_cache *c, irc_stats *out)
+{
+    int st = irc__check_cache(c);
+    if (st < 0)
+        return st;
+    if (!out)
+        return IRC_ERR_NULL;
+    IRC_MEMSET(out, 0, sizeof *out);
+    c->port->read_lock(c->lock);
+    out->records = c->count;
+    out->index_nodes = c->nodes_used;
+    c->port->read_unlock(c->lock);
+    out->capacity = c->capacity;
+    out->inserts = c->port->load(&c->ctr[IRC__C_INSERTS]);
+    out->evictions = c->port->load(&c->ctr[IRC__C_EVICTIONS]);
+    out->lookups = c->port->load(&c->ctr[IRC__C_LOOKUPS]);
+    out->hits = c->port->load(&c->ctr[IRC__C_HITS]);
+    out->computes = c->port->load(&c->ctr[IRC__C_COMPUTES]);
+    out->rays = c->port->load(&c->ctr[IRC__C_RAYS]);
+    out->index_nodes_max = c->node_cap;
+    out->record_bytes = c->rec_size;
+    out->bytes_records = (size_t)c->capacity * c->rec_size;
+    out->bytes_index = (size_t)c->capacity * sizeof(uint32_t) +
+                       (size_t)c->node_cap * sizeof(irc__node) +
+                       (c->used ? ((size_t)c->capacity + 63u) / 64u * 8u : 0u);
+    out->bytes_scratch = (size_t)c->cfg.threads * c->slot_bytes;
+    out->bytes_total = c->total_bytes;
+    return IRC_OK;
+}

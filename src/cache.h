@@ -1,0 +1,123 @@
+/*
+ * cache.h -- internal structures shared by the files of src/.  Nothing here
+ * is part of the public API; tests may include it to reach the internals.
+ */
+#ifndef IRC_CACHE_H
+#define IRC_CACHE_H
+
+#include "irrcache.h"
+#include "util.h"
+
+#define IRC__MAGIC 0x69726331u /* "irc1" */
+#define IRC__NIL 0xffffffffu
+#define IRC__ALIGN 64u
+
+/* Stored record: the position and radius come first so that the index's
+ * distance test touches one cache line.  32 bytes; gradients follow. */
+typedef struct irc__rec {
+    float p[3];
+    float r;         /* R_i */
+    float e[3];
+    uint32_t n;      /* octahedral normal, 16 + 16 bits */
+} irc__rec;
+
+/* A gradient in the record's tangent frame (t1, t2 of the decoded normal),
+ * one 2D vector per channel, as int16 times one shared scale: 16 bytes. */
+typedef struct irc__grad {
+    float scale;
+    int16_t g[6];    /* g[2c] along t1, g[2c+1] along t2 */
+} irc__grad;
+
+/* Octree node.  Its cube is implied by the path from the root. */
+typedef struct irc__node {
+    uint32_t child;  /* first of 8 consecutive children, 0 = leaf */
+    uint32_t head;   /* first record stored at this node (IRC__NIL = none) */
+    float reach;     /* largest a*R_i of any record in this subtree */
+    uint32_t count;  /* records stored at this node itself */
+} irc__node;
+
+enum {
+    IRC__C_INSERTS, IRC__C_EVICTIONS, IRC__C_LOOKUPS,
+    IRC__C_HITS, IRC__C_COMPUTES, IRC__C_RAYS, IRC__C_COUNT
+};
+
+/* One stratum's sample: the estimator needs radiance and distance, nothing
+ * else, so scratch is 16 bytes a stratum. */
+typedef struct irc__sample {
+    float l[3];
+    float d;         /* hit distance; +inf when escaped; NaN when failed */
+} irc__sample;
+
+struct irc_cache {
+    uint32_t magic;
+    uint32_t capacity;
+    irc_config cfg;          /* defaults applied; buffer = the caller's */
+    const irc_port *port;
+    uint32_t rec_size;       /* 32, 48 or 64 */
+    uint32_t off_t, off_r;   /* byte offsets of the gradients, 0 = absent */
+    uint32_t strata;         /* M * N */
+    uint32_t node_cap;       /* nodes in the pool (1 + 8 k) */
+    size_t slot_bytes;       /* scratch bytes per thread slot */
+    size_t total_bytes;      /* bytes of the block in use from the cache on */
+    void *lock;
+    unsigned char *records;
+    uint32_t *next;          /* per record: next record in its node's list */
+    irc__node *nodes;
+    uint64_t *used;          /* CLOCK bits, NULL without eviction */
+    unsigned char *scratch;
+    /* Mutable under the write lock. */
+    uint32_t count;          /* records in slots [0, count) */
+    uint32_t nodes_used;
+    uint32_t hand;           /* CLOCK hand */
+    uint32_t root_set;
+    double root_c[3];        /* the root cube, on the power-of-two grid */
+    double root_h;           /* half its edge, a power of two */
+    /* Atomic. */
+    uint64_t slots_busy;     /* bit t: scratch slot t in use */
+    uint64_t ctr[IRC__C_COUNT];
+};
+
+/* config.c */
+int irc__check_vec(const float v[3]);
+int irc__check_normal(const float n[3], double unit[3]);
+
+/* sampler.c */
+typedef struct irc__rng { uint64_t key; } irc__rng;
+irc__rng irc__rng_for(const float p[3], const float n[3], uint64_t seed);
+void irc__rng_pair(const irc__rng *rng, uint32_t i, double *u1, double *u2);
+void irc__frame(const double n[3], double t1[3], double t2[3]);
+int irc__sample_hemisphere(irc_cache *c, unsigned char *slot, const float p[3],
+                           const double n[3], const double t1[3],
+                           const double t2[3], irc__sample *out,
+                           uint32_t *used);
+
+/* record.c */
+void irc__record_build(const irc_cache *c, const irc__sample *s,
+                       const double n[3], const double t1[3],
+                       const double t2[3], irc_record *out);
+uint32_t irc__oct_encode(const double n[3]);
+void irc__oct_decode(uint32_t code, float n[3]);
+void irc__record_pack(const irc_cache *c, const irc_record *in, void *dst);
+void irc__record_unpack(const irc_cache *c, const void *src, irc_record *out);
+int irc__record_check(const irc_record *r);
+
+/* weight.c */
+int irc__weigh(const irc_cache *c, const irc__rec *r, const float p[3],
+               const float n[3], double *w, float ni[3]);
+void irc__extrapolate(const irc_cache *c, const irc__rec *r, const float ni[3],
+                      const float p[3], const float n[3], double out[3]);
+
+/* index.c */
+typedef int (*irc__visit_fn)(void *ud, uint32_t id);
+void irc__index_reset(irc_cache *c);
+void irc__index_insert(irc_cache *c, uint32_t id);
+void irc__index_remove(irc_cache *c, uint32_t id);
+void irc__index_query(const irc_cache *c, const float p[3], irc__visit_fn fn,
+                      void *ud);
+
+static inline irc__rec *irc__rec_at(const irc_cache *c, uint32_t id)
+{
+    return (irc__rec *)(void *)(c->records + (size_t)id * c->rec_size);
+}
+
+#endif

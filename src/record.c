@@ -1,0 +1,355 @@
+/*
+ * record.c -- a record from the stratified samples: irradiance, harmonic
+ * mean distance, gradients, radius; and the packed form the cache stores.
+ */
+#include "cache.h"
+
+/* Failed strata take the mean radiance of the usable ones: the irradiance is
+ * then the mean over usable strata, and a uniform scene keeps a zero
+ * rotational gradient.  Their distance stays NaN, so no translational
+ * boundary term touches them. */
+static void irc__fill_failed(irc__sample *s, uint32_t total, uint32_t used)
+{
+    double sum[3] = {0, 0, 0};
+    uint32_t i;
+    int c;
+    if (used == total)
+        return;
+    for (i = 0; i < total; i++)
+        if (s[i].d == s[i].d)
+            for (c = 0; c < 3; c++)
+                sum[c] += s[i].l[c];
+    for (i = 0; i < total; i++)
+        if (s[i].d != s[i].d)
+            for (c = 0; c < 3; c++)
+                s[i].l[c] = (float)(sum[c] / used);
+}
+
+static double irc__nearer(float a, float b)
+{
+    return a < b ? (double)a : (double)b;
+}
+
+/* Translational gradient, the stratified form of Krivanek et al. 2005: the
+ * radiance difference across every boundary between neighbouring strata
+ * times the rate at which the boundary sweeps solid angle, using the nearer
+ * of the two hit distances.  Rows: theta_j- = asin(sqrt(j/M)); a boundary
+ * between rows j-1 and j in column k moves along u_k with weight
+ * (2 pi/N) cos^2(theta_j-) sin(theta_j-) / d.  Columns: the boundary at
+ * phi = 2 pi k/N moves along v_k- with weight
+ * cos(theta_j) (cos theta_j- - cos theta_j+) / (sin(theta_j) d), theta_j the
+ * row's centre.  Unlike one open implementation, the boundary between rows
+ * 0 and 1 is included. */
+static void irc__grad_trans(const irc_cache *c, const irc__sample *s,
+                            const double t1[3], const double t2[3], double g[3][3])
+{
+    const uint32_t m = c->cfg.strata_theta, nphi = c->cfg.strata_phi;
+    uint32_t j, k;
+    int ch, i;
+    for (ch = 0; ch < 3; ch++)
+        g[ch][0] = g[ch][1] = g[ch][2] = 0.0;
+    for (k = 0; k < nphi; k++) {
+        double phc = 2.0 * IRC_PI * (k + 0.5) / nphi, phb = 2.0 * IRC_PI * k / nphi;
+        double uk[3], vk[3], ru[3] = {0, 0, 0}, rv[3] = {0, 0, 0};
+        for (i = 0; i < 3; i++) {
+            uk[i] = IRC_COS(phc) * t1[i] + IRC_SIN(phc) * t2[i];
+            vk[i] = -IRC_SIN(phb) * t1[i] + IRC_COS(phb) * t2[i];
+        }
+        for (j = 0; j < m; j++) {
+            const irc__sample *a = &s[j * nphi + k];
+            const irc__sample *left = &s[j * nphi + (k + nphi - 1) % nphi];
+            double s2lo = (double)j / m, s2hi = (double)(j + 1) / m;
+            double d;
+            if (j > 0) {
+                const irc__sample *below = &s[(j - 1) * nphi + k];
+                d = irc__nearer(a->d, below->d);
+                if (d == d && d < HUGE_VAL) {
+                    double w = (2.0 * IRC_PI / nphi) * (1.0 - s2lo) * IRC_SQRT(s2lo) / d;
+                    for (ch = 0; ch < 3; ch++)
+                        ru[ch] += w * ((double)a->l[ch] - below->l[ch]);
+                }
+            }
+            d = irc__nearer(a->d, left->d);
+            if (nphi > 1 && d == d && d < HUGE_VAL) {
+                double s2c = (j + 0.5) / m;
+                double w = IRC_SQRT(1.0 - s2c) *
+                           (IRC_SQRT(1.0 - s2lo) - IRC_SQRT(1.0 - s2hi)) /
+                           (IRC_SQRT(s2c) * d);
+                for (ch = 0; ch < 3; ch++)
+                    rv[ch] += w * ((double)a->l[ch] - left->l[ch]);
+            }
+        }
+        for (ch = 0; ch < 3; ch++)
+            for (i = 0; i < 3; i++)
+                g[ch][i] += ru[ch] * uk[i] + rv[ch] * vk[i];
+    }
+}
+
+/* Rotational gradient (Ward-Heckbert 1992): grad_r = integral of
+ * L(w) (n x w) dw, so that E(n') ~ E + (n x n').grad_r.  With n x w =
+ * sin(theta) v(phi), each stratum's share is integrated exactly over the
+ * stratum instead of sampled with tan(theta_j) as in the paper's estimator:
+ * the horizon row's 1/cos(theta) otherwise gives the estimate a heavy tail.
+ * W_j = integral of sin^2(theta) dtheta over row j; V_k = integral of
+ * v(phi) dphi over column k. */
+static void irc__grad_rot(const irc_cache *c, const irc__sample *s,
+                          const double t1[3], const double t2[3], double g[3][3])
+{
+    const uint32_t m = c->cfg.strata_theta, nphi = c->cfg.strata_phi;
+    uint32_t j, k;
+    int ch, i;
+    for (ch = 0; ch < 3; ch++)
+        g[ch][0] = g[ch][1] = g[ch][2] = 0.0;
+    for (k = 0; k < nphi; k++) {
+        double p0 = 2.0 * IRC_PI * k / nphi, p1 = 2.0 * IRC_PI * (k + 1) / nphi;
+        double va = IRC_COS(p1) - IRC_COS(p0), vb = IRC_SIN(p1) - IRC_SIN(p0);
+        double col[3] = {0, 0, 0};
+        for (j = 0; j < m; j++) {
+            double a0 = IRC_ASIN(IRC_SQRT((double)j / m));
+            double a1 = IRC_ASIN(IRC_SQRT((double)(j + 1) / m));
+            double w = 0.5 * (a1 - a0) - 0.25 * (IRC_SIN(2.0 * a1) - IRC_SIN(2.0 * a0));
+            const irc__sample *a = &s[j * nphi + k];
+            for (ch = 0; ch < 3; ch++)
+                col[ch] += w * a->l[ch];
+        }
+        for (ch = 0; ch < 3; ch++)
+            for (i = 0; i < 3; i++)
+                g[ch][i] += col[ch] * (va * t1[i] + vb * t2[i]);
+    }
+}
+
+void irc__record_build(const irc_cache *c, const irc__sample *s,
+                       const double n[3], const double t1[3],
+                       const double t2[3], irc_record *out)
+{
+    const uint32_t total = c->strata;
+    double sum[3] = {0, 0, 0}, inv = 0.0, hm, r, g[3][3];
+    uint32_t i, used = 0;
+    int ch, k;
+
+    for (i = 0; i < total; i++) {
+        if (s[i].d != s[i].d)
+            continue;
+        used++;
+        inv += 1.0 / (double)s[i].d;
+        for (ch = 0; ch < 3; ch++)
+            sum[ch] += s[i].l[ch];
+    }
+    IRC_MEMSET(out, 0, sizeof *out);
+    irc__fill_failed((irc__sample *)s, total, used);
+    for (ch = 0; ch < 3; ch++) {
+        out->e[ch] = (float)(IRC_PI * sum[ch] / used);
+        out->n[ch] = (float)n[ch];
+    }
+    hm = inv > 0.0 ? used / inv : HUGE_VAL;
+    r = hm;
+    if (c->cfg.features & IRC_FEATURE_TRANSLATION) {
+        irc__grad_trans(c, s, t1, t2, g);
+        for (ch = 0; ch < 3; ch++) {
+            double len = IRC_SQRT(irc__dot3d(g[ch], g[ch]));
+            /* R <= E/|grad E| per channel: the record's reach ends where
+             * its first-order extrapolation would change E by 100%. */
+            if (len > 0.0 && out->e[ch] / len < r)
+                r = out->e[ch] / len;
+            for (k = 0; k < 3; k++)
+                out->grad_t[ch][k] = (float)g[ch][k];
+        }
+    }
+    if (c->cfg.features & IRC_FEATURE_ROTATION) {
+        irc__grad_rot(c, s, t1, t2, g);
+        for (ch = 0; ch < 3; ch++)
+            for (k = 0; k < 3; k++)
+                out->grad_r[ch][k] = (float)g[ch][k];
+    }
+    if (r < c->cfg.min_radius) r = c->cfg.min_radius;
+    if (r > c->cfg.max_radius) r = c->cfg.max_radius;
+    if (r < FLT_MIN) r = FLT_MIN;
+    out->radius = (float)r;
+    out->mean_dist = hm > FLT_MAX ? HUGE_VALF : (float)hm;
+    out->features = c->cfg.features;
+    out->rays = total;
+    out->rays_used = used;
+}
+
+int irc_record_compute(irc_cache *c, const float p[3], const float n[3],
+                       irc_record *out)
+{
+    double un[3], t1[3], t2[3];
+    uint64_t busy;
+    uint32_t t, used = 0;
+    unsigned char *slot;
+    int st;
+    if (!c || !out)
+        return IRC_ERR_NULL;
+    if (c->magic != IRC__MAGIC)
+        return IRC_ERR_CONFIG;
+    if ((st = irc__check_vec(p)) < 0 || (st = irc__check_normal(n, un)) < 0)
+        return st;
+    for (;;) { /* claim a free scratch slot */
+        busy = c->port->load(&c->slots_busy);
+        for (t = 0; t < c->cfg.threads && (busy >> t & 1u); t++)
+            ;
+        if (t == c->cfg.threads)
+            return IRC_ERR_BUSY;
+        if (c->port->cas(&c->slots_busy, busy, busy | (1ull << t)))
+            break;
+    }
+    slot = c->scratch + (size_t)t * c->slot_bytes;
+    irc__frame(un, t1, t2);
+    st = irc__sample_hemisphere(c, slot, p, un, t1, t2, (irc__sample *)(void *)slot, &used);
+    if (st == IRC_OK) {
+        irc__record_build(c, (const irc__sample *)(void *)slot, un, t1, t2, out);
+        out->p[0] = p[0];
+        out->p[1] = p[1];
+        out->p[2] = p[2];
+    }
+    /* Scratch goes back to zero so that a failed call leaves the block as
+     * it was, and no record's samples outlive it. */
+    IRC_MEMSET(slot, 0, c->slot_bytes);
+    c->port->fetch_add(&c->slots_busy, (uint64_t)0 - (1ull << t));
+    if (st < 0)
+        return st;
+    c->port->fetch_add(&c->ctr[IRC__C_COMPUTES], 1);
+    c->port->fetch_add(&c->ctr[IRC__C_RAYS], c->strata);
+    return IRC_OK;
+}
+
+/* Octahedral normal encoding, 16 bits a coordinate: worst error ~5e-5 rad. */
+uint32_t irc__oct_encode(const double n[3])
+{
+    double l1 = fabs(n[0]) + fabs(n[1]) + fabs(n[2]);
+    double x = n[0] / l1, y = n[1] / l1;
+    uint32_t qx, qy;
+    if (n[2] < 0.0) {
+        double ox = (1.0 - fabs(y)) * (x >= 0.0 ? 1.0 : -1.0);
+        double oy = (1.0 - fabs(x)) * (y >= 0.0 ? 1.0 : -1.0);
+        x = ox;
+        y = oy;
+    }
+    qx = (uint32_t)floor((x * 0.5 + 0.5) * 65535.0 + 0.5);
+    qy = (uint32_t)floor((y * 0.5 + 0.5) * 65535.0 + 0.5);
+    return qx | qy << 16;
+}
+
+void irc__oct_decode(uint32_t code, float out[3])
+{
+    double x = (code & 0xffffu) / 65535.0 * 2.0 - 1.0;
+    double y = (code >> 16) / 65535.0 * 2.0 - 1.0;
+    double z = 1.0 - fabs(x) - fabs(y), len;
+    if (z < 0.0) {
+        double ox = (1.0 - fabs(y)) * (x >= 0.0 ? 1.0 : -1.0);
+        double oy = (1.0 - fabs(x)) * (y >= 0.0 ? 1.0 : -1.0);
+        x = ox;
+        y = oy;
+    }
+    len = IRC_SQRT(x * x + y * y + z * z);
+    out[0] = (float)(x / len);
+    out[1] = (float)(y / len);
+    out[2] = (float)(z / len);
+}
+
+static void irc__frame_of(uint32_t code, double t1[3], double t2[3])
+{
+    float nf[3];
+    double n[3];
+    irc__oct_decode(code, nf);
+    n[0] = nf[0]; n[1] = nf[1]; n[2] = nf[2];
+    irc__frame(n, t1, t2);
+}
+
+static void irc__grad_pack(float g[3][3], const double t1[3], const double t2[3],
+                           irc__grad *out)
+{
+    double v[6], big = 0.0;
+    int i;
+    for (i = 0; i < 3; i++) {
+        double gi[3];
+        gi[0] = g[i][0]; gi[1] = g[i][1]; gi[2] = g[i][2];
+        v[2 * i] = irc__dot3d(gi, t1);
+        v[2 * i + 1] = irc__dot3d(gi, t2);
+    }
+    for (i = 0; i < 6; i++)
+        if (fabs(v[i]) > big)
+            big = fabs(v[i]);
+    out->scale = (float)(big / 32767.0);
+    for (i = 0; i < 6; i++)
+        out->g[i] = out->scale > 0.0f ? (int16_t)floor(v[i] / out->scale + 0.5) : 0;
+}
+
+static void irc__grad_unpack(const irc__grad *in, const double t1[3],
+                             const double t2[3], float g[3][3])
+{
+    int ch, k;
+    for (ch = 0; ch < 3; ch++) {
+        double a = in->g[2 * ch] * (double)in->scale;
+        double b = in->g[2 * ch + 1] * (double)in->scale;
+        for (k = 0; k < 3; k++)
+            g[ch][k] = (float)(a * t1[k] + b * t2[k]);
+    }
+}
+
+int irc__record_check(const irc_record *r)
+{
+    double un[3];
+    int st, ch;
+    if ((st = irc__check_vec(r->p)) < 0)
+        return st;
+    if ((st = irc__check_normal(r->n, un)) < 0)
+        return st;
+    if (!irc__finite3(r->e) || !irc__finite(r->radius))
+        return IRC_ERR_NONFINITE;
+    for (ch = 0; ch < 3; ch++)
+        if (!irc__finite3(r->grad_t[ch]) || !irc__finite3(r->grad_r[ch]))
+            return IRC_ERR_NONFINITE;
+    if (!(r->radius > 0.0f))
+        return IRC_ERR_RANGE;
+    return IRC_OK;
+}
+
+void irc__record_pack(const irc_cache *c, const irc_record *in, void *dst)
+{
+    unsigned char *b = (unsigned char *)dst;
+    irc__rec *r = (irc__rec *)dst;
+    double un[3], t1[3], t2[3];
+    float g[3][3];
+    int ch;
+    irc__check_normal(in->n, un);
+    IRC_MEMSET(dst, 0, c->rec_size);
+    for (ch = 0; ch < 3; ch++) {
+        r->p[ch] = in->p[ch];
+        r->e[ch] = in->e[ch];
+    }
+    r->r = in->radius < FLT_MIN ? FLT_MIN : in->radius > IRC_RADIUS_CAP ? IRC_RADIUS_CAP : in->radius;
+    r->n = irc__oct_encode(un);
+    irc__frame_of(r->n, t1, t2);
+    if (c->off_t) {
+        IRC_MEMCPY(g, in->grad_t, sizeof g);
+        irc__grad_pack(g, t1, t2, (irc__grad *)(void *)(b + c->off_t));
+    }
+    if (c->off_r) {
+        IRC_MEMCPY(g, in->grad_r, sizeof g);
+        irc__grad_pack(g, t1, t2, (irc__grad *)(void *)(b + c->off_r));
+    }
+}
+
+void irc__record_unpack(const irc_cache *c, const void *src, irc_record *out)
+{
+    const unsigned char *b = (const unsigned char *)src;
+    const irc__rec *r = (const irc__rec *)src;
+    double t1[3], t2[3];
+    int ch;
+    IRC_MEMSET(out, 0, sizeof *out);
+    for (ch = 0; ch < 3; ch++) {
+        out->p[ch] = r->p[ch];
+        out->e[ch] = r->e[ch];
+    }
+    out->radius = r->r;
+    out->mean_dist = NAN; /* not stored */
+    irc__oct_decode(r->n, out->n);
+    irc__frame_of(r->n, t1, t2);
+    out->features = c->cfg.features;
+    if (c->off_t)
+        irc__grad_unpack((const irc__grad *)(const void *)(b + c->off_t), t1, t2, out->grad_t);
+    if (c->off_r)
+        irc__grad_unpack((const irc__grad *)(const void *)(b + c->off_r), t1, t2, out->grad_r);
+}

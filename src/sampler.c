@@ -1,0 +1,165 @@
+/*
+ * sampler.c -- stratified cosine-weighted hemisphere sampling through the
+ * host's trace callback, and the query-keyed random numbers behind it.
+ *
+ * Stratum (j, k), j < M rows in theta and k < N columns in phi, takes
+ * sin^2(theta) = (j + u1)/M and phi = 2 pi (k + u2)/N: every stratum carries
+ * the same cosine-weighted measure pi/(MN).
+ */
+#include "cache.h"
+
+/* splitmix64's finaliser: a bijective 64-bit mix. */
+static uint64_t irc__mix(uint64_t x)
+{
+    x ^= x >> 30;
+    x *= 0xbf58476d1ce4e5b9ull;
+    x ^= x >> 27;
+    x *= 0x94d049bb133111ebull;
+    x ^= x >> 31;
+    return x;
+}
+
+static uint32_t irc__bits(float f)
+{
+    uint32_t u;
+    f += 0.0f; /* -0 and +0 are one query */
+    IRC_MEMCPY(&u, &f, sizeof u);
+    return u;
+}
+
+/* The record's random numbers depend on nothing but the query and the seed,
+ * so a record is the same whichever thread computes it, and when. */
+irc__rng irc__rng_for(const float p[3], const float n[3], uint64_t seed)
+{
+    irc__rng r;
+    uint64_t h = irc__mix(seed ^ 0x9e3779b97f4a7c15ull);
+    int i;
+    for (i = 0; i < 3; i++)
+        h = irc__mix(h ^ ((uint64_t)irc__bits(p[i]) << 32 | irc__bits(n[i])));
+    r.key = h;
+    return r;
+}
+
+void irc__rng_pair(const irc__rng *rng, uint32_t i, double *u1, double *u2)
+{
+    uint64_t h = irc__mix(rng->key + (uint64_t)(i + 1) * 0x9e3779b97f4a7c15ull);
+    *u1 = (double)(h >> 32) * (1.0 / 4294967296.0);
+    *u2 = (double)(h & 0xffffffffu) * (1.0 / 4294967296.0);
+}
+
+/* Branchless orthonormal basis (Duff et al. 2017), right-handed:
+ * t1 x t2 = n.  Continuous everywhere but across n.z = 0's sign flip. */
+void irc__frame(const double n[3], double t1[3], double t2[3])
+{
+    double s = n[2] >= 0.0 ? 1.0 : -1.0;
+    double a = -1.0 / (s + n[2]);
+    double b = n[0] * n[1] * a;
+    t1[0] = 1.0 + s * n[0] * n[0] * a;
+    t1[1] = s * b;
+    t1[2] = -s * n[0];
+    t2[0] = b;
+    t2[1] = s + n[1] * n[1] * a;
+    t2[2] = -n[1];
+}
+
+static int irc__nonneg3(const float v[3])
+{
+    return irc__finite3(v) && v[0] >= 0.0f && v[1] >= 0.0f && v[2] >= 0.0f;
+}
+
+/* Checks one hit and turns it into a sample.  Returns 1 usable, 0 failed
+ * (the host said so), or IRC_ERR_CALLBACK. */
+static int irc__accept_hit(const irc_hit *h, irc__sample *s)
+{
+    switch (h->status) {
+    case IRC_RAY_HIT:
+        if (!irc__finite(h->dist) || !(h->dist > 0.0f) ||
+            !irc__nonneg3(h->radiance) || !irc__finite3(h->normal) ||
+            (h->normal[0] == 0.0f && h->normal[1] == 0.0f && h->normal[2] == 0.0f))
+            return IRC_ERR_CALLBACK;
+        s->d = h->dist;
+        break;
+    case IRC_RAY_ESCAPED:
+        if (!irc__nonneg3(h->radiance))
+            return IRC_ERR_CALLBACK;
+        s->d = HUGE_VALF;
+        break;
+    case IRC_RAY_FAILED:
+        s->l[0] = s->l[1] = s->l[2] = 0.0f;
+        s->d = NAN;
+        return 0;
+    default:
+        return IRC_ERR_CALLBACK;
+    }
+    s->l[0] = h->radiance[0];
+    s->l[1] = h->radiance[1];
+    s->l[2] = h->radiance[2];
+    return 1;
+}
+
+static void irc__direction(const irc__rng *rng, uint32_t j, uint32_t k,
+                           uint32_t m, uint32_t nphi, const double n[3],
+                           const double t1[3], const double t2[3], float dir[3])
+{
+    double u1, u2, s2, st, ct, phi, cp, sp;
+    int i;
+    irc__rng_pair(rng, j * nphi + k, &u1, &u2);
+    s2 = ((double)j + u1) / (double)m;
+    st = IRC_SQRT(s2);
+    ct = IRC_SQRT(1.0 - s2);
+    phi = 2.0 * IRC_PI * ((double)k + u2) / (double)nphi;
+    cp = IRC_COS(phi);
+    sp = IRC_SIN(phi);
+    for (i = 0; i < 3; i++)
+        dir[i] = (float)(st * (cp * t1[i] + sp * t2[i]) + ct * n[i]);
+}
+
+/* Fills out[j * N + k] for every stratum, casting rays in batches of
+ * cfg.max_batch.  *used gets the number of usable samples.  Returns IRC_OK
+ * or a negative code (the callback's own, passed through). */
+int irc__sample_hemisphere(irc_cache *c, unsigned char *slot, const float p[3],
+                           const double n[3], const double t1[3],
+                           const double t2[3], irc__sample *out,
+                           uint32_t *used)
+{
+    const uint32_t m = c->cfg.strata_theta, nphi = c->cfg.strata_phi;
+    const uint32_t total = m * nphi, batch = c->cfg.max_batch;
+    irc_ray *rays = (irc_ray *)(void *)(slot + (size_t)total * sizeof(irc__sample));
+    irc_hit *hits = (irc_hit *)(void *)(rays + batch);
+    irc__rng rng;
+    irc_trace_args args;
+    float nf[3];
+    uint32_t s0, i, good = 0;
+    int st;
+
+    nf[0] = (float)n[0]; nf[1] = (float)n[1]; nf[2] = (float)n[2];
+    rng = irc__rng_for(p, nf, c->cfg.seed);
+    args.context = c->cfg.context;
+    args.rays = rays;
+    args.hits = hits;
+    for (s0 = 0; s0 < total; s0 += batch) {
+        uint32_t cnt = total - s0 < batch ? total - s0 : batch;
+        for (i = 0; i < cnt; i++) {
+            uint32_t s = s0 + i;
+            rays[i].org[0] = p[0];
+            rays[i].org[1] = p[1];
+            rays[i].org[2] = p[2];
+            irc__direction(&rng, s / nphi, s % nphi, m, nphi, n, t1, t2, rays[i].dir);
+            hits[i].status = -1;
+        }
+        args.count = cnt;
+        st = c->cfg.trace(&args);
+        if (st < 0)
+            return st;
+        if (st > 0)
+            return IRC_ERR_CALLBACK;
+        for (i = 0; i < cnt; i++) {
+            st = irc__accept_hit(&hits[i], &out[s0 + i]);
+            if (st < 0)
+                return st;
+            good += (uint32_t)st;
+        }
+    }
+    *used = good;
+    return good * 2u < total || good == 0 ? IRC_ERR_NOSAMPLES : IRC_OK;
+}

@@ -1,0 +1,83 @@
+/*
+ * weight.c -- whether a record counts at a query, with what weight, and the
+ * value it extrapolates there.
+ */
+#include "cache.h"
+
+/* A record in front of the query's surface by more than this fraction of
+ * its radius is rejected: relative to R_i so the test does not change with
+ * the scene's units. */
+#define IRC__BEHIND_TOL 0.05
+/* Cap on a weight: a query exactly on a record gives 1/0. */
+#define IRC__W_MAX 1e6
+
+/* Ward-Heckbert weight w = 1 / (|p - p_i|/R_i + sqrt(1 - n.n_i)), accepted
+ * when w > 1/a.  n must be unit length.  Returns 1 and sets *w and the
+ * record's decoded normal ni when the record counts, else 0. */
+int irc__weigh(const irc_cache *c, const irc__rec *r, const float p[3],
+               const float n[3], double *w, float ni[3])
+{
+    const double a = c->cfg.accuracy, rad = r->r;
+    double dx = (double)p[0] - r->p[0], dy = (double)p[1] - r->p[1],
+           dz = (double)p[2] - r->p[2];
+    double d2 = dx * dx + dy * dy + dz * dz, nn, e;
+    if (d2 >= a * a * rad * rad)
+        return 0;
+    irc__oct_decode(r->n, ni);
+    nn = (double)n[0] * ni[0] + (double)n[1] * ni[1] + (double)n[2] * ni[2];
+    if (nn <= 0.0)
+        return 0;
+    if (0.5 * (dx * (n[0] + ni[0]) + dy * (n[1] + ni[1]) + dz * (n[2] + ni[2])) <
+        -IRC__BEHIND_TOL * rad)
+        return 0;
+    e = IRC_SQRT(d2) / rad + IRC_SQRT(nn < 1.0 ? 1.0 - nn : 0.0);
+    if (!(e < a))
+        return 0;
+    *w = e > 1.0 / IRC__W_MAX ? 1.0 / e : IRC__W_MAX;
+    return 1;
+}
+
+static double irc__grad_dot(const irc__grad *g, int ch, double a, double b)
+{
+    return (g->g[2 * ch] * a + g->g[2 * ch + 1] * b) * (double)g->scale;
+}
+
+/* E_i + (p - p_i).grad_t + (n_i x n).grad_r, each gradient stored in the
+ * tangent frame of the decoded normal, clamped at 0 per channel. */
+void irc__extrapolate(const irc_cache *c, const irc__rec *r, const float ni[3],
+                      const float p[3], const float n[3], double out[3])
+{
+    const unsigned char *b = (const unsigned char *)r;
+    double t1[3], t2[3], nd[3];
+    int ch;
+    for (ch = 0; ch < 3; ch++)
+        out[ch] = r->e[ch];
+    if (!c->off_t && !c->off_r)
+        return;
+    nd[0] = ni[0]; nd[1] = ni[1]; nd[2] = ni[2];
+    irc__frame(nd, t1, t2);
+    if (c->off_t) {
+        const irc__grad *g = (const irc__grad *)(const void *)(b + c->off_t);
+        double d[3], da, db;
+        d[0] = (double)p[0] - r->p[0];
+        d[1] = (double)p[1] - r->p[1];
+        d[2] = (double)p[2] - r->p[2];
+        da = irc__dot3d(d, t1);
+        db = irc__dot3d(d, t2);
+        for (ch = 0; ch < 3; ch++)
+            out[ch] += irc__grad_dot(g, ch, da, db);
+    }
+    if (c->off_r) {
+        const irc__grad *g = (const irc__grad *)(const void *)(b + c->off_r);
+        double q[3], x[3], da, db;
+        q[0] = n[0]; q[1] = n[1]; q[2] = n[2];
+        irc__cross3d(nd, q, x);
+        da = irc__dot3d(x, t1);
+        db = irc__dot3d(x, t2);
+        for (ch = 0; ch < 3; ch++)
+            out[ch] += irc__grad_dot(g, ch, da, db);
+    }
+    for (ch = 0; ch < 3; ch++)
+        if (!(out[ch] > 0.0))
+            out[ch] = 0.0;
+}
