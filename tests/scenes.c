@@ -1,0 +1,182 @@
+/* scenes.c -- analytic reference hosts (see scenes.h). */
+#include "scenes.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+void scene_init(scene *s)
+{
+    memset(s, 0, sizeof *s);
+}
+
+static double hit_sphere(const scene *s, const float o[3], const float d[3])
+{
+    double oc[3], b, c, disc, t;
+    int i;
+    for (i = 0; i < 3; i++)
+        oc[i] = (double)o[i] - s->centre[i];
+    b = oc[0] * d[0] + oc[1] * d[1] + oc[2] * d[2];
+    c = oc[0] * oc[0] + oc[1] * oc[1] + oc[2] * oc[2] - s->radius * s->radius;
+    disc = b * b - c;
+    if (disc < 0.0)
+        return -1.0;
+    /* The nearer root, in the form that does not cancel. */
+    t = -b - sqrt(disc);
+    if (t <= 0.0)
+        t = c / (-b - sqrt(disc)) > 0.0 ? c / (-b - sqrt(disc)) : -1.0;
+    return t;
+}
+
+static void inject(scene *s, irc_hit *h)
+{
+    switch (s->fail_kind) {
+    case FAIL_RAY: h->status = IRC_RAY_FAILED; break;
+    case FAIL_NEG_DIST: h->status = IRC_RAY_HIT; h->dist = -1.0f; break;
+    case FAIL_NAN_DIST: h->status = IRC_RAY_HIT; h->dist = NAN; break;
+    case FAIL_ZERO_DIST: h->status = IRC_RAY_HIT; h->dist = 0.0f; break;
+    case FAIL_INF_RADIANCE: h->radiance[1] = INFINITY; break;
+    case FAIL_NAN_RADIANCE: h->radiance[0] = NAN; break;
+    case FAIL_NEG_RADIANCE: h->radiance[2] = -1.0f; break;
+    case FAIL_ZERO_NORMAL:
+        h->status = IRC_RAY_HIT;
+        h->dist = 1.0f;
+        h->normal[0] = h->normal[1] = h->normal[2] = 0.0f;
+        break;
+    case FAIL_BAD_STATUS: h->status = 7; break;
+    case FAIL_UNTOUCHED: h->status = -1; break;
+    default: break;
+    }
+}
+
+int scene_trace(const irc_trace_args *a)
+{
+    scene *s = (scene *)a->context;
+    uint32_t r;
+    for (r = 0; r < a->count; r++) {
+        const float *o = a->rays[r].org, *d = a->rays[r].dir;
+        irc_hit *h = &a->hits[r];
+        double t = s->has_sphere ? hit_sphere(s, o, d) : -1.0;
+        double tp = -1.0;
+        int c;
+        if (s->has_disk && d[2] > 0.0f && o[2] < s->disk_c[2]) {
+            double td = (s->disk_c[2] - o[2]) / d[2];
+            double x = o[0] + td * d[0] - s->disk_c[0], y = o[1] + td * d[1] - s->disk_c[1];
+            if (x * x + y * y < s->disk_r * s->disk_r && (t <= 0.0 || td < t)) {
+                h->status = IRC_RAY_HIT;
+                h->dist = (float)td;
+                h->normal[0] = h->normal[1] = 0.0f;
+                h->normal[2] = -1.0f;
+                h->radiance[0] = h->radiance[1] = h->radiance[2] = 0.0f;
+                goto next;
+            }
+        }
+        if (s->has_plane && d[2] < 0.0f && o[2] > s->plane_z)
+            tp = (s->plane_z - o[2]) / d[2];
+        if (t > 0.0 && (tp <= 0.0 || t < tp)) {
+            h->status = IRC_RAY_HIT;
+            h->dist = (float)t;
+            for (c = 0; c < 3; c++) {
+                h->normal[c] = (float)((o[c] + t * d[c] - s->centre[c]) / s->radius);
+                h->radiance[c] = s->sphere_l[c];
+            }
+        } else if (tp > 0.0) {
+            h->status = IRC_RAY_HIT;
+            h->dist = (float)tp;
+            h->normal[0] = h->normal[1] = 0.0f;
+            h->normal[2] = 1.0f;
+            for (c = 0; c < 3; c++)
+                h->radiance[c] = s->plane_l[c];
+        } else {
+            h->status = IRC_RAY_ESCAPED;
+            for (c = 0; c < 3; c++)
+                h->radiance[c] = s->sky_a[c] + s->sky_b[c] * d[2];
+        }
+    next:
+        s->calls++;
+        if (s->fail_every && s->calls % s->fail_every == 0)
+            inject(s, h);
+    }
+    return s->return_code;
+}
+
+double sphere_plane_e(const scene *s, const double p[3])
+{
+    double dx = s->centre[0] - p[0], dy = s->centre[1] - p[1], h = s->centre[2] - p[2];
+    double d = sqrt(dx * dx + dy * dy + h * h);
+    return TPI * s->sky_a[0] * (1.0 - s->radius * s->radius * h / (d * d * d));
+}
+
+/* E = pi L (1 - r^2 h / d^3), so grad_p E = 3 pi L r^2 h (p - C) / d^5 in
+ * the plane. */
+void sphere_plane_grad(const scene *s, const double p[3], double g[3])
+{
+    double dx = p[0] - s->centre[0], dy = p[1] - s->centre[1], h = s->centre[2] - p[2];
+    double d = sqrt(dx * dx + dy * dy + h * h);
+    double k = 3.0 * TPI * s->sky_a[0] * s->radius * s->radius * h / pow(d, 5.0);
+    g[0] = k * dx;
+    g[1] = k * dy;
+    g[2] = 0.0;
+}
+
+double disk_plane_e(const scene *s, const double p[3])
+{
+    double h = s->disk_c[2] - p[2], dx = p[0] - s->disk_c[0], dy = p[1] - s->disk_c[1];
+    double a2 = dx * dx + dy * dy, r2 = s->disk_r * s->disk_r;
+    double f = 0.5 * (1.0 - (h * h + a2 - r2) / sqrt(pow(h * h + a2 + r2, 2.0) - 4.0 * a2 * r2));
+    return TPI * s->sky_a[0] * (1.0 - f);
+}
+
+irc_config scene_config(scene *s, uint32_t features, uint32_t m, uint32_t n)
+{
+    irc_config cfg;
+    memset(&cfg, 0, sizeof cfg);
+    cfg.trace = scene_trace;
+    cfg.context = s;
+    cfg.features = features;
+    cfg.strata_theta = m;
+    cfg.strata_phi = n;
+    return cfg;
+}
+
+irc_cache *block_cache(irc_config *cfg, uint32_t records, size_t guard)
+{
+    size_t bytes;
+    irc_cache *c;
+    if (irc_footprint(cfg, records, &bytes) != IRC_OK)
+        return NULL;
+    cfg->buffer = malloc(bytes + guard);
+    cfg->buffer_size = bytes;
+    memset((char *)cfg->buffer + bytes, 0xA5, guard);
+    if (irc_init(cfg, records, &c) != IRC_OK) {
+        free(cfg->buffer);
+        cfg->buffer = NULL;
+        return NULL;
+    }
+    return c;
+}
+
+int block_guard_ok(const irc_config *cfg, size_t guard)
+{
+    const unsigned char *g = (const unsigned char *)cfg->buffer + cfg->buffer_size;
+    size_t i;
+    for (i = 0; i < guard; i++)
+        if (g[i] != 0xA5)
+            return 0;
+    return 1;
+}
+
+void block_free(irc_config *cfg)
+{
+    free(cfg->buffer);
+    cfg->buffer = NULL;
+}
+
+double xrand(unsigned long long *state)
+{
+    unsigned long long x = (*state += 0x9e3779b97f4a7c15ull);
+    x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
+    x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
+    x ^= x >> 31;
+    return (double)(x >> 11) * (1.0 / 9007199254740992.0);
+}
