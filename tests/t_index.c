@@ -1,0 +1,185 @@
+/* t_index.c -- the octree returns exactly what a scan of every record does. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cache.h"
+#include "scenes.h"
+#include "test.h"
+
+static scene dummy;
+
+static int cmp_u32(const void *a, const void *b)
+{
+    uint32_t x = *(const uint32_t *)a, y = *(const uint32_t *)b;
+    return x < y ? -1 : x > y;
+}
+
+/* A random unit normal near one of the six axes (so queries and records
+ * share orientations, as surfaces do). */
+static void rand_normal(unsigned long long *st, float n[3])
+{
+    int axis = (int)(xrand(st) * 6.0), k;
+    double len;
+    for (k = 0; k < 3; k++)
+        n[k] = (float)((xrand(st) - 0.5) * 0.3);
+    n[axis % 3] = axis < 3 ? 1.0f : -1.0f;
+    len = sqrt((double)n[0] * n[0] + (double)n[1] * n[1] + (double)n[2] * n[2]);
+    for (k = 0; k < 3; k++)
+        n[k] = (float)(n[k] / len);
+}
+
+/* Fills the cache with `count` random records: positions in clusters whose
+ * scales range over `decades` decades, radii log-uniform. */
+static void fill(irc_cache *c, uint32_t count, int decades, unsigned long long *st)
+{
+    uint32_t i;
+    for (i = 0; i < count; i++) {
+        irc_record r;
+        double scale = pow(10.0, (xrand(st) - 0.5) * decades);
+        int k;
+        memset(&r, 0, sizeof r);
+        for (k = 0; k < 3; k++) {
+            r.p[k] = (float)(xrand(st) * scale);
+            r.e[k] = (float)xrand(st);
+        }
+        rand_normal(st, r.n);
+        r.radius = (float)(scale * 0.01 * pow(10.0, xrand(st) * 1.5));
+        if (irc_cache_insert(c, &r) != IRC_OK)
+            break;
+    }
+}
+
+/* Queries the index and a scan of all records; compares ids exactly and
+ * values to float rounding.  Returns the number of queries that found any
+ * record. */
+static uint32_t compare(irc_cache *c, uint32_t queries, int decades, unsigned long long *st)
+{
+    uint32_t *ids = malloc(sizeof(uint32_t) * 4096), *scan = malloc(sizeof(uint32_t) * 4096);
+    uint32_t q, found = 0, bad = 0, m = c->count, i0;
+    /* Every record's position and squared reach, scanned whole per query:
+     * the prefilter only skips the weight call where d >= a R already. */
+    float *px = malloc(sizeof(float) * m * 4), *py = px + m, *pz = py + m, *r2 = pz + m;
+    for (i0 = 0; i0 < m; i0++) {
+        const irc__rec *r = irc__rec_at(c, i0);
+        double reach = (double)c->cfg.accuracy * r->r;
+        px[i0] = r->p[0];
+        py[i0] = r->p[1];
+        pz[i0] = r->p[2];
+        r2[i0] = (float)(reach * reach * 1.001);
+    }
+    for (q = 0; q < queries; q++) {
+        float p[3], n[3], rgb[3], wt;
+        double scale = pow(10.0, (xrand(st) - 0.5) * decades), sum[3] = {0, 0, 0}, wsum = 0;
+        uint32_t cnt = 0, ns = 0, i;
+        int k, stt;
+        if (q & 1) {
+            for (k = 0; k < 3; k++)
+                p[k] = (float)(xrand(st) * scale);
+            rand_normal(st, n);
+        } else {
+            /* Near a record, where weights are rarely zero. */
+            const irc__rec *r = irc__rec_at(c, (uint32_t)(xrand(st) * c->count));
+            float ni[3];
+            irc__oct_decode(r->n, ni);
+            for (k = 0; k < 3; k++) {
+                p[k] = r->p[k] + (float)((xrand(st) - 0.5) * 0.3 * r->r);
+                n[k] = ni[k] + (float)((xrand(st) - 0.5) * 0.1);
+            }
+            {   /* the scan below takes unit normals, as lookups make them */
+                double un[3];
+                irc__check_normal(n, un);
+                for (k = 0; k < 3; k++)
+                    n[k] = (float)un[k];
+            }
+        }
+        irc_cache_neighbours(c, p, n, ids, 4096, &cnt);
+        for (i = 0; i < m; i++) {
+            double w, v[3];
+            float ni[3], dx = p[0] - px[i], dy = p[1] - py[i], dz = p[2] - pz[i];
+            if (dx * dx + dy * dy + dz * dz > r2[i])
+                continue;
+            if (irc__weigh(c, irc__rec_at(c, i), p, n, &w, ni)) {
+                if (ns < 4096)
+                    scan[ns] = i;
+                ns++;
+                irc__extrapolate(c, irc__rec_at(c, i), ni, p, n, v);
+                for (k = 0; k < 3; k++)
+                    sum[k] += w * v[k];
+                wsum += w;
+            }
+        }
+        stt = irc_cache_lookup(c, p, n, rgb, &wt);
+        if (cnt > 4096 || ns > 4096) {
+            bad++;
+            continue;
+        }
+        qsort(ids, cnt, sizeof *ids, cmp_u32);
+        qsort(scan, ns, sizeof *scan, cmp_u32);
+        if (cnt != ns || memcmp(ids, scan, cnt * sizeof *ids) != 0)
+            bad++;
+        else if (ns && (stt != IRC_OK || fabs(rgb[0] - sum[0] / wsum) > 1e-5 * (sum[0] / wsum) + 1e-30))
+            bad++;
+        else if (!ns && stt != IRC_MISS)
+            bad++;
+        found += ns > 0;
+    }
+    CHECK(bad == 0, "%u of %u queries differ from the scan", bad, queries);
+    free(ids);
+    free(scan);
+    free(px);
+    return found;
+}
+
+/* 1e5 random queries over 1e5 random records (1e4 queries in sanitizer
+ * builds, where the scan is slow). */
+TEST(test_index_exact)
+{
+    irc_config cfg = scene_config(&dummy, IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION, 4, 4);
+    unsigned long long st = 12345;
+    uint32_t queries = irc_t_quick ? 10000u : 100000u, found;
+    irc_cache *c = block_cache(&cfg, 100000, 0);
+    irc_stats s;
+    CHECK(c != NULL, "init");
+    if (!c) return;
+    fill(c, 100000, 0, &st);
+    irc_cache_stats(c, &s);
+    CHECK(s.records == 100000, "records %llu", (unsigned long long)s.records);
+    found = compare(c, queries, 0, &st);
+    printf("  %u queries, %u found records; %llu of %llu index nodes used\n", queries, found,
+           (unsigned long long)s.index_nodes, (unsigned long long)s.index_nodes_max);
+    CHECK(found > queries / 10, "too few queries find anything (%u): the test would prove little", found);
+    block_free(&cfg);
+}
+
+/* Positions over eight decades of scale (the root grows many times), and
+ * an index whose node pool runs out (lists grow instead). */
+TEST(test_index_scales)
+{
+    irc_config cfg = scene_config(&dummy, 0, 4, 4);
+    unsigned long long st = 999;
+    irc_cache *c = block_cache(&cfg, 20000, 0);
+    uint32_t found;
+    CHECK(c != NULL, "init");
+    if (!c) return;
+    fill(c, 20000, 8, &st);
+    found = compare(c, irc_t_quick ? 2000u : 20000u, 8, &st);
+    CHECK(found > 100, "found %u", found);
+    /* Exhaust the node pool: many records at one point split to the
+     * depth limit, then lists grow. */
+    irc_cache_clear(c);
+    {
+        irc_record r;
+        uint32_t i;
+        memset(&r, 0, sizeof r);
+        r.n[2] = 1.0f;
+        for (i = 0; i < 20000; i++) {
+            r.p[0] = (float)(xrand(&st) * 1e-6);
+            r.radius = 1e-7f;
+            CHECK(irc_cache_insert(c, &r) == IRC_OK, "insert");
+        }
+    }
+    found = compare(c, 200, 0, &st);
+    CHECK(found > 50, "found %u", found);
+    block_free(&cfg);
+}
