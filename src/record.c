@@ -206,7 +206,11 @@ int irc_record_compute(irc_cache *c, const float p[3], const float n[3],
     /* Scratch goes back to zero so that a failed call leaves the block as
      * it was, and no record's samples outlive it. */
     IRC_MEMSET(slot, 0, c->slot_bytes);
-    c->port->fetch_add(&c->slots_busy, (uint64_t)0 - (1ull << t));
+    /* Release through the acq_rel CAS, so that the next owner of the slot
+     * sees this thread's writes to it as done (a relaxed add would not). */
+    do
+        busy = c->port->load(&c->slots_busy);
+    while (!c->port->cas(&c->slots_busy, busy, busy & ~(1ull << t)));
     if (st < 0)
         return st;
     c->port->fetch_add(&c->ctr[IRC__C_COMPUTES], 1);

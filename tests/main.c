@@ -13,7 +13,10 @@ int irc_t_quick;
     X(test_rotational_gradient_sky) X(test_radius_rules)             \
     X(test_pack_roundtrip) X(test_weighted_mean) X(test_behind_relative)  \
     X(test_extrapolation) X(test_lookup_or_compute) X(test_full_no_evict) \
-    X(test_evict_clock) X(test_index_exact) X(test_index_scales)
+    X(test_evict_clock) X(test_index_exact) X(test_index_scales)          \
+    X(test_config_checks) X(test_footprints) X(test_init_block)         \
+    X(test_bad_input_unchanged) X(test_callback_failures) X(test_ports) \
+    X(test_threads_stress) X(test_threads_determinism)
 
 #define DECL(name) void name(void);
 TESTS(DECL)

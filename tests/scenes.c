@@ -93,8 +93,8 @@ int scene_trace(const irc_trace_args *a)
                 h->radiance[c] = s->sky_a[c] + s->sky_b[c] * d[2];
         }
     next:
-        s->calls++;
-        if (s->fail_every && s->calls % s->fail_every == 0)
+        /* Injection counts calls: single-threaded tests only. */
+        if (s->fail_every && ++s->calls % s->fail_every == 0)
             inject(s, h);
     }
     return s->return_code;

@@ -1,0 +1,79 @@
+#!/bin/sh
+# tests/run.sh -- every test stage of `make test`; the last line is
+# "N passed, N failed" over all of them.  Each suite run counts its own
+# tests; every other stage counts as one.
+#   stage 1  library builds warning-free with gcc and clang (-Werror)
+#   stage 2  the suite, optimised
+#   stage 3  the suite under ASan + UBSan (clang, -fno-sanitize-recover)
+#   stage 4  the thread tests under ThreadSanitizer (clang)
+#   stage 5  the header alone as C99 and as C++; no allocator symbol in
+#            libirrcache.a; no thread or I/O header in src/
+set -u
+cd "$(dirname "$0")/.."
+P=0
+F=0
+LOG=build/test-logs
+mkdir -p "$LOG"
+MAKE=${MAKE:-make}
+SAN_CC=${SAN_CC:-clang}
+
+ok() { P=$((P + 1)); echo "ok   $1"; }
+bad() { F=$((F + 1)); echo "FAIL $1${2:+: $2}"; }
+check() { # name command...
+    name=$1; shift
+    if "$@" >"$LOG/$name.log" 2>&1; then ok "$name"; else bad "$name" "see $LOG/$name.log"; tail -20 "$LOG/$name.log"; fi
+}
+suite() { # name env-and-binary...
+    name=$1; shift
+    env "$@" >"$LOG/$name.log" 2>&1
+    rc=$?
+    line=$(grep -E '^[0-9]+ passed, [0-9]+ failed$' "$LOG/$name.log" | tail -1)
+    grep -E '^(ok|FAIL) |^  ' "$LOG/$name.log" | sed "s/^/[$name] /"
+    if [ -n "$line" ]; then
+        p=${line%% passed*}
+        f=${line#*passed, }; f=${f%% failed}
+        P=$((P + p)); F=$((F + f))
+        [ "$rc" -eq 0 ] || [ "$f" -ne 0 ] || bad "$name" "exit status $rc (sanitizer report?)"
+    else
+        bad "$name" "no result line, exit status $rc"
+        tail -30 "$LOG/$name.log"
+    fi
+}
+
+echo "== stage 1: builds"
+check build-gcc $MAKE -s CC=gcc BUILD=build all
+check build-clang $MAKE -s CC=clang BUILD=build-clang all
+
+echo "== stage 2: suite"
+check build-tests $MAKE -s BUILD=build build/irc_tests
+suite suite ./build/irc_tests
+
+echo "== stage 3: suite under ASan + UBSan"
+SAN="-O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=all"
+check build-asan $MAKE -s CC="$SAN_CC" BUILD=build-asan OPT="$SAN" build-asan/irc_tests
+suite asan IRC_TEST_QUICK=1 ASAN_OPTIONS=detect_leaks=1:abort_on_error=0 \
+    UBSAN_OPTIONS=print_stacktrace=1 ./build-asan/irc_tests
+
+echo "== stage 4: threads under TSan"
+check build-tsan $MAKE -s CC="$SAN_CC" BUILD=build-tsan OPT="-O1 -g -fsanitize=thread" build-tsan/irc_tests
+suite tsan IRC_TEST_QUICK=1 TSAN_OPTIONS=halt_on_error=1 ./build-tsan/irc_tests test_threads
+
+echo "== stage 5: header and library rules"
+check header-c99 cc -std=c99 -pedantic -Wall -Wextra -Werror -fsyntax-only -x c include/irrcache.h
+check header-cxx c++ -std=c++98 -pedantic -Wall -Wextra -Werror -Wno-long-long -Iinclude -c tests/header_cpp.cpp -o build/header_cpp.o
+no_allocator() {
+    found=$(nm -A build/libirrcache.a | grep -E ' U (malloc|calloc|realloc|free|aligned_alloc|posix_memalign)$')
+    [ -z "$found" ] || { echo "$found"; return 1; }
+    nm build/libirrcache.a | grep -q ' T irc_init$'   # the check reads the right archive
+}
+check no-allocator no_allocator
+src_headers() {
+    bad=$(grep -hoE '#[[:space:]]*include[[:space:]]*<[^>]+>' src/*.c src/*.h include/*.h |
+        sed -E 's/.*<([^>]+)>.*/\1/' | sort -u |
+        grep -vxE 'assert.h|float.h|math.h|stddef.h|stdint.h|string.h')
+    [ -z "$bad" ] || { echo "src/ includes: $bad"; return 1; }
+}
+check src-headers src_headers
+
+echo "$P passed, $F failed"
+[ "$F" -eq 0 ]

@@ -1,0 +1,326 @@
+/* t_api.c -- config checks, footprints, bad input, callback failures. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cache.h"
+#include "scenes.h"
+#include "test.h"
+
+#define GUARD 256
+
+static scene sky;
+
+static void sky_init(void)
+{
+    scene_init(&sky);
+    sky.sky_a[0] = sky.sky_a[1] = sky.sky_a[2] = 1.0f;
+    sky.has_sphere = 1;
+    sky.centre[2] = 2.0;
+    sky.radius = 1.0;
+}
+
+TEST(test_config_checks)
+{
+    irc_config cfg;
+    size_t bytes;
+    struct { const char *what; int want; } cases[16];
+    int i, n = 0;
+    sky_init();
+#define CASE(field_set, code)                                               \
+    do {                                                                    \
+        cfg = scene_config(&sky, 0, 0, 0);                                  \
+        field_set;                                                          \
+        cases[n].what = #field_set;                                         \
+        cases[n].want = code;                                               \
+        CHECK(irc_footprint(&cfg, 16, &bytes) == code, "%s", #field_set);   \
+        n++;                                                                \
+    } while (0)
+    CASE(cfg.trace = NULL, IRC_ERR_NULL);
+    CASE(cfg.features = IRC_FEATURE_VISIBILITY, IRC_ERR_UNSUPPORTED);
+    CASE(cfg.features = 1u << 20, IRC_ERR_CONFIG);
+    CASE(cfg.accuracy = -1.0f, IRC_ERR_CONFIG);
+    CASE(cfg.accuracy = 1e9f, IRC_ERR_CONFIG);
+    CASE(cfg.accuracy = NAN, IRC_ERR_CONFIG);
+    CASE(cfg.min_radius = -1.0f, IRC_ERR_CONFIG);
+    CASE((cfg.min_radius = 2.0f, cfg.max_radius = 1.0f), IRC_ERR_CONFIG);
+    CASE(cfg.strata_theta = 2000, IRC_ERR_CONFIG);
+    CASE((cfg.strata_theta = 1024, cfg.strata_phi = 1024), IRC_ERR_CONFIG);
+    CASE(cfg.max_batch = IRC_MAX_BATCH + 1, IRC_ERR_CONFIG);
+    CASE(cfg.threads = IRC_MAX_THREADS + 1, IRC_ERR_CONFIG);
+    CASE(cfg.evict = 7, IRC_ERR_CONFIG);
+    CASE(cfg.accuracy = 0.0f, IRC_OK);
+    CASE((cfg.strata_theta = 1, cfg.strata_phi = 1), IRC_OK);
+    CASE((cfg.strata_theta = 256, cfg.strata_phi = 256), IRC_OK);
+#undef CASE
+    (void)cases;
+    cfg = scene_config(&sky, 0, 0, 0);
+    CHECK(irc_footprint(NULL, 16, &bytes) == IRC_ERR_NULL, "null cfg");
+    CHECK(irc_footprint(&cfg, 16, NULL) == IRC_ERR_NULL, "null out");
+    CHECK(irc_footprint(&cfg, 0, &bytes) == IRC_ERR_CONFIG, "zero records");
+    for (i = IRC_ERR_LAST; i <= IRC_NOT_STORED; i++)
+        CHECK(irc_strerror(i) != NULL && *irc_strerror(i), "strerror %d", i);
+    CHECK(strcmp(irc_strerror(-1000), irc_strerror(IRC_ERR_LAST - 1)) == 0, "host codes");
+}
+
+/* A cache pays only for what it enables; the compile-time bound holds. */
+TEST(test_footprints)
+{
+    static const uint32_t feats[] = {0, IRC_FEATURE_TRANSLATION, IRC_FEATURE_ROTATION,
+                                     IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION};
+    static const size_t want[] = {32, 48, 48, 64};
+    size_t i, b0, b1;
+    sky_init();
+    for (i = 0; i < 4; i++) {
+        irc_config cfg = scene_config(&sky, feats[i], 8, 16);
+        irc_cache *c = block_cache(&cfg, 1000, 0);
+        irc_stats st;
+        CHECK(c && irc_cache_stats(c, &st) == IRC_OK, "stats");
+        CHECK(st.record_bytes == want[i], "record bytes %zu, want %zu", st.record_bytes, want[i]);
+        CHECK(st.bytes_total <= cfg.buffer_size, "total %zu of %zu", st.bytes_total, cfg.buffer_size);
+        irc_footprint(&cfg, 1000, &b0);
+        irc_footprint(&cfg, 2000, &b1);
+        CHECK(b1 > b0, "footprint grows with records");
+        block_free(&cfg);
+    }
+    {
+        static const uint32_t recs[] = {1, 100, 100000};
+        static const uint32_t str[][2] = {{1, 1}, {16, 64}, {256, 256}};
+        size_t a, b, t;
+        for (a = 0; a < 3; a++)
+            for (b = 0; b < 3; b++)
+                for (t = 1; t <= 64; t *= 8) {
+                    irc_config cfg = scene_config(&sky, IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION,
+                                                  str[b][0], str[b][1]);
+                    size_t bytes;
+                    cfg.threads = (uint32_t)t;
+                    cfg.max_batch = 4096;
+                    cfg.evict = IRC_EVICT_CLOCK;
+                    CHECK(irc_footprint(&cfg, recs[a], &bytes) == IRC_OK, "footprint");
+                    CHECK(bytes <= IRC_FOOTPRINT_BOUND(recs[a], str[b][0] * str[b][1], t, 4096),
+                          "bound %zu < %zu", (size_t)IRC_FOOTPRINT_BOUND(recs[a], str[b][0] * str[b][1], t, 4096), bytes);
+                }
+    }
+}
+
+/* Too small a block: IRC_ERR_NOMEM and not a byte written; any alignment
+ * works. */
+TEST(test_init_block)
+{
+    irc_config cfg;
+    irc_cache *c;
+    size_t bytes, off;
+    unsigned char *mem;
+    sky_init();
+    cfg = scene_config(&sky, IRC_FEATURE_TRANSLATION, 8, 16);
+    irc_footprint(&cfg, 100, &bytes);
+    mem = malloc(bytes + 64);
+    memset(mem, 0x5a, bytes + 64);
+    cfg.buffer = mem;
+    cfg.buffer_size = bytes - 1;
+    CHECK(irc_init(&cfg, 100, &c) == IRC_ERR_NOMEM, "too small");
+    for (off = 0; off < bytes + 64; off++)
+        if (mem[off] != 0x5a)
+            break;
+    CHECK(off == bytes + 64, "block touched at %zu", off);
+    cfg.buffer = NULL;
+    cfg.buffer_size = bytes;
+    CHECK(irc_init(&cfg, 100, &c) == IRC_ERR_NULL, "null buffer");
+    CHECK(irc_init(&cfg, 100, NULL) == IRC_ERR_NULL, "null out");
+    for (off = 1; off < 64; off += 7) {
+        const float p[3] = {0.5f, 0, 0}, n[3] = {0, 0, 1};
+        float rgb[3];
+        cfg.buffer = mem + off;
+        cfg.buffer_size = bytes;
+        memset(mem, 0x5a, bytes + 64);
+        CHECK(irc_init(&cfg, 100, &c) == IRC_OK, "init at offset %zu", off);
+        CHECK(irc_cache_lookup_or_compute(c, p, n, rgb, NULL) == IRC_OK, "works at offset %zu", off);
+        CHECK(mem[off - 1] == 0x5a && mem[off + bytes] == 0x5a, "stays inside at offset %zu", off);
+        irc_fini(c);
+    }
+    free(mem);
+}
+
+/* Every rejected call leaves the block byte for byte as it was, and
+ * nothing is written past it. */
+TEST(test_bad_input_unchanged)
+{
+    const float nanv = NAN, inf = INFINITY;
+    const float good_p[3] = {0.5f, 0.25f, 0.0f}, good_n[3] = {0, 0, 1};
+    const float bad_p[][3] = {{nanv, 0, 0}, {0, inf, 0}, {0, 0, -inf}};
+    const float bad_n[][3] = {{0, 0, 0}, {nanv, 0, 1}, {0, inf, 1}, {-0.0f, 0.0f, -0.0f}};
+    irc_config cfg;
+    irc_cache *c;
+    irc_record rec;
+    unsigned char *copy;
+    float rgb[3], w;
+    uint32_t ids[4], cnt;
+    size_t i;
+    sky_init();
+    cfg = scene_config(&sky, IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION, 8, 16);
+    cfg.evict = IRC_EVICT_CLOCK;
+    c = block_cache(&cfg, 64, GUARD);
+    CHECK(c != NULL, "init");
+    if (!c) return;
+    CHECK(irc_cache_lookup_or_compute(c, good_p, good_n, rgb, &w) == IRC_OK, "seed one record");
+    CHECK(irc_record_compute(c, good_p, good_n, &rec) == IRC_OK, "a good record");
+    copy = malloc(cfg.buffer_size);
+    memcpy(copy, cfg.buffer, cfg.buffer_size);
+#define SAME(call, code)                                                          \
+    do {                                                                          \
+        int st_ = (call);                                                         \
+        CHECK(st_ == (code), "%s returned %d (%s)", #call, st_, irc_strerror(st_)); \
+        CHECK(memcmp(copy, cfg.buffer, cfg.buffer_size) == 0, "%s changed the block", #call); \
+    } while (0)
+    for (i = 0; i < 3; i++) {
+        SAME(irc_cache_lookup(c, bad_p[i], good_n, rgb, &w), IRC_ERR_NONFINITE);
+        SAME(irc_cache_lookup_or_compute(c, bad_p[i], good_n, rgb, &w), IRC_ERR_NONFINITE);
+        SAME(irc_record_compute(c, bad_p[i], good_n, &rec), IRC_ERR_NONFINITE);
+        SAME(irc_cache_neighbours(c, bad_p[i], good_n, ids, 4, &cnt), IRC_ERR_NONFINITE);
+    }
+    for (i = 0; i < 4; i++) {
+        SAME(irc_cache_lookup(c, good_p, bad_n[i], rgb, &w), IRC_ERR_NORMAL);
+        SAME(irc_cache_lookup_or_compute(c, good_p, bad_n[i], rgb, &w), IRC_ERR_NORMAL);
+        SAME(irc_record_compute(c, good_p, bad_n[i], &rec), IRC_ERR_NORMAL);
+    }
+    SAME(irc_cache_lookup(NULL, good_p, good_n, rgb, &w), IRC_ERR_NULL);
+    SAME(irc_cache_lookup(c, NULL, good_n, rgb, &w), IRC_ERR_NULL);
+    SAME(irc_cache_lookup(c, good_p, NULL, rgb, &w), IRC_ERR_NULL);
+    SAME(irc_cache_lookup(c, good_p, good_n, NULL, &w), IRC_ERR_NULL);
+    SAME(irc_cache_insert(c, NULL), IRC_ERR_NULL);
+    SAME(irc_record_compute(c, good_p, good_n, NULL), IRC_ERR_NULL);
+    SAME(irc_cache_record(c, 64, &rec), IRC_ERR_RANGE);
+    SAME(irc_cache_neighbours(c, good_p, good_n, NULL, 4, &cnt), IRC_ERR_NULL);
+    SAME(irc_cache_stats(c, NULL), IRC_ERR_NULL);
+    {
+        irc_record bad = rec;
+        bad.e[1] = nanv;
+        SAME(irc_cache_insert(c, &bad), IRC_ERR_NONFINITE);
+        bad = rec;
+        bad.grad_t[2][0] = inf;
+        SAME(irc_cache_insert(c, &bad), IRC_ERR_NONFINITE);
+        bad = rec;
+        bad.radius = 0.0f;
+        SAME(irc_cache_insert(c, &bad), IRC_ERR_RANGE);
+        bad = rec;
+        bad.radius = -1.0f;
+        SAME(irc_cache_insert(c, &bad), IRC_ERR_RANGE);
+        bad = rec;
+        bad.n[0] = bad.n[1] = bad.n[2] = 0.0f;
+        SAME(irc_cache_insert(c, &bad), IRC_ERR_NORMAL);
+        bad = rec;
+        bad.p[2] = nanv;
+        SAME(irc_cache_insert(c, &bad), IRC_ERR_NONFINITE);
+    }
+    /* A cache handle that is not one. */
+    {
+        unsigned char junk[sizeof(irc_cache)];
+        memset(junk, 0, sizeof junk);
+        SAME(irc_cache_lookup((irc_cache *)(void *)junk, good_p, good_n, rgb, &w), IRC_ERR_CONFIG);
+    }
+    /* All scratch slots busy. */
+    {
+        uint64_t was = c->slots_busy;
+        c->slots_busy = 1;
+        memcpy(copy, cfg.buffer, cfg.buffer_size);
+        SAME(irc_record_compute(c, good_p, good_n, &rec), IRC_ERR_BUSY);
+        c->slots_busy = was;
+    }
+#undef SAME
+    CHECK(block_guard_ok(&cfg, GUARD), "guard bytes");
+    free(copy);
+    block_free(&cfg);
+}
+
+/* A callback reporting nonsense: an error status, no record, and the block
+ * as it was. */
+TEST(test_callback_failures)
+{
+    static const struct { unsigned kind, every; int want; } cases[] = {
+        {FAIL_NEG_DIST, 5, IRC_ERR_CALLBACK},    {FAIL_NAN_DIST, 5, IRC_ERR_CALLBACK},
+        {FAIL_ZERO_DIST, 5, IRC_ERR_CALLBACK},   {FAIL_INF_RADIANCE, 5, IRC_ERR_CALLBACK},
+        {FAIL_NAN_RADIANCE, 5, IRC_ERR_CALLBACK}, {FAIL_NEG_RADIANCE, 5, IRC_ERR_CALLBACK},
+        {FAIL_ZERO_NORMAL, 5, IRC_ERR_CALLBACK}, {FAIL_BAD_STATUS, 5, IRC_ERR_CALLBACK},
+        {FAIL_UNTOUCHED, 5, IRC_ERR_CALLBACK},   {FAIL_RAY, 1, IRC_ERR_NOSAMPLES},
+        {FAIL_RAY, 3, IRC_OK}};
+    const float p[3] = {0.5f, 0.25f, 0.0f}, n[3] = {0, 0, 1};
+    size_t i;
+    uint32_t batch;
+    for (batch = 1; batch <= 64; batch *= 64) {
+        for (i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+            irc_config cfg;
+            irc_cache *c;
+            unsigned char *copy;
+            irc_record rec;
+            float rgb[3], w;
+            int st;
+            sky_init();
+            cfg = scene_config(&sky, IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION, 8, 16);
+            cfg.max_batch = batch;
+            c = block_cache(&cfg, 8, GUARD);
+            copy = malloc(cfg.buffer_size);
+            memcpy(copy, cfg.buffer, cfg.buffer_size);
+            sky.fail_kind = cases[i].kind;
+            sky.fail_every = cases[i].every;
+            st = irc_cache_lookup_or_compute(c, p, n, rgb, &w);
+            CHECK(st == cases[i].want, "kind %u batch %u: %d (%s)", cases[i].kind, batch, st,
+                  irc_strerror(st));
+            if (cases[i].want < 0)
+                CHECK(memcmp(copy, cfg.buffer, cfg.buffer_size) == 0, "kind %u changed the block",
+                      cases[i].kind);
+            else
+                CHECK(irc_cache_record(c, 0, &rec) == IRC_OK && rec.e[0] > 0.0f &&
+                      fabs(rgb[0] - rec.e[0]) < 1e-6f * rec.e[0], "one failed ray in three: a record");
+            CHECK(block_guard_ok(&cfg, GUARD), "guard");
+            free(copy);
+            block_free(&cfg);
+        }
+    }
+    /* The host's own negative code comes back unchanged; positive is bad. */
+    {
+        irc_config cfg;
+        irc_cache *c;
+        irc_record rec;
+        sky_init();
+        cfg = scene_config(&sky, 0, 4, 4);
+        c = block_cache(&cfg, 8, 0);
+        sky.return_code = -4242;
+        CHECK(irc_record_compute(c, p, n, &rec) == -4242, "host code passed through");
+        sky.return_code = 3;
+        CHECK(irc_record_compute(c, p, n, &rec) == IRC_ERR_CALLBACK, "positive return");
+        block_free(&cfg);
+    }
+}
+
+/* Every port runs the same small workload to the same result. */
+TEST(test_ports)
+{
+    const irc_port *ports[] = {&irc_port_posix, &irc_port_c11, &irc_port_none, NULL};
+    float first[3] = {0, 0, 0};
+    size_t i;
+    for (i = 0; i < 4; i++) {
+        irc_config cfg;
+        irc_cache *c;
+        float rgb[3], sum[3] = {0, 0, 0};
+        unsigned long long st = 5;
+        int k;
+        sky_init();
+        cfg = scene_config(&sky, IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION, 8, 16);
+        cfg.port = ports[i];
+        c = block_cache(&cfg, 256, GUARD);
+        CHECK(c != NULL, "init with port %zu", i);
+        if (!c) continue;
+        for (k = 0; k < 300; k++) {
+            float p[3] = {(float)(xrand(&st) * 4 - 2), (float)(xrand(&st) * 4 - 2), 0.0f};
+            const float n[3] = {0, 0, 1};
+            CHECK(irc_cache_lookup_or_compute(c, p, n, rgb, NULL) >= 0, "lookup");
+            sum[0] += rgb[0];
+        }
+        if (i == 0)
+            first[0] = sum[0];
+        CHECK(sum[0] == first[0], "port %zu: %g vs %g", i, sum[0], first[0]);
+        CHECK(irc_fini(c) == IRC_OK, "fini");
+        CHECK(block_guard_ok(&cfg, GUARD), "guard");
+        block_free(&cfg);
+    }
+}
