@@ -68,38 +68,42 @@ typedef struct irc__acc {
     uint32_t *ids, cap, found;
 } irc__acc;
 
-static int irc__visit_lookup(void *ud, uint32_t id)
+static void irc__visit_lookup(void *ud, uint32_t id)
 {
     irc__acc *a = (irc__acc *)ud;
-    const irc__rec *r = irc__rec_at(a->c, id);
-    double w, v[3];
-    float ni[3];
-    if (!irc__weigh(a->c, r, a->p, a->n, &w, ni))
-        return 0;
-    irc__extrapolate(a->c, r, ni, a->p, a->n, v);
-    a->sum[0] += w * v[0];
-    a->sum[1] += w * v[1];
-    a->sum[2] += w * v[2];
-    a->w += w;
-    if (a->c->used) {
-        uint64_t *word = &a->c->used[id >> 6], bit = 1ull << (id & 63u);
-        if (!(a->c->port->load(word) & bit))
-            a->c->port->fetch_or(word, bit);
+    const irc_cache *c = a->c;
+    for (; id != IRC__NIL; id = c->next[id]) {
+        const irc__rec *r = irc__rec_at(c, id);
+        double w, v[3];
+        float ni[3];
+        if (!irc__within_reach(c, r, a->p) || !irc__weigh(c, r, a->p, a->n, &w, ni))
+            continue;
+        irc__extrapolate(c, r, ni, a->p, a->n, v);
+        a->sum[0] += w * v[0];
+        a->sum[1] += w * v[1];
+        a->sum[2] += w * v[2];
+        a->w += w;
+        if (c->used) {
+            uint64_t *word = &c->used[id >> 6], bit = 1ull << (id & 63u);
+            if (!(c->port->load(word) & bit))
+                c->port->fetch_or(word, bit);
+        }
     }
-    return 0;
 }
 
-static int irc__visit_ids(void *ud, uint32_t id)
+static void irc__visit_ids(void *ud, uint32_t id)
 {
     irc__acc *a = (irc__acc *)ud;
-    double w;
-    float ni[3];
-    if (irc__weigh(a->c, irc__rec_at(a->c, id), a->p, a->n, &w, ni)) {
-        if (a->found < a->cap)
-            a->ids[a->found] = id;
-        a->found++;
+    for (; id != IRC__NIL; id = a->c->next[id]) {
+        const irc__rec *r = irc__rec_at(a->c, id);
+        double w;
+        float ni[3];
+        if (irc__within_reach(a->c, r, a->p) && irc__weigh(a->c, r, a->p, a->n, &w, ni)) {
+            if (a->found < a->cap)
+                a->ids[a->found] = id;
+            a->found++;
+        }
     }
-    return 0;
 }
 
 /* Validates the query and turns n into a unit float normal. */

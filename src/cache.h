@@ -108,7 +108,8 @@ void irc__extrapolate(const irc_cache *c, const irc__rec *r, const float ni[3],
                       const float p[3], const float n[3], double out[3]);
 
 /* index.c */
-typedef int (*irc__visit_fn)(void *ud, uint32_t id);
+/* Called with the first record of each visited node's list. */
+typedef void (*irc__visit_fn)(void *ud, uint32_t head);
 void irc__index_reset(irc_cache *c);
 void irc__index_insert(irc_cache *c, uint32_t id);
 void irc__index_remove(irc_cache *c, uint32_t id);
@@ -118,6 +119,15 @@ void irc__index_query(const irc_cache *c, const float p[3], irc__visit_fn fn,
 static inline irc__rec *irc__rec_at(const irc_cache *c, uint32_t id)
 {
     return (irc__rec *)(void *)(c->records + (size_t)id * c->rec_size);
+}
+
+/* The first test of irc__weigh, inlined where records are scanned: most
+ * candidates fail it, and it needs only the record's first 16 bytes. */
+static inline int irc__within_reach(const irc_cache *c, const irc__rec *r, const float p[3])
+{
+    double dx = (double)p[0] - r->p[0], dy = (double)p[1] - r->p[1],
+           dz = (double)p[2] - r->p[2], ra = (double)c->cfg.accuracy * r->r;
+    return dx * dx + dy * dy + dz * dz < ra * ra;
 }
 
 #endif

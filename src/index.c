@@ -238,28 +238,32 @@ static void irc__query_node(const irc_cache *c, const irc__node *n,
                             const irc__cube *q, const float p[3],
                             irc__visit_fn fn, void *ud)
 {
-    uint32_t id;
-    int oct, i;
-    for (id = n->head; id != IRC__NIL; id = c->next[id])
-        fn(ud, id);
+    double part[3][2], hc = 0.5 * q->h, pad = hc * 1e-9;
+    int oct, i, k;
+    if (n->head != IRC__NIL)
+        fn(ud, n->head);
     if (!n->child)
         return;
+    /* Squared distance from p to each child's cube, axis by axis: child
+     * bit k of axis i sits at centre c_i - hc (k = 0) or c_i + hc (k = 1). */
+    for (i = 0; i < 3; i++)
+        for (k = 0; k < 2; k++) {
+            double o = fabs(p[i] - (q->c[i] + (k ? hc : -hc))) - hc;
+            part[i][k] = o > 0.0 ? o * o : 0.0;
+        }
     for (oct = 0; oct < 8; oct++) {
         const irc__node *ch = &c->nodes[n->child + (uint32_t)oct];
-        irc__cube cq;
-        double d2 = 0.0, r;
+        double r, d2;
         if (ch->reach < 0.0f)
             continue;
-        irc__child_cube(q, oct, &cq);
-        for (i = 0; i < 3; i++) {
-            double o = fabs(p[i] - cq.c[i]) - cq.h;
-            if (o > 0.0)
-                d2 += o * o;
-        }
-        /* The pad covers the rounding of the cube's centre. */
-        r = (double)ch->reach * (1.0 + 1e-6) + cq.h * 1e-9;
-        if (d2 <= r * r)
+        d2 = part[0][oct & 1] + part[1][oct >> 1 & 1] + part[2][oct >> 2 & 1];
+        /* The pad covers the float rounding of the stored reach. */
+        r = (double)ch->reach * (1.0 + 1e-6) + pad;
+        if (d2 <= r * r) {
+            irc__cube cq;
+            irc__child_cube(q, oct, &cq);
             irc__query_node(c, ch, &cq, p, fn, ud);
+        }
     }
 }
 

@@ -235,21 +235,22 @@ uint32_t irc__oct_encode(const double n[3])
     return qx | qy << 16;
 }
 
+/* Decoded in float: lookups decode every accepted record's normal. */
 void irc__oct_decode(uint32_t code, float out[3])
 {
-    double x = (code & 0xffffu) / 65535.0 * 2.0 - 1.0;
-    double y = (code >> 16) / 65535.0 * 2.0 - 1.0;
-    double z = 1.0 - fabs(x) - fabs(y), len;
-    if (z < 0.0) {
-        double ox = (1.0 - fabs(y)) * (x >= 0.0 ? 1.0 : -1.0);
-        double oy = (1.0 - fabs(x)) * (y >= 0.0 ? 1.0 : -1.0);
+    float x = (float)(code & 0xffffu) * (2.0f / 65535.0f) - 1.0f;
+    float y = (float)(code >> 16) * (2.0f / 65535.0f) - 1.0f;
+    float z = 1.0f - fabsf(x) - fabsf(y), inv;
+    if (z < 0.0f) {
+        float ox = (1.0f - fabsf(y)) * (x >= 0.0f ? 1.0f : -1.0f);
+        float oy = (1.0f - fabsf(x)) * (y >= 0.0f ? 1.0f : -1.0f);
         x = ox;
         y = oy;
     }
-    len = IRC_SQRT(x * x + y * y + z * z);
-    out[0] = (float)(x / len);
-    out[1] = (float)(y / len);
-    out[2] = (float)(z / len);
+    inv = 1.0f / IRC_SQRTF(x * x + y * y + z * z);
+    out[0] = x * inv;
+    out[1] = y * inv;
+    out[2] = z * inv;
 }
 
 static void irc__frame_of(uint32_t code, double t1[3], double t2[3])

@@ -1,0 +1,184 @@
+/*
+ * bench_core.c -- the core library's figures, as CSV on stdout:
+ *   bytes per record for each feature set; index bytes per record (the
+ *   pool reserved and the nodes used); lookups per second on one core at
+ *   1e5 and 1e6 records, with queries in random order and in coherent
+ *   (scanline-like) order; inserts per second.
+ *
+ * The records lie on the six inner faces of a unit box, normals inward,
+ * with radii set so a query point lies within reach of about 6 records
+ * (that is, a full cache at accuracy 0.2).  Queries sit on the same faces.
+ */
+#define _POSIX_C_SOURCE 200809L
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "irrcache.h"
+
+static double now(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+static unsigned long long rng = 1;
+static double urand(void)
+{
+    unsigned long long x = (rng += 0x9e3779b97f4a7c15ull);
+    x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
+    x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
+    return (double)((x ^ (x >> 31)) >> 11) * (1.0 / 9007199254740992.0);
+}
+
+static int no_trace(const irc_trace_args *a)
+{
+    (void)a;
+    return -1;
+}
+
+/* A point on face f (0..5) at face coordinates (u, v) in [0,1)^2. */
+static void face_point(int f, double u, double v, float p[3], float n[3])
+{
+    int axis = f % 3, side = f / 3, a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
+    p[axis] = (float)side;
+    p[a1] = (float)u;
+    p[a2] = (float)v;
+    n[0] = n[1] = n[2] = 0.0f;
+    n[axis] = side ? -1.0f : 1.0f;
+}
+
+static irc_cache *build(irc_config *cfg, uint32_t count, double *insert_rate)
+{
+    size_t bytes;
+    irc_cache *c;
+    irc_record r;
+    double reach = sqrt(6.0 * 6.0 / (3.14159265 * count)), t0;
+    uint32_t i;
+    irc_footprint(cfg, count, &bytes);
+    cfg->buffer = malloc(bytes);
+    cfg->buffer_size = bytes;
+    if (!cfg->buffer || irc_init(cfg, count, &c) != IRC_OK)
+        return NULL;
+    memset(&r, 0, sizeof r);
+    t0 = now();
+    for (i = 0; i < count; i++) {
+        face_point((int)(urand() * 6), urand(), urand(), r.p, r.n);
+        r.e[0] = r.e[1] = r.e[2] = (float)(0.5 + urand());
+        r.grad_t[0][0] = 0.1f;
+        r.radius = (float)(reach / cfg->accuracy * exp((urand() - 0.5) * 1.4));
+        if (irc_cache_insert(c, &r) != IRC_OK)
+            return NULL;
+    }
+    *insert_rate = count / (now() - t0);
+    return c;
+}
+
+static double lookups(irc_cache *c, int coherent, double *hit_rate)
+{
+    enum { Q = 1 << 16 };
+    static float qp[Q][3], qn[Q][3];
+    double t0, t1, sink = 0.0;
+    long done = 0, hits = 0;
+    int i;
+    for (i = 0; i < Q; i++) {
+        if (coherent) {
+            /* 256-long scanlines, step 1/4096 of the face */
+            int f = (i >> 14) % 6;
+            double v = urand();
+            int j, line = i;
+            for (j = 0; j < 256 && i < Q; j++, i++)
+                face_point(f, (double)((line + j) & 255) / 4096.0 + 0.3, v, qp[i], qn[i]);
+            i--;
+        } else {
+            face_point((int)(urand() * 6), urand(), urand(), qp[i], qn[i]);
+        }
+    }
+    t0 = now();
+    do {
+        for (i = 0; i < Q; i++) {
+            float rgb[3], w;
+            hits += irc_cache_lookup(c, qp[i], qn[i], rgb, &w) == IRC_OK;
+            sink += rgb[0];
+        }
+        done += Q;
+        t1 = now();
+    } while (t1 - t0 < 1.0);
+    *hit_rate = (double)hits / done;
+    if (sink < 0.0)
+        printf("#\n");
+    return done / (t1 - t0);
+}
+
+int main(void)
+{
+    static const struct { uint32_t f; const char *name; } sets[] = {
+        {0, "none"}, {IRC_FEATURE_TRANSLATION, "trans"}, {IRC_FEATURE_ROTATION, "rot"},
+        {IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION, "trans+rot"}};
+    static const uint32_t sizes[] = {100000, 1000000};
+    const irc_port *ports[] = {&irc_port_posix, &irc_port_none};
+    /* BENCH_ORDER=random|coherent measures one query order only. */
+    const char *only = getenv("BENCH_ORDER");
+    size_t i, k, pi;
+    printf("metric,features,records,port,order,value,unit\n");
+    for (i = 0; i < 4; i++) {
+        irc_config cfg;
+        irc_cache *c;
+        irc_stats st;
+        double ins;
+        memset(&cfg, 0, sizeof cfg);
+        cfg.trace = no_trace;
+        cfg.accuracy = 0.2f;
+        cfg.features = sets[i].f;
+        c = build(&cfg, 1000, &ins);
+        irc_cache_stats(c, &st);
+        printf("record_bytes,%s,,,,%zu,bytes\n", sets[i].name, st.record_bytes);
+        free(cfg.buffer);
+    }
+    for (k = 0; k < 2; k++) {
+        for (pi = 0; pi < 2; pi++) {
+            irc_config cfg;
+            irc_cache *c;
+            irc_stats st;
+            double ins, hr, rate;
+            int coh;
+            memset(&cfg, 0, sizeof cfg);
+            cfg.trace = no_trace;
+            cfg.accuracy = 0.2f;
+        cfg.accuracy = 0.2f;
+            cfg.features = IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION;
+            cfg.port = ports[pi];
+            rng = 1;
+            c = build(&cfg, sizes[k], &ins);
+            if (!c) {
+                fprintf(stderr, "build failed\n");
+                return 1;
+            }
+            irc_cache_stats(c, &st);
+            if (pi == 0) {
+                printf("index_bytes_reserved,trans+rot,%u,,,%.2f,bytes/record\n", sizes[k],
+                       (double)st.bytes_index / sizes[k]);
+                printf("index_bytes_used,trans+rot,%u,,,%.2f,bytes/record\n", sizes[k],
+                       (double)(st.index_nodes * 16u + sizes[k] * 4u) / sizes[k]);
+                printf("block_bytes,trans+rot,%u,,,%.2f,bytes/record\n", sizes[k],
+                       (double)st.bytes_total / sizes[k]);
+            }
+            printf("inserts_per_s,trans+rot,%u,%s,,%.0f,1/s\n", sizes[k], ports[pi]->name, ins);
+            for (coh = 0; coh < 2; coh++) {
+                if (only && strcmp(only, coh ? "coherent" : "random") != 0)
+                    continue;
+                rate = lookups(c, coh, &hr);
+                printf("lookups_per_s,trans+rot,%u,%s,%s,%.0f,1/s\n", sizes[k], ports[pi]->name,
+                       coh ? "coherent" : "random", rate);
+                printf("lookup_hit_rate,trans+rot,%u,%s,%s,%.3f,\n", sizes[k], ports[pi]->name,
+                       coh ? "coherent" : "random", hr);
+            }
+            fflush(stdout);
+            free(cfg.buffer);
+        }
+    }
+    return 0;
+}
