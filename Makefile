@@ -60,6 +60,9 @@ test:
 $(BUILD)/bench_core: demo/bench_core.c tests/scenes.c tests/scenes.h $(LIBA)
 	$(CC) $(TEST_CFLAGS) -O2 -g $(CFLAGS) demo/bench_core.c tests/scenes.c $(LIBA) -o $@ -lm -lpthread
 
+$(BUILD)/minimal: demo/minimal.c $(LIBA)
+	$(CC) -std=c99 $(WARN) -Wno-missing-prototypes -Iinclude $(OPT) demo/minimal.c $(LIBA) -o $@ -lm -lpthread
+
 bench-core: $(BUILD)/bench_core
 	$(BUILD)/bench_core
 

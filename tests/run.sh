@@ -17,6 +17,25 @@ mkdir -p "$LOG"
 MAKE=${MAKE:-make}
 SAN_CC=${SAN_CC:-clang}
 
+# Tools a fresh Debian machine may lack: installed when we are root with
+# apt, otherwise the run stops and says what to install.
+need=""
+command -v clang >/dev/null 2>&1 || need="$need clang"
+command -v c++ >/dev/null 2>&1 || need="$need g++"
+command -v nm >/dev/null 2>&1 || need="$need binutils"
+ls /usr/lib/llvm-*/lib/clang/*/lib/linux/libclang_rt.tsan-x86_64.a >/dev/null 2>&1 ||
+    need="$need libclang-rt-14-dev"
+if [ -n "$need" ]; then
+    if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then
+        echo "installing:$need"
+        apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq $need >/dev/null ||
+            { echo "could not install:$need"; exit 1; }
+    else
+        echo "make test needs:$need (sudo apt-get install$need)"
+        exit 1
+    fi
+fi
+
 ok() { P=$((P + 1)); echo "ok   $1"; }
 bad() { F=$((F + 1)); echo "FAIL $1${2:+: $2}"; }
 check() { # name command...
@@ -58,7 +77,9 @@ echo "== stage 4: threads under TSan"
 check build-tsan $MAKE -s CC="$SAN_CC" BUILD=build-tsan OPT="-O1 -g -fsanitize=thread" build-tsan/irc_tests
 suite tsan IRC_TEST_QUICK=1 TSAN_OPTIONS=halt_on_error=1 ./build-tsan/irc_tests test_threads
 
-echo "== stage 5: header and library rules"
+echo "== stage 5: header, example host and library rules"
+check example $MAKE -s BUILD=build build/minimal
+check example-runs ./build/minimal
 check header-c99 cc -std=c99 -pedantic -Wall -Wextra -Werror -fsyntax-only -x c include/irrcache.h
 check header-cxx c++ -std=c++98 -pedantic -Wall -Wextra -Werror -Wno-long-long -Iinclude -c tests/header_cpp.cpp -o build/header_cpp.o
 no_allocator() {
