@@ -73,10 +73,26 @@ static uint32_t compare(irc_cache *c, uint32_t queries, int decades, unsigned lo
         double scale = pow(10.0, (xrand(st) - 0.5) * decades), sum[3] = {0, 0, 0}, wsum = 0;
         uint32_t cnt = 0, ns = 0, i;
         int k, stt;
-        if (q & 1) {
+        if (q % 3 == 1) {
             for (k = 0; k < 3; k++)
                 p[k] = (float)(xrand(st) * scale);
             rand_normal(st, n);
+        } else if (q % 3 == 2) {
+            /* At the edge of a record's reach, in its tangent plane and
+             * with its normal: accepted, and only just, which is where a
+             * too-tight pruning bound would lose it. */
+            const irc__rec *r = irc__rec_at(c, (uint32_t)(xrand(st) * c->count));
+            double t1[3], t2[3], nd[3], ang = xrand(st) * 6.283185307179586;
+            double d = (0.95 + 0.049 * xrand(st)) * c->cfg.accuracy * r->r;
+            float ni[3];
+            irc__oct_decode(r->n, ni);
+            for (k = 0; k < 3; k++)
+                nd[k] = ni[k];
+            irc__frame(nd, t1, t2);
+            for (k = 0; k < 3; k++) {
+                p[k] = (float)(r->p[k] + d * (cos(ang) * t1[k] + sin(ang) * t2[k]));
+                n[k] = ni[k];
+            }
         } else {
             /* Near a record, where weights are rarely zero. */
             const irc__rec *r = irc__rec_at(c, (uint32_t)(xrand(st) * c->count));
@@ -86,12 +102,12 @@ static uint32_t compare(irc_cache *c, uint32_t queries, int decades, unsigned lo
                 p[k] = r->p[k] + (float)((xrand(st) - 0.5) * 0.3 * r->r);
                 n[k] = ni[k] + (float)((xrand(st) - 0.5) * 0.1);
             }
-            {   /* the scan below takes unit normals, as lookups make them */
-                double un[3];
-                irc__check_normal(n, un);
-                for (k = 0; k < 3; k++)
-                    n[k] = (float)un[k];
-            }
+        }
+        {   /* the scan below takes the unit normal a lookup makes of n */
+            double un[3];
+            irc__check_normal(n, un);
+            for (k = 0; k < 3; k++)
+                n[k] = (float)un[k];
         }
         irc_cache_neighbours(c, p, n, ids, 4096, &cnt);
         for (i = 0; i < m; i++) {
