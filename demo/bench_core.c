@@ -40,6 +40,60 @@ static int no_trace(const irc_trace_args *a)
     return -1;
 }
 
+/* A host that costs next to nothing: a sky that brightens toward +z, every
+ * tenth ray hitting a wall at distance 1, so the library's own work
+ * (directions, checks, estimator, gradients) is what gets timed. */
+static int cheap_trace(const irc_trace_args *a)
+{
+    uint32_t i;
+    for (i = 0; i < a->count; i++) {
+        irc_hit *h = &a->hits[i];
+        float l = 1.0f + a->rays[i].dir[2];
+        if (i % 10 == 0) {
+            h->status = IRC_RAY_HIT;
+            h->dist = 1.0f;
+            h->normal[0] = 1.0f;
+            h->normal[1] = h->normal[2] = 0.0f;
+            l *= 0.25f;
+        } else {
+            h->status = IRC_RAY_ESCAPED;
+        }
+        h->radiance[0] = h->radiance[1] = h->radiance[2] = l;
+    }
+    return 0;
+}
+
+/* Microseconds of library time per record computed. */
+static double record_cost(uint32_t features, uint32_t m, uint32_t n)
+{
+    irc_config cfg;
+    irc_cache *c;
+    size_t bytes;
+    double t0, t1;
+    long done = 0;
+    memset(&cfg, 0, sizeof cfg);
+    cfg.trace = cheap_trace;
+    cfg.features = features;
+    cfg.strata_theta = m;
+    cfg.strata_phi = n;
+    cfg.max_batch = 256;
+    irc_footprint(&cfg, 16, &bytes);
+    cfg.buffer = malloc(bytes);
+    cfg.buffer_size = bytes;
+    irc_init(&cfg, 16, &c);
+    t0 = now();
+    do {
+        float p[3] = {(float)urand(), (float)urand(), 0.0f}, nn[3] = {0.0f, 0.0f, 1.0f};
+        irc_record r;
+        if (irc_record_compute(c, p, nn, &r) != IRC_OK)
+            return -1.0;
+        done++;
+        t1 = now();
+    } while (t1 - t0 < 0.5);
+    free(cfg.buffer);
+    return 1e6 * (t1 - t0) / done;
+}
+
 /* A point on face f (0..5) at face coordinates (u, v) in [0,1)^2. */
 static void face_point(int f, double u, double v, float p[3], float n[3])
 {
@@ -137,6 +191,12 @@ int main(void)
         irc_cache_stats(c, &st);
         printf("record_bytes,%s,,,,%zu,bytes\n", sets[i].name, st.record_bytes);
         free(cfg.buffer);
+    }
+    for (k = 0; k < 2; k++) {
+        static const uint32_t strata[2][2] = {{16, 64}, {32, 128}};
+        for (i = 0; i < 4; i++)
+            printf("record_us_library,%s,,,%ux%u,%.2f,us\n", sets[i].name, strata[k][0],
+                   strata[k][1], record_cost(sets[i].f, strata[k][0], strata[k][1]));
     }
     for (k = 0; k < 2; k++) {
         for (pi = 0; pi < 2; pi++) {

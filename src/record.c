@@ -90,31 +90,42 @@ static void irc__grad_trans(const irc_cache *c, const irc__sample *s,
  * sin(theta) v(phi), each stratum's share is integrated exactly over the
  * stratum instead of sampled with tan(theta_j) as in the paper's estimator:
  * the horizon row's 1/cos(theta) otherwise gives the estimate a heavy tail.
- * W_j = integral of sin^2(theta) dtheta over row j; V_k = integral of
- * v(phi) dphi over column k. */
+ * Row weight W_j = integral of sin^2(theta) dtheta over row j; column vector
+ * V_k = integral of v(phi) dphi = (cos phi_k+1 - cos phi_k, sin phi_k+1 -
+ * sin phi_k), a fixed rotation-and-scale of (cos phi_k, sin phi_k), so the
+ * boundary angles advance by recurrence and no stratum needs a trig call. */
 static void irc__grad_rot(const irc_cache *c, const irc__sample *s,
                           const double t1[3], const double t2[3], double g[3][3])
 {
     const uint32_t m = c->cfg.strata_theta, nphi = c->cfg.strata_phi;
+    const double dphi = 2.0 * IRC_PI / nphi, cd = IRC_COS(dphi), sd = IRC_SIN(dphi);
+    double acc[3][2] = {{0, 0}, {0, 0}, {0, 0}}, th0 = 0.0, sc0 = 0.0;
     uint32_t j, k;
     int ch, i;
-    for (ch = 0; ch < 3; ch++)
-        g[ch][0] = g[ch][1] = g[ch][2] = 0.0;
-    for (k = 0; k < nphi; k++) {
-        double p0 = 2.0 * IRC_PI * k / nphi, p1 = 2.0 * IRC_PI * (k + 1) / nphi;
-        double va = IRC_COS(p1) - IRC_COS(p0), vb = IRC_SIN(p1) - IRC_SIN(p0);
-        double col[3] = {0, 0, 0};
-        for (j = 0; j < m; j++) {
-            double a0 = IRC_ASIN(IRC_SQRT((double)j / m));
-            double a1 = IRC_ASIN(IRC_SQRT((double)(j + 1) / m));
-            double w = 0.5 * (a1 - a0) - 0.25 * (IRC_SIN(2.0 * a1) - IRC_SIN(2.0 * a0));
+    for (j = 0; j < m; j++) {
+        double s1 = (double)(j + 1) / m, th1 = IRC_ASIN(IRC_SQRT(s1));
+        double sc1 = IRC_SQRT(s1 * (1.0 - s1)); /* sin(2 theta)/2 */
+        double w = 0.5 * (th1 - th0) - 0.5 * (sc1 - sc0), cp = 1.0, sp = 0.0;
+        for (k = 0; k < nphi; k++) {
             const irc__sample *a = &s[j * nphi + k];
-            for (ch = 0; ch < 3; ch++)
-                col[ch] += w * a->l[ch];
+            double t;
+            for (ch = 0; ch < 3; ch++) {
+                acc[ch][0] += w * a->l[ch] * cp;
+                acc[ch][1] += w * a->l[ch] * sp;
+            }
+            t = cp * cd - sp * sd;
+            sp = sp * cd + cp * sd;
+            cp = t;
         }
-        for (ch = 0; ch < 3; ch++)
-            for (i = 0; i < 3; i++)
-                g[ch][i] += col[ch] * (va * t1[i] + vb * t2[i]);
+        th0 = th1;
+        sc0 = sc1;
+    }
+    for (ch = 0; ch < 3; ch++) {
+        /* V_k = [[cd - 1, -sd], [sd, cd - 1]] (cos phi_k, sin phi_k) */
+        double a = (cd - 1.0) * acc[ch][0] - sd * acc[ch][1];
+        double b = sd * acc[ch][0] + (cd - 1.0) * acc[ch][1];
+        for (i = 0; i < 3; i++)
+            g[ch][i] = a * t1[i] + b * t2[i];
     }
 }
 
