@@ -5,12 +5,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-void scene_init(scene *s)
+void scene_init(tscene *s)
 {
     memset(s, 0, sizeof *s);
 }
 
-static double hit_sphere(const scene *s, const float o[3], const float d[3])
+static double hit_sphere(const tscene *s, const float o[3], const float d[3])
 {
     double oc[3], b, c, disc, t;
     int i;
@@ -28,7 +28,7 @@ static double hit_sphere(const scene *s, const float o[3], const float d[3])
     return t;
 }
 
-static void inject(scene *s, irc_hit *h)
+static void inject(tscene *s, irc_hit *h)
 {
     switch (s->fail_kind) {
     case FAIL_RAY: h->status = IRC_RAY_FAILED; break;
@@ -51,7 +51,7 @@ static void inject(scene *s, irc_hit *h)
 
 int scene_trace(const irc_trace_args *a)
 {
-    scene *s = (scene *)a->context;
+    tscene *s = (tscene *)a->context;
     uint32_t r;
     for (r = 0; r < a->count; r++) {
         const float *o = a->rays[r].org, *d = a->rays[r].dir;
@@ -100,7 +100,7 @@ int scene_trace(const irc_trace_args *a)
     return s->return_code;
 }
 
-double sphere_plane_e(const scene *s, const double p[3])
+double sphere_plane_e(const tscene *s, const double p[3])
 {
     double dx = s->centre[0] - p[0], dy = s->centre[1] - p[1], h = s->centre[2] - p[2];
     double d = sqrt(dx * dx + dy * dy + h * h);
@@ -109,7 +109,7 @@ double sphere_plane_e(const scene *s, const double p[3])
 
 /* E = pi L (1 - r^2 h / d^3), so grad_p E = 3 pi L r^2 h (p - C) / d^5 in
  * the plane. */
-void sphere_plane_grad(const scene *s, const double p[3], double g[3])
+void sphere_plane_grad(const tscene *s, const double p[3], double g[3])
 {
     double dx = p[0] - s->centre[0], dy = p[1] - s->centre[1], h = s->centre[2] - p[2];
     double d = sqrt(dx * dx + dy * dy + h * h);
@@ -119,7 +119,7 @@ void sphere_plane_grad(const scene *s, const double p[3], double g[3])
     g[2] = 0.0;
 }
 
-double disk_plane_e(const scene *s, const double p[3])
+double disk_plane_e(const tscene *s, const double p[3])
 {
     double h = s->disk_c[2] - p[2], dx = p[0] - s->disk_c[0], dy = p[1] - s->disk_c[1];
     double a2 = dx * dx + dy * dy, r2 = s->disk_r * s->disk_r;
@@ -127,7 +127,7 @@ double disk_plane_e(const scene *s, const double p[3])
     return TPI * s->sky_a[0] * (1.0 - f);
 }
 
-irc_config scene_config(scene *s, uint32_t features, uint32_t m, uint32_t n)
+irc_config scene_config(tscene *s, uint32_t features, uint32_t m, uint32_t n)
 {
     irc_config cfg;
     memset(&cfg, 0, sizeof cfg);

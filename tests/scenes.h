@@ -9,7 +9,7 @@
 
 #define TPI 3.14159265358979323846
 
-typedef struct scene {
+typedef struct tscene {
     /* Sky radiance L(w) = sky_a + sky_b * w.z per channel. */
     float sky_a[3], sky_b[3];
     /* Optional black sphere (reflects nothing). */
@@ -28,7 +28,7 @@ typedef struct scene {
     /* Failure injection: every fail_every-th ray (if > 0) gets fail_kind. */
     unsigned fail_every, fail_kind, calls;
     int return_code; /* returned by the callback when nonzero */
-} scene;
+} tscene;
 
 enum {
     FAIL_NONE, FAIL_RAY, FAIL_NEG_DIST, FAIL_NAN_DIST, FAIL_ZERO_DIST,
@@ -36,21 +36,21 @@ enum {
     FAIL_BAD_STATUS, FAIL_UNTOUCHED
 };
 
-void scene_init(scene *s);
+void scene_init(tscene *s);
 int scene_trace(const irc_trace_args *a);
 
 /* E at a point on the plane z = 0 (normal +z) under a uniform sky L with a
  * black sphere entirely above the horizon: pi L (1 - r^2 cos(theta)/d^2). */
-double sphere_plane_e(const scene *s, const double p[3]);
-void sphere_plane_grad(const scene *s, const double p[3], double g[3]);
+double sphere_plane_e(const tscene *s, const double p[3]);
+void sphere_plane_grad(const tscene *s, const double p[3], double g[3]);
 
 /* The same under a black disk of radius R at height h, lateral offset a:
  * pi L (1 - F), F = 1/2 [1 - (h^2 + a^2 - R^2) / sqrt((h^2 + a^2 + R^2)^2 -
  * 4 a^2 R^2)] (point to parallel offset disk). */
-double disk_plane_e(const scene *s, const double p[3]);
+double disk_plane_e(const tscene *s, const double p[3]);
 
 /* A config for scene s with the given features and strata (0 = default). */
-irc_config scene_config(scene *s, uint32_t features, uint32_t m, uint32_t n);
+irc_config scene_config(tscene *s, uint32_t features, uint32_t m, uint32_t n);
 
 /* Allocates a block for cfg with `guard` canary bytes after it; returns the
  * cache or NULL.  block_free() checks the canary. */

@@ -9,7 +9,7 @@
 
 #define GUARD 256
 
-static scene sky;
+static tscene sky;
 
 static void sky_init(void)
 {

@@ -7,7 +7,7 @@
 #include "scenes.h"
 #include "test.h"
 
-static scene dummy;
+static tscene dummy;
 
 static int cmp_u32(const void *a, const void *b)
 {

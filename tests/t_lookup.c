@@ -7,7 +7,7 @@
 #include "scenes.h"
 #include "test.h"
 
-static scene dummy;
+static tscene dummy;
 
 static irc_record flat_record(float x, float y, float z, float e, float radius)
 {
@@ -109,7 +109,7 @@ TEST(test_extrapolation)
  * gradient). */
 TEST(test_lookup_or_compute)
 {
-    scene s;
+    tscene s;
     irc_config cfg;
     irc_cache *c;
     irc_stats st;

@@ -16,7 +16,7 @@ TEST(test_uniform_sky)
 {
     static const uint32_t strata[][2] = {{1, 1}, {4, 12}, {16, 64}, {32, 128}};
     static const float normals[][3] = {{0, 0, 1}, {0, 0, -1}, {1, 2, 3}, {-0.3f, 0.9f, -0.1f}};
-    scene s;
+    tscene s;
     size_t i, j;
     scene_init(&s);
     s.sky_a[0] = 1.0f; s.sky_a[1] = 0.25f; s.sky_a[2] = 3.5f;
@@ -49,7 +49,7 @@ TEST(test_uniform_sky)
 static const double sp_points[5][3] = {
     {0.5, 0.0, 0.0}, {1.0, 1.0, 0.0}, {-1.5, 0.5, 0.0}, {2.0, -1.0, 0.0}, {0.0, 3.0, 0.0}};
 
-static void sphere_plane_scene(scene *s)
+static void sphere_plane_scene(tscene *s)
 {
     scene_init(s);
     s->sky_a[0] = s->sky_a[1] = s->sky_a[2] = 1.0f;
@@ -89,7 +89,7 @@ static double check_grad(int i, const irc_record *r, double e, const double g[3]
 TEST(test_sphere_over_plane)
 {
     static const uint32_t strata[2][2] = {{32, 128}, {64, 256}};
-    scene s;
+    tscene s;
     int i, k;
     sphere_plane_scene(&s);
     for (k = 0; k < 2; k++) {
@@ -120,7 +120,7 @@ TEST(test_sphere_over_plane)
 TEST(test_flat_blocker)
 {
     static const double pts[4][3] = {{0.3, 0, 0}, {0.7, 0.2, 0}, {1.2, 0, 0}, {-0.5, 1.0, 0}};
-    scene s;
+    tscene s;
     irc_config cfg;
     irc_cache *c;
     int i;
@@ -161,7 +161,7 @@ TEST(test_rotational_gradient_sky)
 {
     static const double tilts[] = {10.0, 30.0, 60.0, 85.0, 120.0};
     const double a = 0.7, b = 0.5;
-    scene s;
+    tscene s;
     irc_config cfg;
     irc_cache *c;
     size_t i;
@@ -203,7 +203,7 @@ TEST(test_rotational_gradient_sky)
  * [min, max] clamps: a sky with one emitting sphere in it. */
 TEST(test_radius_rules)
 {
-    scene s;
+    tscene s;
     irc_config cfg;
     irc_cache *c;
     irc_record r0, r1;
@@ -239,7 +239,7 @@ TEST(test_radius_rules)
  * 1/32767 of their largest component. */
 TEST(test_pack_roundtrip)
 {
-    scene s;
+    tscene s;
     irc_config cfg;
     irc_cache *c;
     irc_record r, back;

@@ -53,7 +53,7 @@ static void *stress_main(void *arg)
 
 static void stress(const irc_port *port, const char *name)
 {
-    scene s;
+    tscene s;
     irc_config cfg;
     irc_cache *c;
     pthread_t th[NTHREADS];
@@ -146,7 +146,7 @@ TEST(test_threads_determinism)
     static float pts[NPTS][3];
     irc_cache *cache[2];
     irc_config cfg[2];
-    scene s;
+    tscene s;
     unsigned long long st = 31;
     int i, k;
     scene_init(&s);

@@ -19,4 +19,15 @@ extern int irc_t_quick; /* IRC_TEST_QUICK=1: sanitizer builds scale down */
 
 #define TEST(name) void name(void)
 
+typedef struct test_case {
+    const char *name;
+    void (*fn)(void);
+} test_case;
+
+/* Declares every test of a list X(name) and builds its table. */
+#define TEST_DECL(name) void name(void);
+#define TEST_ROW(name) {#name, name},
+
+int test_run(const test_case *all, size_t n, int argc, char **argv);
+
 #endif

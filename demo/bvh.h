@@ -1,0 +1,43 @@
+/*
+ * bvh.h -- a binned-SAH bounding volume hierarchy over a scene's triangles
+ * and analytic spheres, for nearest-hit and shadow queries.
+ */
+#ifndef DEMO_BVH_H
+#define DEMO_BVH_H
+
+#include "scene.h"
+
+typedef struct bvh_node {
+    float lo[3], hi[3];
+    int first;  /* leaf: first index into prims; inner: left child */
+    int count;  /* leaf: number of prims (> 0); inner: 0 (right = left + 1) */
+} bvh_node;
+
+typedef struct bvh {
+    const scene *s;
+    bvh_node *nodes;
+    int nnodes;
+    int *prims;  /* >= 0: triangle index; < 0: sphere -(i + 1) */
+    int nprims;
+} bvh;
+
+typedef struct bvh_hit {
+    float t;
+    int prim;    /* as in bvh.prims */
+    float u, v;  /* triangle barycentrics (of v[1], v[2]) */
+} bvh_hit;
+
+int bvh_build(bvh *b, const scene *s); /* 0, or -1 out of memory */
+void bvh_free(bvh *b);
+
+/* Nearest hit with t in (tmin, tmax).  Returns 1 and fills h, else 0. */
+int bvh_intersect(const bvh *b, const float o[3], const float d[3], float tmin,
+                  float tmax, bvh_hit *h);
+/* Any hit with t in (tmin, tmax). */
+int bvh_occluded(const bvh *b, const float o[3], const float d[3], float tmin, float tmax);
+
+/* The same queries by a loop over every primitive (for tests). */
+int brute_intersect(const scene *s, const float o[3], const float d[3], float tmin,
+                    float tmax, bvh_hit *h);
+
+#endif

@@ -1,0 +1,290 @@
+/*
+ * main.c -- irc_demo, the demo tracer's command line (see --help).
+ */
+#define _POSIX_C_SOURCE 200809L
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "image.h"
+#include "render.h"
+
+static const char usage[] =
+    "usage: irc_demo SCENE [options]\n"
+    "  --cache                 irradiance from the cache (the default)\n"
+    "  --reference N           brute force: N hemisphere rays per shading point\n"
+    "  --features LIST         cache gradients: none, trans, rot, trans,rot (default)\n"
+    "  --accuracy A            cache accuracy a (default 0.2)\n"
+    "  --strata MxN            cache hemisphere strata (default 16x64)\n"
+    "  --records N             cache capacity (default 200000; CLOCK eviction)\n"
+    "  --min-radius R  --max-radius R   cache radius clamps (scene units)\n"
+    "  --threads T             render threads (default: the machine's cores)\n"
+    "  --size WxH              override the scene's resolution\n"
+    "  --indirect              show only the indirect term kd/pi E\n"
+    "  --light-samples N       light samples at camera-ray hits (default 16)\n"
+    "  --seed S                random seed (default 1)\n"
+    "  --out PREFIX            write PREFIX.exr, PREFIX.png (+ PREFIX-records.png)\n"
+    "  --half                  write the EXR as half floats\n"
+    "  --exposure X            PNG exposure (default 1)\n"
+    "  --raw FILE              also dump the image as raw little-endian floats\n"
+    "  --compare REF.exr       relative RMSE and largest error against REF\n"
+    "  --points FILE           irradiance \"r g b\" per line of \"px py pz nx ny nz\"\n"
+    "  --quiet                 no progress bar\n";
+
+typedef struct cli {
+    const char *scene, *out, *compare, *points, *raw;
+    int width, height, half;
+    float exposure;
+    render_opts o;
+} cli;
+
+static int parse_uint(const char *s, long lo, long hi, long *v)
+{
+    char *end;
+    errno = 0;
+    *v = strtol(s, &end, 10);
+    return !errno && end != s && !*end && *v >= lo && *v <= hi;
+}
+
+static int parse_float(const char *s, float *v)
+{
+    char *end;
+    *v = strtof(s, &end);
+    return end != s && !*end && isfinite(*v);
+}
+
+static int parse_features(const char *s, uint32_t *f)
+{
+    if (!strcmp(s, "none")) *f = 0;
+    else if (!strcmp(s, "trans")) *f = IRC_FEATURE_TRANSLATION;
+    else if (!strcmp(s, "rot")) *f = IRC_FEATURE_ROTATION;
+    else if (!strcmp(s, "trans,rot") || !strcmp(s, "rot,trans"))
+        *f = IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION;
+    else return 0;
+    return 1;
+}
+
+static int parse_args(int argc, char **argv, cli *c)
+{
+    int i;
+    long v;
+    memset(c, 0, sizeof *c);
+    c->o.mode = MODE_CACHE;
+    c->o.features = IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION;
+    c->o.accuracy = 0.2f;
+    c->o.strata_m = 16;
+    c->o.strata_n = 64;
+    c->o.max_records = 200000;
+    c->o.light_samples = 16;
+    c->o.seed = 1;
+    c->o.progress = 1;
+    c->o.threads = (int)sysconf(_SC_NPROCESSORS_ONLN);
+    c->exposure = 1.0f;
+    for (i = 1; i < argc; i++) {
+        const char *a = argv[i], *n = i + 1 < argc ? argv[i + 1] : NULL;
+#define NEED(cond) do { if (!n || !(cond)) { fprintf(stderr, "irc_demo: bad value for %s\n", a); return -1; } i++; } while (0)
+        if (!strcmp(a, "--cache")) c->o.mode = MODE_CACHE;
+        else if (!strcmp(a, "--reference")) { NEED(parse_uint(n, 1, 1 << 20, &v)); c->o.mode = MODE_REFERENCE; c->o.ref_rays = (int)v; }
+        else if (!strcmp(a, "--features")) NEED(parse_features(n, &c->o.features));
+        else if (!strcmp(a, "--accuracy")) NEED(parse_float(n, &c->o.accuracy));
+        else if (!strcmp(a, "--strata")) NEED(sscanf(n, "%ux%u", &c->o.strata_m, &c->o.strata_n) == 2);
+        else if (!strcmp(a, "--records")) { NEED(parse_uint(n, 1, IRC_MAX_RECORDS, &v)); c->o.max_records = (uint32_t)v; }
+        else if (!strcmp(a, "--min-radius")) NEED(parse_float(n, &c->o.min_radius));
+        else if (!strcmp(a, "--max-radius")) NEED(parse_float(n, &c->o.max_radius));
+        else if (!strcmp(a, "--threads")) { NEED(parse_uint(n, 1, 64, &v)); c->o.threads = (int)v; }
+        else if (!strcmp(a, "--size")) NEED(sscanf(n, "%dx%d", &c->width, &c->height) == 2 && c->width > 0 && c->height > 0 && c->width <= 16384 && c->height <= 16384);
+        else if (!strcmp(a, "--indirect")) c->o.show = SHOW_INDIRECT;
+        else if (!strcmp(a, "--light-samples")) { NEED(parse_uint(n, 0, 4096, &v)); c->o.light_samples = (int)v; }
+        else if (!strcmp(a, "--seed")) { NEED(parse_uint(n, 0, 0x7fffffff, &v)); c->o.seed = (uint64_t)v; }
+        else if (!strcmp(a, "--out")) { NEED(1); c->out = n; }
+        else if (!strcmp(a, "--half")) c->half = 1;
+        else if (!strcmp(a, "--exposure")) NEED(parse_float(n, &c->exposure));
+        else if (!strcmp(a, "--raw")) { NEED(1); c->raw = n; }
+        else if (!strcmp(a, "--compare")) { NEED(1); c->compare = n; }
+        else if (!strcmp(a, "--points")) { NEED(1); c->points = n; }
+        else if (!strcmp(a, "--quiet")) c->o.progress = 0;
+        else if (!strcmp(a, "--help")) { fputs(usage, stdout); exit(0); }
+        else if (a[0] == '-' || c->scene) { fprintf(stderr, "irc_demo: unknown argument %s\n%s", a, usage); return -1; }
+        else c->scene = a;
+#undef NEED
+    }
+    if (!c->scene) {
+        fputs(usage, stderr);
+        return -1;
+    }
+    return 0;
+}
+
+/* Points file: one "px py pz nx ny nz" a line; blank lines and # comments
+ * skipped.  Errors name the file and line. */
+static float *read_points(const char *path, int *count)
+{
+    FILE *f = fopen(path, "r");
+    char line[1024];
+    float *pts = NULL;
+    int n = 0, cap = 0, ln = 0;
+    if (!f) {
+        fprintf(stderr, "%s: %s\n", path, strerror(errno));
+        return NULL;
+    }
+    while (fgets(line, sizeof line, f)) {
+        float v[6];
+        char extra;
+        ln++;
+        if (line[strspn(line, " \t\r\n")] == 0 || line[strspn(line, " \t")] == '#')
+            continue;
+        if (sscanf(line, "%f %f %f %f %f %f %c", &v[0], &v[1], &v[2], &v[3], &v[4], &v[5], &extra) != 6) {
+            fprintf(stderr, "%s:%d: expected \"px py pz nx ny nz\"\n", path, ln);
+            free(pts);
+            fclose(f);
+            return NULL;
+        }
+        if (n == cap) {
+            float *np = realloc(pts, sizeof(float) * 6 * (size_t)(cap = cap ? 2 * cap : 256));
+            if (!np) { free(pts); fclose(f); return NULL; }
+            pts = np;
+        }
+        memcpy(&pts[6 * n++], v, sizeof v);
+    }
+    fclose(f);
+    *count = n;
+    return pts ? pts : calloc(1, sizeof(float));
+}
+
+static void report(const cli *c, const render_stats *st)
+{
+    double busy = st->trace_s + st->cache_s;
+    printf("%s: %s", c->scene, c->o.mode == MODE_CACHE ? "cache" : "reference");
+    if (c->o.mode == MODE_CACHE)
+        printf(" (%s, a = %g, %ux%u strata)",
+               c->o.features == 3 ? "trans+rot" : c->o.features == 1 ? "trans" : c->o.features == 2 ? "rot" : "no gradients",
+               c->o.accuracy, c->o.strata_m, c->o.strata_n);
+    else
+        printf(" (%d rays per shading point)", c->o.ref_rays);
+    printf("\n  wall %.2f s; host ray casting %.2f thread-s, cache %.3f thread-s (%.2f%% of both)\n",
+           st->wall, st->trace_s, st->cache_s, busy > 0 ? 100.0 * st->cache_s / busy : 0.0);
+    printf("  rays %llu; records %llu; lookups %llu (%llu answered from records); cache memory %.1f MB\n",
+           (unsigned long long)st->rays, (unsigned long long)st->records,
+           (unsigned long long)st->lookups, (unsigned long long)st->hits, st->cache_bytes / 1048576.0);
+}
+
+/* Relative RMSE = sqrt(sum (a-b)^2 / sum b^2) over pixels and channels;
+ * largest error = max |a - b|, also relative to the reference's largest value. */
+static int compare(const cli *c, const float *img, int w, int h)
+{
+    char err[512];
+    float *ref;
+    int rw, rh;
+    size_t i, at = 0;
+    double se = 0, sr = 0, big = 0, rmax = 0;
+    if (exr_read(c->compare, &rw, &rh, &ref, err, sizeof err) < 0) {
+        fprintf(stderr, "%s\n", err);
+        return -1;
+    }
+    if (rw != w || rh != h) {
+        fprintf(stderr, "%s: %dx%d, the render is %dx%d\n", c->compare, rw, rh, w, h);
+        free(ref);
+        return -1;
+    }
+    for (i = 0; i < (size_t)w * h * 3; i++) {
+        double d = (double)img[i] - ref[i];
+        se += d * d;
+        sr += (double)ref[i] * ref[i];
+        if (fabs(d) > big) { big = fabs(d); at = i / 3; }
+        if (ref[i] > rmax) rmax = ref[i];
+    }
+    printf("  against %s: relative RMSE %.4f; largest error %.4g at pixel (%d, %d) (%.2f%% of the reference's largest value)\n",
+           c->compare, sr > 0 ? sqrt(se / sr) : 0.0, big, (int)(at % (size_t)w), (int)(at / (size_t)w),
+           rmax > 0 ? 100.0 * big / rmax : 0.0);
+    free(ref);
+    return 0;
+}
+
+static int write_outputs(const cli *c, renderer *r, const float *img, int w, int h)
+{
+    char path[4096], err[512];
+    float *rec;
+    if (c->raw) {
+        FILE *f = fopen(c->raw, "wb");
+        if (!f || fwrite(img, sizeof(float), (size_t)w * h * 3, f) != (size_t)w * h * 3 || fclose(f)) {
+            fprintf(stderr, "%s: %s\n", c->raw, strerror(errno));
+            return -1;
+        }
+    }
+    if (!c->out)
+        return 0;
+    snprintf(path, sizeof path, "%s.exr", c->out);
+    if (exr_write(path, w, h, img, c->half, err, sizeof err) < 0)
+        return fprintf(stderr, "%s\n", err), -1;
+    snprintf(path, sizeof path, "%s.png", c->out);
+    if (png_write(path, w, h, img, c->exposure, err, sizeof err) < 0)
+        return fprintf(stderr, "%s\n", err), -1;
+    printf("  wrote %s.exr and %s.png\n", c->out, c->out);
+    if (!r->cache || !(rec = malloc(sizeof(float) * (size_t)w * h * 3)))
+        return 0;
+    render_records(r, rec);
+    snprintf(path, sizeof path, "%s-records.png", c->out);
+    if (png_write(path, w, h, rec, 4.0f, err, sizeof err) < 0) {
+        free(rec);
+        return fprintf(stderr, "%s\n", err), -1;
+    }
+    printf("  wrote %s (records: colour = the record of largest weight, white = centres)\n", path);
+    free(rec);
+    return 0;
+}
+
+int main(int argc, char **argv)
+{
+    cli c;
+    scene s;
+    renderer r;
+    render_stats st;
+    char err[1024];
+    float *img;
+    int w, h, rc = 1;
+    if (parse_args(argc, argv, &c) < 0)
+        return 2;
+    if (scene_load(c.scene, &s, err, sizeof err) < 0) {
+        fprintf(stderr, "%s\n", err);
+        return 1;
+    }
+    if (c.width) {
+        s.cam.width = c.width;
+        s.cam.height = c.height;
+    }
+    w = s.cam.width;
+    h = s.cam.height;
+    if (renderer_init(&r, &s, &c.o, err, sizeof err) < 0) {
+        fprintf(stderr, "irc_demo: %s\n", err);
+        scene_free(&s);
+        return 1;
+    }
+    if (c.points) {
+        int n = 0, i;
+        float *pts = read_points(c.points, &n), *out;
+        if (pts && (out = malloc(sizeof(float) * 3 * (size_t)(n + 1)))) {
+            if (render_points(&r, pts, n, out, &st) == 0) {
+                for (i = 0; i < n; i++)
+                    printf("%.9g %.9g %.9g\n", out[3 * i], out[3 * i + 1], out[3 * i + 2]);
+                rc = 0;
+            }
+            free(out);
+        }
+        free(pts);
+    } else if ((img = malloc(sizeof(float) * 3 * (size_t)w * h))) {
+        int e = render_image(&r, img, &st);
+        if (e < 0) {
+            fprintf(stderr, "irc_demo: render failed: %s\n", irc_strerror(e));
+        } else {
+            report(&c, &st);
+            rc = (c.compare && compare(&c, img, w, h) < 0) || write_outputs(&c, &r, img, w, h) < 0;
+        }
+        free(img);
+    }
+    renderer_free(&r);
+    scene_free(&s);
+    return rc;
+}

@@ -1,0 +1,496 @@
+/*
+ * render.c -- the integrator (see render.h), its threads, and the host side
+ * of the cache: the trace callback the library calls.
+ */
+#define _POSIX_C_SOURCE 200809L
+#include "render.h"
+
+#include <float.h>
+#include <math.h>
+#include <pthread.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#define PI 3.14159265358979323846
+
+typedef struct tstate {
+    double trace_s, cache_s;
+    uint64_t rays;
+} tstate;
+
+static pthread_key_t tkey;
+static pthread_once_t tonce = PTHREAD_ONCE_INIT;
+static void make_key(void) { pthread_key_create(&tkey, NULL); }
+
+static double now(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+static uint64_t ray_key(const float o[3], const float d[3], uint64_t seed)
+{
+    uint32_t b[6];
+    uint64_t h = hash64(seed ^ 0x5bd1e995u);
+    int i;
+    memcpy(b, o, 12);
+    memcpy(b + 3, d, 12);
+    for (i = 0; i < 6; i++)
+        h = hash64(h ^ b[i]);
+    return h;
+}
+
+/* Radiance leaving a secondary hit toward the ray's origin: direct light
+ * (one light sample), plus emission only from spheres: emissive triangles
+ * are the sampled lights, whose light the camera ray's hit already counts
+ * as direct. */
+static void secondary(const renderer *r, const surface *sf, int prim, const float d[3],
+                      uint64_t key, float out[3], uint64_t *rays)
+{
+    direct_light(&r->b, &r->l, sf, d, 1, key, r->eps, out, rays);
+    if (prim < 0) {
+        float e[3];
+        int i;
+        emitted(sf, e);
+        for (i = 0; i < 3; i++)
+            out[i] += e[i];
+    }
+}
+
+/* Casts count rays; what the cache's callback and the reference share. */
+static void cast(const renderer *r, const irc_ray *rays, irc_hit *hits, uint32_t count,
+                 tstate *ts)
+{
+    double t0 = now();
+    uint32_t i;
+    for (i = 0; i < count; i++) {
+        const float *o = rays[i].org, *d = rays[i].dir;
+        irc_hit *h = &hits[i];
+        bvh_hit bh;
+        ts->rays++;
+        if (!bvh_intersect(&r->b, o, d, r->eps, FLT_MAX, &bh)) {
+            h->status = IRC_RAY_ESCAPED;
+            env_radiance(&r->s->env, d, h->radiance);
+        } else {
+            surface sf;
+            surface_at(r->s, o, d, &bh, &sf);
+            h->status = IRC_RAY_HIT;
+            h->dist = bh.t;
+            memcpy(h->normal, sf.ng, sizeof h->normal);
+            secondary(r, &sf, bh.prim, d, ray_key(o, d, r->o.seed), h->radiance, &ts->rays);
+        }
+    }
+    ts->trace_s += now() - t0;
+}
+
+static int host_trace(const irc_trace_args *a)
+{
+    const renderer *r = (const renderer *)a->context;
+    cast(r, a->rays, a->hits, a->count, (tstate *)pthread_getspecific(tkey));
+    return 0;
+}
+
+int renderer_init(renderer *r, const scene *s, const render_opts *o, char *err, size_t n)
+{
+    float lo[3] = {FLT_MAX, FLT_MAX, FLT_MAX}, hi[3] = {-FLT_MAX, -FLT_MAX, -FLT_MAX}, diag = 0;
+    int k;
+    memset(r, 0, sizeof *r);
+    r->s = s;
+    r->o = *o;
+    pthread_once(&tonce, make_key);
+    if (bvh_build(&r->b, s) < 0 || lights_build(&r->l, s) < 0) {
+        snprintf(err, n, "out of memory");
+        return -1;
+    }
+    if (r->b.nprims > 0)
+        for (k = 0; k < 3; k++) {
+            lo[k] = r->b.nodes[0].lo[k];
+            hi[k] = r->b.nodes[0].hi[k];
+        }
+    for (k = 0; k < 3; k++)
+        if (hi[k] > lo[k]) diag += (hi[k] - lo[k]) * (hi[k] - lo[k]);
+    r->eps = 1e-5f * (diag > 0.0f ? sqrtf(diag) : 1.0f);
+    if (o->mode == MODE_CACHE) {
+        irc_config cfg;
+        size_t bytes;
+        int st;
+        memset(&cfg, 0, sizeof cfg);
+        cfg.trace = host_trace;
+        cfg.context = r;
+        cfg.max_batch = 64;
+        cfg.features = o->features;
+        cfg.accuracy = o->accuracy;
+        cfg.strata_theta = o->strata_m;
+        cfg.strata_phi = o->strata_n;
+        cfg.min_radius = o->min_radius;
+        cfg.max_radius = o->max_radius;
+        cfg.threads = (uint32_t)o->threads;
+        cfg.seed = o->seed;
+        cfg.evict = IRC_EVICT_CLOCK;
+        if ((st = irc_footprint(&cfg, o->max_records, &bytes)) < 0 ||
+            !(r->block = malloc(bytes))) {
+            snprintf(err, n, "cache: %s", st < 0 ? irc_strerror(st) : "out of memory");
+            renderer_free(r);
+            return -1;
+        }
+        cfg.buffer = r->block;
+        cfg.buffer_size = bytes;
+        if ((st = irc_init(&cfg, o->max_records, &r->cache)) < 0) {
+            snprintf(err, n, "cache: %s", irc_strerror(st));
+            renderer_free(r);
+            return -1;
+        }
+    }
+    return 0;
+}
+
+void renderer_free(renderer *r)
+{
+    if (r->cache)
+        irc_fini(r->cache);
+    free(r->block);
+    bvh_free(&r->b);
+    lights_free(&r->l);
+    memset(r, 0, sizeof *r);
+}
+
+/* Brute force: ref_rays cosine-weighted rays, stratified on an m x k grid
+ * (m = floor(sqrt(N)), k = N/m, the rest unstratified). */
+static void reference_e(const renderer *r, const float p[3], const float n[3], uint64_t key,
+                        float e[3], tstate *ts)
+{
+    irc_ray rays[64];
+    irc_hit hits[64];
+    int total = r->o.ref_rays, m = (int)sqrt((double)total), k = total / (m > 0 ? m : 1);
+    int i, c, nb = 0;
+    float t1[3], t2[3], sgn = n[2] >= 0.0f ? 1.0f : -1.0f;
+    float a = -1.0f / (sgn + n[2]), b = n[0] * n[1] * a;
+    double sum[3] = {0, 0, 0};
+    t1[0] = 1.0f + sgn * n[0] * n[0] * a; t1[1] = sgn * b; t1[2] = -sgn * n[0];
+    t2[0] = b; t2[1] = sgn + n[1] * n[1] * a; t2[2] = -n[1];
+    for (i = 0; i < total; i++) {
+        double u1 = rnd(key, 2u * i), u2 = rnd(key, 2u * i + 1), s2, st, ct, ph;
+        if (i < m * k) {
+            u1 = ((i / k) + u1) / m;
+            u2 = ((i % k) + u2) / k;
+        }
+        s2 = u1;
+        st = sqrt(s2);
+        ct = sqrt(1.0 - s2);
+        ph = 2.0 * PI * u2;
+        for (c = 0; c < 3; c++) {
+            rays[nb].org[c] = p[c];
+            rays[nb].dir[c] = (float)(st * (cos(ph) * t1[c] + sin(ph) * t2[c]) + ct * n[c]);
+        }
+        if (++nb == 64 || i == total - 1) {
+            int j;
+            cast(r, rays, hits, (uint32_t)nb, ts);
+            for (j = 0; j < nb; j++)
+                for (c = 0; c < 3; c++)
+                    sum[c] += hits[j].radiance[c];
+            nb = 0;
+        }
+    }
+    for (c = 0; c < 3; c++)
+        e[c] = (float)(PI * sum[c] / total);
+}
+
+/* Indirect irradiance at a surface, from the cache or by brute force. */
+static int irradiance(renderer *r, const float p[3], const float n[3], uint64_t key,
+                      float e[3], tstate *ts)
+{
+    if (r->o.mode == MODE_CACHE) {
+        double t0 = now(), tr0 = ts->trace_s;
+        int st = irc_cache_lookup_or_compute(r->cache, p, n, e, NULL);
+        ts->cache_s += (now() - t0) - (ts->trace_s - tr0);
+        return st < 0 ? st : 0;
+    }
+    reference_e(r, p, n, key, e, ts);
+    return 0;
+}
+
+typedef struct cam_frame {
+    float eye[3], f[3], right[3], up[3], tx, ty;
+} cam_frame;
+
+static void camera_frame(const camera *c, cam_frame *cf)
+{
+    float l;
+    int i;
+    for (i = 0; i < 3; i++)
+        cf->f[i] = c->look[i] - c->eye[i];
+    l = sqrtf(cf->f[0] * cf->f[0] + cf->f[1] * cf->f[1] + cf->f[2] * cf->f[2]);
+    for (i = 0; i < 3; i++) {
+        cf->f[i] /= l;
+        cf->eye[i] = c->eye[i];
+    }
+    cf->right[0] = cf->f[1] * c->up[2] - cf->f[2] * c->up[1];
+    cf->right[1] = cf->f[2] * c->up[0] - cf->f[0] * c->up[2];
+    cf->right[2] = cf->f[0] * c->up[1] - cf->f[1] * c->up[0];
+    l = sqrtf(cf->right[0] * cf->right[0] + cf->right[1] * cf->right[1] +
+              cf->right[2] * cf->right[2]);
+    for (i = 0; i < 3; i++)
+        cf->right[i] /= l;
+    cf->up[0] = cf->right[1] * cf->f[2] - cf->right[2] * cf->f[1];
+    cf->up[1] = cf->right[2] * cf->f[0] - cf->right[0] * cf->f[2];
+    cf->up[2] = cf->right[0] * cf->f[1] - cf->right[1] * cf->f[0];
+    cf->ty = tanf(0.5f * c->fov_deg * (float)(PI / 180.0));
+    cf->tx = cf->ty * (float)c->width / (float)c->height;
+}
+
+static void camera_ray(const cam_frame *cf, const camera *c, int x, int y, float d[3])
+{
+    float sx = (2.0f * (x + 0.5f) / c->width - 1.0f) * cf->tx;
+    float sy = (1.0f - 2.0f * (y + 0.5f) / c->height) * cf->ty, l;
+    int i;
+    for (i = 0; i < 3; i++)
+        d[i] = cf->f[i] + sx * cf->right[i] + sy * cf->up[i];
+    l = sqrtf(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    for (i = 0; i < 3; i++)
+        d[i] /= l;
+}
+
+/* The point and normal the cache sees for a surface: lifted by eps off the
+ * surface so that hemisphere rays start clear of it. */
+static void cache_point(const renderer *r, const surface *sf, float p[3])
+{
+    int i;
+    for (i = 0; i < 3; i++)
+        p[i] = sf->p[i] + r->eps * sf->ng[i];
+}
+
+static int shade_pixel(renderer *r, const cam_frame *cf, int x, int y, float out[3],
+                       tstate *ts)
+{
+    const camera *c = &r->s->cam;
+    float d[3], e[3], ld[3], p[3];
+    /* Direct light's random numbers ignore the seed: two renders with other
+     * seeds then differ only in their indirect light, which is what the
+     * comparisons measure. */
+    uint64_t pix = (uint64_t)y << 32 | (uint32_t)x, key = hash64(r->o.seed ^ pix);
+    bvh_hit bh;
+    surface sf;
+    int i, st;
+    camera_ray(cf, c, x, y, d);
+    ts->rays++;
+    if (!bvh_intersect(&r->b, cf->eye, d, 0.0f, FLT_MAX, &bh)) {
+        if (r->o.show == SHOW_FULL)
+            env_radiance(&r->s->env, d, out);
+        else
+            out[0] = out[1] = out[2] = 0.0f;
+        return 0;
+    }
+    surface_at(r->s, cf->eye, d, &bh, &sf);
+    cache_point(r, &sf, p);
+    if ((st = irradiance(r, p, sf.nsm, key, e, ts)) < 0)
+        return st;
+    for (i = 0; i < 3; i++)
+        out[i] = sf.m->kd[i] / (float)PI * e[i];
+    if (r->o.show == SHOW_FULL) {
+        emitted(&sf, ld);
+        for (i = 0; i < 3; i++)
+            out[i] += ld[i];
+        direct_light(&r->b, &r->l, &sf, d, r->o.light_samples, hash64(pix), r->eps, ld,
+                     &ts->rays);
+        for (i = 0; i < 3; i++)
+            out[i] += ld[i];
+    }
+    return 0;
+}
+
+typedef struct job {
+    renderer *r;
+    cam_frame cf;
+    float *rgb;
+    int next_row, rows_done, error;
+    double start, shown;
+    tstate ts[64];
+} job;
+
+static void progress(job *j, int done)
+{
+    double el = now() - j->start;
+    int h = j->r->s->cam.height, bar = 40, k, n = done * bar / h;
+    char line[64];
+    if (!j->r->o.progress || el < 1.0 || (done < h && el - j->shown < 0.25))
+        return;
+    j->shown = el;
+    for (k = 0; k < bar; k++)
+        line[k] = k < n ? '#' : '.';
+    line[bar] = 0;
+    fprintf(stderr, "\r[%s] %3d%% %5.1fs", line, done * 100 / h, el);
+    if (done == h)
+        fputc('\n', stderr);
+}
+
+typedef struct warg {
+    job *j;
+    int id;
+} warg;
+
+static void *worker(void *arg)
+{
+    job *j = ((warg *)arg)->j;
+    int id = ((warg *)arg)->id;
+    tstate *ts = &j->ts[id];
+    const camera *c = &j->r->s->cam;
+    pthread_setspecific(tkey, ts);
+    for (;;) {
+        int y = __atomic_fetch_add(&j->next_row, 1, __ATOMIC_RELAXED), x, done;
+        if (y >= c->height || __atomic_load_n(&j->error, __ATOMIC_RELAXED))
+            break;
+        for (x = 0; x < c->width; x++) {
+            int st = shade_pixel(j->r, &j->cf, x, y, &j->rgb[((size_t)y * c->width + x) * 3], ts);
+            if (st < 0) {
+                __atomic_store_n(&j->error, st, __ATOMIC_RELAXED);
+                break;
+            }
+        }
+        done = __atomic_add_fetch(&j->rows_done, 1, __ATOMIC_RELAXED);
+        if (id == 0)
+            progress(j, done);
+    }
+    return NULL;
+}
+
+static void collect(renderer *r, const tstate *ts, int n, double wall, render_stats *st)
+{
+    int i;
+    memset(st, 0, sizeof *st);
+    st->wall = wall;
+    for (i = 0; i < n; i++) {
+        st->trace_s += ts[i].trace_s;
+        st->cache_s += ts[i].cache_s;
+        st->rays += ts[i].rays;
+    }
+    if (r->cache) {
+        irc_stats cs;
+        irc_cache_stats(r->cache, &cs);
+        st->records = cs.records;
+        st->lookups = cs.lookups;
+        st->hits = cs.hits;
+        st->cache_bytes = cs.bytes_total;
+    }
+}
+
+int render_image(renderer *r, float *rgb, render_stats *st)
+{
+    job *j = calloc(1, sizeof *j);
+    pthread_t th[64];
+    warg args[64];
+    int t, n = r->o.threads < 1 ? 1 : r->o.threads > 64 ? 64 : r->o.threads, e;
+    if (!j)
+        return -1;
+    j->r = r;
+    j->rgb = rgb;
+    j->start = now();
+    camera_frame(&r->s->cam, &j->cf);
+    for (t = 0; t < n; t++) {
+        args[t].j = j;
+        args[t].id = t;
+        if (t > 0)
+            pthread_create(&th[t], NULL, worker, &args[t]);
+    }
+    worker(&args[0]);
+    for (t = 1; t < n; t++)
+        pthread_join(th[t], NULL);
+    collect(r, j->ts, n, now() - j->start, st);
+    e = j->error;
+    free(j);
+    return e;
+}
+
+int render_points(renderer *r, const float *pn, int n, float *rgb, render_stats *st)
+{
+    tstate ts;
+    double t0 = now();
+    int i, e;
+    memset(&ts, 0, sizeof ts);
+    pthread_setspecific(tkey, &ts);
+    for (i = 0; i < n; i++) {
+        const float *p = &pn[6 * i], *nn = &pn[6 * i + 3];
+        uint64_t key = hash64(r->o.seed ^ (uint64_t)i);
+        if ((e = irradiance(r, p, nn, key, &rgb[3 * i], &ts)) < 0)
+            return e;
+    }
+    collect(r, &ts, 1, now() - t0, st);
+    return 0;
+}
+
+static void hue(uint32_t id, float out[3])
+{
+    double h = (double)(hash64(id) >> 11) * (6.0 / 9007199254740992.0);
+    int i = (int)h;
+    float f = (float)(h - i), q = 1.0f - f;
+    float tab[6][3] = {{1, f, 0}, {q, 1, 0}, {0, 1, f}, {0, q, 1}, {f, 0, 1}, {1, 0, q}};
+    memcpy(out, tab[i % 6], 3 * sizeof(float));
+}
+
+int render_records(renderer *r, float *rgb)
+{
+    const camera *c = &r->s->cam;
+    cam_frame cf;
+    irc_stats cs;
+    uint32_t ids[256], cnt, k, id;
+    int x, y, i;
+    if (!r->cache)
+        return -1;
+    camera_frame(c, &cf);
+    for (y = 0; y < c->height; y++)
+        for (x = 0; x < c->width; x++) {
+            float d[3], p[3], *out = &rgb[((size_t)y * c->width + x) * 3], best = 0.0f;
+            bvh_hit bh;
+            surface sf;
+            out[0] = out[1] = out[2] = 0.0f;
+            camera_ray(&cf, c, x, y, d);
+            if (!bvh_intersect(&r->b, cf.eye, d, 0.0f, FLT_MAX, &bh))
+                continue;
+            surface_at(r->s, cf.eye, d, &bh, &sf);
+            cache_point(r, &sf, p);
+            irc_cache_neighbours(r->cache, p, sf.nsm, ids, 256, &cnt);
+            for (k = 0; k < cnt && k < 256; k++) {
+                irc_record rec;
+                float dd = 0.0f, nn = 0.0f, w;
+                irc_cache_record(r->cache, ids[k], &rec);
+                for (i = 0; i < 3; i++) {
+                    dd += (p[i] - rec.p[i]) * (p[i] - rec.p[i]);
+                    nn += sf.nsm[i] * rec.n[i];
+                }
+                w = 1.0f / (sqrtf(dd) / rec.radius + sqrtf(nn < 1.0f ? 1.0f - nn : 0.0f) + 1e-6f);
+                if (w > best) {
+                    best = w;
+                    hue(ids[k], out);
+                    for (i = 0; i < 3; i++)
+                        out[i] *= 0.6f;
+                }
+            }
+        }
+    irc_cache_stats(r->cache, &cs);
+    for (id = 0; id < cs.records; id++) {
+        irc_record rec;
+        float v[3], z, dist, sx, sy;
+        int px, py;
+        irc_cache_record(r->cache, id, &rec);
+        for (i = 0; i < 3; i++)
+            v[i] = rec.p[i] - cf.eye[i];
+        z = v[0] * cf.f[0] + v[1] * cf.f[1] + v[2] * cf.f[2];
+        if (z <= 0.0f)
+            continue;
+        dist = sqrtf(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+        for (i = 0; i < 3; i++)
+            v[i] /= dist;
+        if (bvh_occluded(&r->b, cf.eye, v, 0.0f, dist * (1.0f - 1e-3f)))
+            continue;
+        sx = (v[0] * cf.right[0] + v[1] * cf.right[1] + v[2] * cf.right[2]) / (z / dist) / cf.tx;
+        sy = (v[0] * cf.up[0] + v[1] * cf.up[1] + v[2] * cf.up[2]) / (z / dist) / cf.ty;
+        px = (int)((sx + 1.0f) * 0.5f * c->width);
+        py = (int)((1.0f - sy) * 0.5f * c->height);
+        if (px >= 0 && px < c->width && py >= 0 && py < c->height)
+            for (i = 0; i < 3; i++)
+                rgb[((size_t)py * c->width + px) * 3 + i] = 1.0f;
+    }
+    return 0;
+}

@@ -1,0 +1,72 @@
+/*
+ * render.h -- the demo's integrator.  Each pixel shows the radiance at the
+ * camera ray's first hit: emission + direct light from the area lights
+ * (explicit sampling, Lambert + Phong) + one bounce of indirect diffuse
+ * light, kd/pi x E, where E (irradiance from the environment and from the
+ * direct-lit surfaces seen from the hit) comes from the cache or from
+ * brute-force hemisphere sampling.
+ */
+#ifndef DEMO_RENDER_H
+#define DEMO_RENDER_H
+
+#include <stdint.h>
+
+#include "irrcache.h"
+#include "shade.h"
+
+enum { MODE_CACHE, MODE_REFERENCE };
+enum { SHOW_FULL, SHOW_INDIRECT };
+
+typedef struct render_opts {
+    int mode;
+    int ref_rays;         /* reference: hemisphere rays per shading point */
+    uint32_t features;    /* cache: IRC_FEATURE_* */
+    float accuracy;       /* cache: a */
+    uint32_t strata_m, strata_n;
+    uint32_t max_records;
+    float min_radius, max_radius;
+    int threads;
+    int show;             /* SHOW_FULL or SHOW_INDIRECT (kd/pi E only) */
+    int light_samples;    /* at the camera ray's hit; 1 at secondary hits */
+    uint64_t seed;
+    int progress;         /* draw a progress bar on stderr after a second */
+} render_opts;
+
+typedef struct render_stats {
+    double wall;          /* seconds */
+    double trace_s;       /* thread-seconds in the host's ray casting + shading
+                             of secondary hits (inside the trace callback and
+                             for the reference's rays) */
+    double cache_s;       /* thread-seconds in cache calls, callback excluded */
+    uint64_t rays;        /* every ray cast: camera, hemisphere, shadow */
+    uint64_t records;
+    uint64_t lookups, hits;
+    size_t cache_bytes;   /* the cache's block */
+} render_stats;
+
+typedef struct renderer {
+    const scene *s;
+    bvh b;
+    lights l;
+    float eps;            /* ray offset: 1e-5 of the scene's size */
+    render_opts o;
+    irc_cache *cache;     /* MODE_CACHE */
+    void *block;
+} renderer;
+
+int renderer_init(renderer *r, const scene *s, const render_opts *o, char *err, size_t n);
+void renderer_free(renderer *r);
+
+/* Renders the camera's image into rgb (w x h x 3). */
+int render_image(renderer *r, float *rgb, render_stats *st);
+
+/* Irradiance E at n points (p, n: 6 floats a point) into rgb (3 a point). */
+int render_points(renderer *r, const float *pn, int n, float *rgb, render_stats *st);
+
+/* False colour of the cache's records over the camera's image: each pixel
+ * coloured by the record of largest weight there (hue from its id, so
+ * neighbouring records differ), black where none counts; record centres
+ * seen by the camera as white dots. */
+int render_records(renderer *r, float *rgb);
+
+#endif

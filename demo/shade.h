@@ -1,0 +1,52 @@
+/*
+ * shade.h -- what the tracer knows about light and surfaces: the shading
+ * frame at a hit (with the procedural bump map), the environment, area
+ * lights sampled explicitly, and the Lambert + normalised Phong BRDF.
+ */
+#ifndef DEMO_SHADE_H
+#define DEMO_SHADE_H
+
+#include <stdint.h>
+
+#include "bvh.h"
+
+typedef struct lights {
+    int *tri;        /* emissive triangles */
+    double *cdf;     /* by power (area x luminance of Ke) */
+    int count;
+    double total;    /* summed power */
+} lights;
+
+typedef struct surface {
+    float p[3];      /* hit point */
+    float ng[3];     /* geometric normal, facing the incoming ray */
+    float ns[3];     /* shading normal (interpolated, bumped), same side */
+    float nsm[3];    /* the same before the bump map: irradiance is sampled
+                        around it, so hemisphere rays do not dive under bumps */
+    const material *m;
+    int front;       /* the ray hit the front face (emitters emit there only) */
+} surface;
+
+int lights_build(lights *l, const scene *s); /* 0, or -1 out of memory */
+void lights_free(lights *l);
+
+/* Surface at the hit of ray (o, d). */
+void surface_at(const scene *s, const float o[3], const float d[3], const bvh_hit *h,
+                surface *out);
+
+void env_radiance(const environment *e, const float d[3], float out[3]);
+
+/* Radiance emitted at a surface toward -d (front faces of emitters only). */
+void emitted(const surface *sf, float out[3]);
+
+/* Radiance leaving sf toward -d from direct lighting by the area lights,
+ * with `samples` light samples; u is a per-call random key.  *rays counts
+ * the shadow rays cast. */
+void direct_light(const bvh *b, const lights *l, const surface *sf, const float d[3],
+                  int samples, uint64_t key, float eps, float out[3], uint64_t *rays);
+
+/* A hash-based uniform number in [0,1) for (key, index). */
+double rnd(uint64_t key, uint32_t i);
+uint64_t hash64(uint64_t x);
+
+#endif

@@ -1,0 +1,141 @@
+/* t_demo.c -- the demo tracer: BVH against brute force, brute-force
+ * irradiance against the closed form.  Run from the project's root. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "bvh.h"
+#include "render.h"
+#include "scenes.h"
+#include "test.h"
+
+static unsigned long long st_rng = 99;
+
+/* A random ray from a point inside the scene's bounds (grown by 10%) in a
+ * uniformly random direction. */
+static void random_ray(const bvh *b, float o[3], float d[3])
+{
+    double z, phi, r;
+    int i;
+    for (i = 0; i < 3; i++) {
+        float lo = b->nodes[0].lo[i], hi = b->nodes[0].hi[i], pad = 0.1f * (hi - lo);
+        o[i] = (float)(lo - pad + xrand(&st_rng) * (hi - lo + 2 * pad));
+    }
+    z = 2.0 * xrand(&st_rng) - 1.0;
+    phi = 2.0 * TPI * xrand(&st_rng);
+    r = sqrt(1.0 - z * z);
+    d[0] = (float)(r * cos(phi));
+    d[1] = (float)(r * sin(phi));
+    d[2] = (float)z;
+}
+
+static void bvh_vs_brute(const char *path)
+{
+    scene s;
+    bvh b;
+    char err[512];
+    int i, n = irc_t_quick ? 10000 : 100000, bad = 0, hits = 0;
+    if (scene_load(path, &s, err, sizeof err) < 0) {
+        CHECK(0, "%s", err);
+        return;
+    }
+    CHECK(bvh_build(&b, &s) == 0, "build");
+    for (i = 0; i < n; i++) {
+        float o[3], d[3];
+        bvh_hit h1, h2;
+        int a, c;
+        random_ray(&b, o, d);
+        a = bvh_intersect(&b, o, d, 0.0f, 1e30f, &h1);
+        c = brute_intersect(&s, o, d, 0.0f, 1e30f, &h2);
+        hits += a;
+        /* Same nearest hit: same primitive, or (a ray through a shared
+         * edge) another one at exactly the same distance. */
+        if (a != c || (a && h1.prim != h2.prim && h1.t != h2.t))
+            bad++;
+        if (a && c && h1.t != h2.t)
+            bad++;
+        if (!bvh_occluded(&b, o, d, 0.0f, 1e30f) != !c)
+            bad++;
+    }
+    printf("  %s: %d triangles, %d spheres, %d nodes; %d of %d rays hit; %d differ\n", path,
+           s.ntris, s.nspheres, b.nnodes, hits, n, bad);
+    CHECK(bad == 0, "%d rays differ from brute force", bad);
+    CHECK(hits > n / 10, "too few hits to prove much (%d)", hits);
+    bvh_free(&b);
+    scene_free(&s);
+}
+
+TEST(test_bvh_shipped_scenes)
+{
+    bvh_vs_brute("demo/scenes/cornell.scene");
+    bvh_vs_brute("demo/scenes/fig5.scene");
+    bvh_vs_brute("demo/scenes/fig15.scene");
+    bvh_vs_brute("demo/scenes/sh.scene");
+}
+
+/* The demo's brute-force irradiance (--reference N) on the core tests'
+ * sphere-over-plane case: a black sphere of radius 1 at (0, 0, 2) over the
+ * plane z = 0 under a uniform sky 1, E = pi (1 - r^2 cos(theta)/d^2).
+ * Built in code: two huge triangles for the plane, the analytic sphere. */
+TEST(test_reference_sphere_plane)
+{
+    static const float pts[5][6] = {{0.5f, 0, 0, 0, 0, 1}, {1, 1, 0, 0, 0, 1}, {-1.5f, 0.5f, 0, 0, 0, 1},
+                                    {2, -1, 0, 0, 0, 1}, {0, 3, 0, 0, 0, 1}};
+    material mats[2];
+    triangle tris[2];
+    sphere sp;
+    scene s;
+    renderer r;
+    render_opts o;
+    render_stats st;
+    tscene ref;
+    char err[256];
+    float e[15];
+    int i;
+    memset(mats, 0, sizeof mats);
+    memset(tris, 0, sizeof tris);
+    memset(&s, 0, sizeof s);
+    memset(&o, 0, sizeof o);
+    mats[0].kd[0] = mats[0].kd[1] = mats[0].kd[2] = 0.5f; /* plane */
+    {
+        static const float q[4][3] = {{-1e3f, -1e3f, 0}, {1e3f, -1e3f, 0}, {1e3f, 1e3f, 0}, {-1e3f, 1e3f, 0}};
+        memcpy(tris[0].v[0], q[0], 12); memcpy(tris[0].v[1], q[1], 12); memcpy(tris[0].v[2], q[2], 12);
+        memcpy(tris[1].v[0], q[0], 12); memcpy(tris[1].v[1], q[2], 12); memcpy(tris[1].v[2], q[3], 12);
+    }
+    sp.c[0] = sp.c[1] = 0.0f;
+    sp.c[2] = 2.0f;
+    sp.r = 1.0f;
+    sp.mat = 1;                                            /* black */
+    s.tris = tris; s.ntris = 2; s.spheres = &sp; s.nspheres = 1; s.mats = mats; s.nmats = 2;
+    s.env.kind = ENV_CONSTANT;
+    s.env.base[0] = s.env.base[1] = s.env.base[2] = 1.0f;
+    s.cam.width = s.cam.height = 1;
+    o.mode = MODE_REFERENCE;
+    o.ref_rays = 32 * 128;
+    o.threads = 1;
+    o.seed = 3;
+    CHECK(renderer_init(&r, &s, &o, err, sizeof err) == 0, "%s", err);
+    CHECK(render_points(&r, &pts[0][0], 5, e, &st) == 0, "points");
+    scene_init(&ref);
+    ref.sky_a[0] = 1.0f;
+    ref.has_sphere = 1;
+    ref.centre[2] = 2.0;
+    ref.radius = 1.0;
+    for (i = 0; i < 5; i++) {
+        double p[3] = {pts[i][0], pts[i][1], 0.0}, want = sphere_plane_e(&ref, p);
+        printf("  point %d: E %.5f, closed form %.5f (%+.3f%%)\n", i, e[3 * i], want,
+               100.0 * (e[3 * i] - want) / want);
+        CHECK(fabs(e[3 * i] - want) <= 0.01 * want, "E %g vs %g", e[3 * i], want);
+    }
+    CHECK(st.rays == 5u * 32u * 128u, "rays %llu", (unsigned long long)st.rays);
+    renderer_free(&r);
+}
+
+#define TESTS(X) X(test_bvh_shipped_scenes) X(test_reference_sphere_plane)
+TESTS(TEST_DECL)
+
+int main(int argc, char **argv)
+{
+    static const test_case all[] = {TESTS(TEST_ROW)};
+    return test_run(all, sizeof all / sizeof all[0], argc, argv);
+}
