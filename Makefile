@@ -79,6 +79,22 @@ demo: $(BUILD)/irc_demo
 $(BUILD)/demo_tests: tests/t_demo.c tests/harness.c tests/scenes.c $(DEMO_LIB_SRC) demo/*.h tests/*.h $(LIBA)
 	$(CC) $(TEST_CFLAGS) -Idemo $(OPT) $(CFLAGS) tests/t_demo.c tests/harness.c tests/scenes.c $(DEMO_LIB_SRC) $(LIBA) -o $@ -lm -lpthread
 
+# The demo's own tests.  t_exr reads the demo's files with OpenEXR's C
+# library (OpenEXRCore): a test-only dependency, found by pkg-config.
+IMAGE_SRC = demo/image.c demo/png.c
+LOADER_SRC = demo/loader.c demo/obj.c
+EXR_CFLAGS = $(shell pkg-config --cflags OpenEXR)
+EXR_LIBS = $(shell pkg-config --libs OpenEXR)
+
+$(BUILD)/t_image: tests/t_image.c $(IMAGE_SRC) demo/image.h demo/image_int.h
+	$(CC) $(TEST_CFLAGS) -Idemo $(OPT) $(CFLAGS) tests/t_image.c $(IMAGE_SRC) -o $@ -lm
+
+$(BUILD)/t_loader: tests/t_loader.c $(LOADER_SRC) demo/scene.h demo/loader_int.h
+	$(CC) $(TEST_CFLAGS) -Idemo $(OPT) $(CFLAGS) tests/t_loader.c $(LOADER_SRC) -o $@ -lm
+
+$(BUILD)/t_exr: tests/t_exr.c $(IMAGE_SRC) demo/image.h
+	$(CC) $(TEST_CFLAGS) -Idemo $(EXR_CFLAGS) $(OPT) $(CFLAGS) tests/t_exr.c $(IMAGE_SRC) -o $@ $(EXR_LIBS) -lm
+
 # ---------------------------------------------------------------- bench
 $(BUILD)/bench_core: demo/bench_core.c tests/scenes.c tests/scenes.h $(LIBA)
 	$(CC) $(TEST_CFLAGS) -O2 -g $(CFLAGS) demo/bench_core.c tests/scenes.c $(LIBA) -o $@ -lm -lpthread

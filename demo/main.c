@@ -20,7 +20,9 @@ static const char usage[] =
     "  --accuracy A            cache accuracy a (default 0.2)\n"
     "  --strata MxN            cache hemisphere strata (default 16x64)\n"
     "  --records N             cache capacity (default 200000; CLOCK eviction)\n"
-    "  --min-radius R  --max-radius R   cache radius clamps (scene units)\n"
+    "  --min-radius R          cache minimum radius (scene units, default 0)\n"
+    "  --max-radius R          cache maximum radius (default 0.1 x the scene's\n"
+    "                          diagonal; 0: no bound)\n"
     "  --threads T             render threads (default: the machine's cores)\n"
     "  --size WxH              override the scene's resolution\n"
     "  --indirect              show only the indirect term kd/pi E\n"
@@ -78,6 +80,7 @@ static int parse_args(int argc, char **argv, cli *c)
     c->o.strata_m = 16;
     c->o.strata_n = 64;
     c->o.max_records = 200000;
+    c->o.max_radius = -1.0f;
     c->o.light_samples = 16;
     c->o.seed = 1;
     c->o.progress = 1;
@@ -154,19 +157,19 @@ static float *read_points(const char *path, int *count)
     return pts ? pts : calloc(1, sizeof(float));
 }
 
-static void report(const cli *c, const render_stats *st)
+static void report(FILE *f, const cli *c, const renderer *r, const render_stats *st)
 {
     double busy = st->trace_s + st->cache_s;
-    printf("%s: %s", c->scene, c->o.mode == MODE_CACHE ? "cache" : "reference");
+    fprintf(f, "%s: %s", c->scene, c->o.mode == MODE_CACHE ? "cache" : "reference");
     if (c->o.mode == MODE_CACHE)
-        printf(" (%s, a = %g, %ux%u strata)",
-               c->o.features == 3 ? "trans+rot" : c->o.features == 1 ? "trans" : c->o.features == 2 ? "rot" : "no gradients",
-               c->o.accuracy, c->o.strata_m, c->o.strata_n);
+        fprintf(f, " (%s, a = %g, %ux%u strata, max radius %g)",
+                c->o.features == 3 ? "trans+rot" : c->o.features == 1 ? "trans" : c->o.features == 2 ? "rot" : "no gradients",
+                c->o.accuracy, c->o.strata_m, c->o.strata_n, r->o.max_radius);
     else
-        printf(" (%d rays per shading point)", c->o.ref_rays);
-    printf("\n  wall %.2f s; host ray casting %.2f thread-s, cache %.3f thread-s (%.2f%% of both)\n",
+        fprintf(f, " (%d rays per shading point)", c->o.ref_rays);
+    fprintf(f, "\n  wall %.2f s; host ray casting %.2f thread-s, cache %.3f thread-s (%.2f%% of both)\n",
            st->wall, st->trace_s, st->cache_s, busy > 0 ? 100.0 * st->cache_s / busy : 0.0);
-    printf("  rays %llu; records %llu; lookups %llu (%llu answered from records); cache memory %.1f MB\n",
+    fprintf(f, "  rays %llu; records %llu; lookups %llu (%llu answered from records); cache memory %.1f MB\n",
            (unsigned long long)st->rays, (unsigned long long)st->records,
            (unsigned long long)st->lookups, (unsigned long long)st->hits, st->cache_bytes / 1048576.0);
 }
@@ -269,6 +272,7 @@ int main(int argc, char **argv)
             if (render_points(&r, pts, n, out, &st) == 0) {
                 for (i = 0; i < n; i++)
                     printf("%.9g %.9g %.9g\n", out[3 * i], out[3 * i + 1], out[3 * i + 2]);
+                report(stderr, &c, &r, &st);
                 rc = 0;
             }
             free(out);
@@ -279,7 +283,7 @@ int main(int argc, char **argv)
         if (e < 0) {
             fprintf(stderr, "irc_demo: render failed: %s\n", irc_strerror(e));
         } else {
-            report(&c, &st);
+            report(stdout, &c, &r, &st);
             rc = (c.compare && compare(&c, img, w, h) < 0) || write_outputs(&c, &r, img, w, h) < 0;
         }
         free(img);

@@ -50,7 +50,7 @@ static uint64_t ray_key(const float o[3], const float d[3], uint64_t seed)
 static void secondary(const renderer *r, const surface *sf, int prim, const float d[3],
                       uint64_t key, float out[3], uint64_t *rays)
 {
-    direct_light(&r->b, &r->l, sf, d, 1, key, r->eps, out, rays);
+    direct_light(&r->b, &r->l, sf, d, 1, key, out, rays);
     if (prim < 0) {
         float e[3];
         int i;
@@ -71,7 +71,7 @@ static void cast(const renderer *r, const irc_ray *rays, irc_hit *hits, uint32_t
         irc_hit *h = &hits[i];
         bvh_hit bh;
         ts->rays++;
-        if (!bvh_intersect(&r->b, o, d, r->eps, FLT_MAX, &bh)) {
+        if (!bvh_intersect(&r->b, o, d, ray_offset(o), FLT_MAX, &bh)) {
             h->status = IRC_RAY_ESCAPED;
             env_radiance(&r->s->env, d, h->radiance);
         } else {
@@ -95,8 +95,6 @@ static int host_trace(const irc_trace_args *a)
 
 int renderer_init(renderer *r, const scene *s, const render_opts *o, char *err, size_t n)
 {
-    float lo[3] = {FLT_MAX, FLT_MAX, FLT_MAX}, hi[3] = {-FLT_MAX, -FLT_MAX, -FLT_MAX}, diag = 0;
-    int k;
     memset(r, 0, sizeof *r);
     r->s = s;
     r->o = *o;
@@ -105,18 +103,10 @@ int renderer_init(renderer *r, const scene *s, const render_opts *o, char *err, 
         snprintf(err, n, "out of memory");
         return -1;
     }
-    if (r->b.nprims > 0)
-        for (k = 0; k < 3; k++) {
-            lo[k] = r->b.nodes[0].lo[k];
-            hi[k] = r->b.nodes[0].hi[k];
-        }
-    for (k = 0; k < 3; k++)
-        if (hi[k] > lo[k]) diag += (hi[k] - lo[k]) * (hi[k] - lo[k]);
-    r->eps = 1e-5f * (diag > 0.0f ? sqrtf(diag) : 1.0f);
     if (o->mode == MODE_CACHE) {
         irc_config cfg;
         size_t bytes;
-        int st;
+        int st, k;
         memset(&cfg, 0, sizeof cfg);
         cfg.trace = host_trace;
         cfg.context = r;
@@ -127,6 +117,17 @@ int renderer_init(renderer *r, const scene *s, const render_opts *o, char *err, 
         cfg.strata_phi = o->strata_n;
         cfg.min_radius = o->min_radius;
         cfg.max_radius = o->max_radius;
+        if (o->max_radius < 0.0f) {
+            /* Scene-relative default (as Radiance bounds its radii by the
+             * scene's size): open scenes otherwise get records as wide as
+             * the sky's harmonic mean distance. */
+            float d2 = 0.0f;
+            for (k = 0; k < 3 && r->b.nprims > 0; k++) {
+                float e = r->b.nodes[0].hi[k] - r->b.nodes[0].lo[k];
+                d2 += e * e;
+            }
+            cfg.max_radius = r->o.max_radius = 0.1f * sqrtf(d2);
+        }
         cfg.threads = (uint32_t)o->threads;
         cfg.seed = o->seed;
         cfg.evict = IRC_EVICT_CLOCK;
@@ -253,13 +254,13 @@ static void camera_ray(const cam_frame *cf, const camera *c, int x, int y, float
         d[i] /= l;
 }
 
-/* The point and normal the cache sees for a surface: lifted by eps off the
- * surface so that hemisphere rays start clear of it. */
-static void cache_point(const renderer *r, const surface *sf, float p[3])
+/* The point the cache sees for a surface: lifted off it so that hemisphere
+ * rays start clear of it. */
+static void cache_point(const surface *sf, float p[3])
 {
     int i;
     for (i = 0; i < 3; i++)
-        p[i] = sf->p[i] + r->eps * sf->ng[i];
+        p[i] = sf->p[i] + ray_offset(sf->p) * sf->ng[i];
 }
 
 static int shade_pixel(renderer *r, const cam_frame *cf, int x, int y, float out[3],
@@ -284,7 +285,7 @@ static int shade_pixel(renderer *r, const cam_frame *cf, int x, int y, float out
         return 0;
     }
     surface_at(r->s, cf->eye, d, &bh, &sf);
-    cache_point(r, &sf, p);
+    cache_point(&sf, p);
     if ((st = irradiance(r, p, sf.nsm, key, e, ts)) < 0)
         return st;
     for (i = 0; i < 3; i++)
@@ -293,8 +294,7 @@ static int shade_pixel(renderer *r, const cam_frame *cf, int x, int y, float out
         emitted(&sf, ld);
         for (i = 0; i < 3; i++)
             out[i] += ld[i];
-        direct_light(&r->b, &r->l, &sf, d, r->o.light_samples, hash64(pix), r->eps, ld,
-                     &ts->rays);
+        direct_light(&r->b, &r->l, &sf, d, r->o.light_samples, hash64(pix), ld, &ts->rays);
         for (i = 0; i < 3; i++)
             out[i] += ld[i];
     }
@@ -449,7 +449,7 @@ int render_records(renderer *r, float *rgb)
             if (!bvh_intersect(&r->b, cf.eye, d, 0.0f, FLT_MAX, &bh))
                 continue;
             surface_at(r->s, cf.eye, d, &bh, &sf);
-            cache_point(r, &sf, p);
+            cache_point(&sf, p);
             irc_cache_neighbours(r->cache, p, sf.nsm, ids, 256, &cnt);
             for (k = 0; k < cnt && k < 256; k++) {
                 irc_record rec;

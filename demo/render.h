@@ -24,7 +24,7 @@ typedef struct render_opts {
     float accuracy;       /* cache: a */
     uint32_t strata_m, strata_n;
     uint32_t max_records;
-    float min_radius, max_radius;
+    float min_radius, max_radius; /* max < 0: 0.1 x the scene's diagonal */
     int threads;
     int show;             /* SHOW_FULL or SHOW_INDIRECT (kd/pi E only) */
     int light_samples;    /* at the camera ray's hit; 1 at secondary hits */
@@ -48,7 +48,6 @@ typedef struct renderer {
     const scene *s;
     bvh b;
     lights l;
-    float eps;            /* ray offset: 1e-5 of the scene's size */
     render_opts o;
     irc_cache *cache;     /* MODE_CACHE */
     void *block;

@@ -9,13 +9,14 @@
 #include <stddef.h>
 
 typedef struct material {
-    char name[64];
+    char name[64];    /* at most 63 characters (longer names are an error) */
     float kd[3];      /* diffuse reflectance (MTL Kd) */
     float ks[3];      /* Phong glossy reflectance (MTL Ks) */
     float ns;         /* Phong exponent (MTL Ns) */
     float ke[3];      /* emitted radiance, front face only (MTL Ke) */
-    float bump;       /* procedural bump amplitude, 0 = none (MTL "bump A F") */
-    float bump_freq;  /* bumps per unit length (MTL "bump A F") */
+    float bump;       /* procedural bumps h(p) = A sin(F x) sin(F y) sin(F z):
+                         A, 0 = none (MTL "bump A F") */
+    float bump_freq;  /* F, radians per unit length */
 } material;
 
 typedef struct triangle {
@@ -65,7 +66,8 @@ typedef struct scene {
 /*
  * Load a scene file (format in README.md, "Scene files").  Returns 0, or -1
  * with err holding "FILE:LINE: message" (FILE the file where the problem is:
- * the scene, an OBJ or an MTL; LINE 1-based).  On failure *s is left empty
+ * the scene, an OBJ or an MTL; LINE 1-based, or 0 when the scene file
+ * itself cannot be opened).  On failure *s is left empty
  * (nothing to free).  On success free it with scene_free().
  */
 int scene_load(const char *path, scene *s, char *err, size_t errlen);

@@ -137,6 +137,14 @@ void surface_at(const scene *s, const float o[3], const float d[3], const bvh_hi
         bump(out->m, out->p, out->ns);
 }
 
+float ray_offset(const float p[3])
+{
+    float m = fabsf(p[0]);
+    if (fabsf(p[1]) > m) m = fabsf(p[1]);
+    if (fabsf(p[2]) > m) m = fabsf(p[2]);
+    return 1e-5f * (1.0f + m);
+}
+
 void env_radiance(const environment *e, const float d[3], float out[3])
 {
     int i;
@@ -194,8 +202,9 @@ static int pick_light(const lights *l, double u)
 }
 
 void direct_light(const bvh *b, const lights *l, const surface *sf, const float d[3],
-                  int samples, uint64_t key, float eps, float out[3], uint64_t *rays)
+                  int samples, uint64_t key, float out[3], uint64_t *rays)
 {
+    float eps = ray_offset(sf->p);
     const scene *s = b->s;
     int k, i;
     out[0] = out[1] = out[2] = 0.0f;
@@ -207,10 +216,13 @@ void direct_light(const bvh *b, const lights *l, const surface *sf, const float 
         const material *lm = &s->mats[t->mat];
         double u1 = rnd(key, 3u * k + 1), u2 = rnd(key, 3u * k + 2), su = sqrt(u1);
         float y[3], w[3], nl[3], dist2, dist, cx, cy, f[3], o[3], pdf;
+        /* The shadow ray runs from the lifted origin o to y, so its length
+         * and its end are measured from o, not from the surface. */
         for (i = 0; i < 3; i++) {
             y[i] = (float)((1.0 - su) * t->v[0][i] + su * (1.0 - u2) * t->v[1][i] +
                            su * u2 * t->v[2][i]);
-            w[i] = y[i] - sf->p[i];
+            o[i] = sf->p[i] + eps * sf->ng[i];
+            w[i] = y[i] - o[i];
         }
         dist2 = dot3(w, w);
         dist = sqrtf(dist2);
@@ -222,10 +234,8 @@ void direct_light(const bvh *b, const lights *l, const surface *sf, const float 
         cy = -dot3(nl, w);
         if (cx <= 0.0f || cy <= 0.0f || dot3(sf->ng, w) <= 0.0f)
             continue;
-        for (i = 0; i < 3; i++)
-            o[i] = sf->p[i] + eps * sf->ng[i];
         ++*rays;
-        if (bvh_occluded(b, o, w, 0.0f, dist * (1.0f - 1e-4f)))
+        if (bvh_occluded(b, o, w, 0.0f, dist - ray_offset(y)))
             continue;
         /* P(triangle) = area lum / total, uniform on it: per unit area, */
         pdf = (float)(luminance(lm->ke) / l->total);

@@ -40,10 +40,15 @@ void env_radiance(const environment *e, const float d[3], float out[3]);
 void emitted(const surface *sf, float out[3]);
 
 /* Radiance leaving sf toward -d from direct lighting by the area lights,
- * with `samples` light samples; u is a per-call random key.  *rays counts
- * the shadow rays cast. */
+ * with `samples` light samples; key seeds the random numbers.  *rays
+ * counts the shadow rays cast. */
 void direct_light(const bvh *b, const lights *l, const surface *sf, const float d[3],
-                  int samples, uint64_t key, float eps, float out[3], uint64_t *rays);
+                  int samples, uint64_t key, float out[3], uint64_t *rays);
+
+/* How far rays leaving p start from it: relative to p's magnitude, the
+ * scale of float rounding in p, not to the scene's size (a huge floor must
+ * not push rays off small objects). */
+float ray_offset(const float p[3]);
 
 /* A hash-based uniform number in [0,1) for (key, index). */
 double rnd(uint64_t key, uint32_t i);

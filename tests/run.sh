@@ -6,6 +6,8 @@
 #   stage 2  the suite, optimised
 #   stage 3  the suite under ASan + UBSan (clang, -fno-sanitize-recover)
 #   stage 4  the thread tests under ThreadSanitizer (clang)
+#   stage 2b the demo tracer: BVH, loader, images, the EXR read back by
+#            OpenEXR, malformed scenes
 #   stage 5  the header alone as C99 and as C++; no allocator symbol in
 #            libirrcache.a; no thread or I/O header in src/
 set -u
@@ -25,6 +27,9 @@ command -v c++ >/dev/null 2>&1 || need="$need g++"
 command -v nm >/dev/null 2>&1 || need="$need binutils"
 ls /usr/lib/llvm-*/lib/clang/*/lib/linux/libclang_rt.tsan-x86_64.a >/dev/null 2>&1 ||
     need="$need libclang-rt-14-dev"
+# OpenEXR's C library reads the demo's images back (tests only).
+command -v pkg-config >/dev/null 2>&1 || need="$need pkg-config"
+pkg-config --exists OpenEXR 2>/dev/null || need="$need libopenexr-dev"
 if [ -n "$need" ]; then
     if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then
         echo "installing:$need"
@@ -66,6 +71,33 @@ check build-clang $MAKE -s CC=clang BUILD=build-clang all
 echo "== stage 2: suite"
 check build-tests $MAKE -s BUILD=build build/irc_tests
 suite suite ./build/irc_tests
+
+echo "== stage 2b: demo tracer"
+check build-demo $MAKE -s BUILD=build build/irc_demo build/demo_tests build/t_image build/t_loader build/t_exr
+suite demo ./build/demo_tests
+suite image ./build/t_image
+suite loader ./build/t_loader
+suite exr ./build/t_exr
+# Images the demo rendered, float and half, read by OpenEXR against the
+# buffer the demo held (dumped raw).
+mkdir -p build/test-exr
+for half in "" --half; do
+    out=build/test-exr/cornell$half
+    check "render$half" ./build/irc_demo demo/scenes/cornell.scene --size 61x47 --strata 4x16 \
+        --quiet $half --out "$out" --raw "$out.f32"
+    suite "exr-demo$half" ./build/t_exr "$out.exr" "$out.f32" 61 47
+done
+# A malformed scene: exit status 1, "FILE:LINE: ..." on stderr, no file.
+bad_scene() {
+    d=build/test-bad
+    rm -rf "$d" && mkdir -p "$d"
+    ./build/irc_demo tests/data/bad/o_face2.scene --out "$d/x" >"$d/log" 2>&1
+    rc=$?
+    cat "$d/log"
+    [ "$rc" -eq 1 ] && grep -qE '^tests/data/bad/o_face2\.obj:[0-9]+: ' "$d/log" &&
+        [ "$(ls "$d")" = log ]
+}
+check bad-scene bad_scene
 
 echo "== stage 3: suite under ASan + UBSan"
 SAN="-O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=all"

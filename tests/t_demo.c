@@ -65,6 +65,51 @@ static void bvh_vs_brute(const char *path)
     scene_free(&s);
 }
 
+/* A soup of 5000 random triangles and 50 spheres: deep trees, overlapping
+ * boxes, SAH splits on every axis. */
+TEST(test_bvh_soup)
+{
+    enum { NT = 5000, NS = 50, RAYS = 20000 };
+    static triangle tris[NT];
+    static sphere sps[NS];
+    material m;
+    scene s;
+    bvh b;
+    int i, k, c, bad = 0, hits = 0;
+    memset(&m, 0, sizeof m);
+    memset(&s, 0, sizeof s);
+    for (i = 0; i < NT; i++) {
+        float centre[3], size = (float)(0.1 + 1.5 * xrand(&st_rng) * xrand(&st_rng));
+        for (c = 0; c < 3; c++)
+            centre[c] = (float)(xrand(&st_rng) * 10.0);
+        for (k = 0; k < 3; k++)
+            for (c = 0; c < 3; c++)
+                tris[i].v[k][c] = centre[c] + size * (float)(xrand(&st_rng) - 0.5);
+    }
+    for (i = 0; i < NS; i++) {
+        for (c = 0; c < 3; c++)
+            sps[i].c[c] = (float)(xrand(&st_rng) * 10.0);
+        sps[i].r = (float)(0.05 + 0.3 * xrand(&st_rng));
+    }
+    s.tris = tris; s.ntris = NT; s.spheres = sps; s.nspheres = NS; s.mats = &m; s.nmats = 1;
+    CHECK(bvh_build(&b, &s) == 0, "build");
+    for (i = 0; i < RAYS; i++) {
+        float o[3], d[3];
+        bvh_hit h1, h2;
+        int a, r;
+        random_ray(&b, o, d);
+        a = bvh_intersect(&b, o, d, 0.0f, 1e30f, &h1);
+        r = brute_intersect(&s, o, d, 0.0f, 1e30f, &h2);
+        hits += a;
+        if (a != r || (a && h1.t != h2.t) || !bvh_occluded(&b, o, d, 0.0f, 1e30f) != !r)
+            bad++;
+    }
+    printf("  soup: %d nodes; %d of %d rays hit; %d differ\n", b.nnodes, hits, RAYS, bad);
+    CHECK(bad == 0, "%d rays differ", bad);
+    CHECK(hits > RAYS / 10 && b.nnodes > NT / 4, "hits %d nodes %d", hits, b.nnodes);
+    bvh_free(&b);
+}
+
 TEST(test_bvh_shipped_scenes)
 {
     bvh_vs_brute("demo/scenes/cornell.scene");
@@ -131,7 +176,7 @@ TEST(test_reference_sphere_plane)
     renderer_free(&r);
 }
 
-#define TESTS(X) X(test_bvh_shipped_scenes) X(test_reference_sphere_plane)
+#define TESTS(X) X(test_bvh_soup) X(test_bvh_shipped_scenes) X(test_reference_sphere_plane)
 TESTS(TEST_DECL)
 
 int main(int argc, char **argv)
