@@ -4,7 +4,7 @@
 # tests; every other stage counts as one.
 #   stage 1  library builds warning-free with gcc and clang (-Werror)
 #   stage 2  the suite, optimised
-#   stage 3  the suite under ASan + UBSan (clang, -fno-sanitize-recover)
+#   stage 3  the suites under ASan + UBSan (clang, -fno-sanitize-recover)
 #   stage 4  the thread tests under ThreadSanitizer (clang)
 #   stage 2b the demo tracer: BVH, loader, images, the EXR read back by
 #            OpenEXR, malformed scenes
@@ -104,6 +104,11 @@ SAN="-O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-r
 check build-asan $MAKE -s CC="$SAN_CC" BUILD=build-asan OPT="$SAN" build-asan/irc_tests
 suite asan IRC_TEST_QUICK=1 ASAN_OPTIONS=detect_leaks=1:abort_on_error=0 \
     UBSAN_OPTIONS=print_stacktrace=1 ./build-asan/irc_tests
+check build-asan-demo $MAKE -s CC="$SAN_CC" BUILD=build-asan OPT="$SAN" build-asan/demo_tests \
+    build-asan/t_loader build-asan/t_image
+for t in demo_tests t_loader t_image; do
+    suite "asan-$t" IRC_TEST_QUICK=1 ASAN_OPTIONS=detect_leaks=1 ./build-asan/$t
+done
 
 echo "== stage 4: threads under TSan"
 check build-tsan $MAKE -s CC="$SAN_CC" BUILD=build-tsan OPT="-O1 -g -fsanitize=thread" build-tsan/irc_tests
