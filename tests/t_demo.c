@@ -29,34 +29,39 @@ static void random_ray(const bvh *b, float o[3], float d[3])
     d[2] = (float)z;
 }
 
+/* Casts n random rays at b and at a brute-force loop over s's primitives;
+ * returns how many disagree (nearest hit, its distance, or occlusion) and
+ * adds the rays that hit to *hits.  A ray through an edge shared by two
+ * triangles may name either, at exactly the same distance. */
+static int compare_bvh(const scene *s, const bvh *b, int n, int *hits)
+{
+    int i, bad = 0;
+    for (i = 0; i < n; i++) {
+        float o[3], d[3];
+        bvh_hit h1, h2;
+        int a, c;
+        random_ray(b, o, d);
+        a = bvh_intersect(b, o, d, 0.0f, 1e30f, &h1);
+        c = brute_intersect(s, o, d, 0.0f, 1e30f, &h2);
+        *hits += a;
+        if (a != c || (a && h1.t != h2.t) || !bvh_occluded(b, o, d, 0.0f, 1e30f) != !c)
+            bad++;
+    }
+    return bad;
+}
+
 static void bvh_vs_brute(const char *path)
 {
     scene s;
     bvh b;
     char err[512];
-    int i, n = irc_t_quick ? 10000 : 100000, bad = 0, hits = 0;
+    int n = irc_t_quick ? 10000 : 100000, bad, hits = 0;
     if (scene_load(path, &s, err, sizeof err) < 0) {
         CHECK(0, "%s", err);
         return;
     }
     CHECK(bvh_build(&b, &s) == 0, "build");
-    for (i = 0; i < n; i++) {
-        float o[3], d[3];
-        bvh_hit h1, h2;
-        int a, c;
-        random_ray(&b, o, d);
-        a = bvh_intersect(&b, o, d, 0.0f, 1e30f, &h1);
-        c = brute_intersect(&s, o, d, 0.0f, 1e30f, &h2);
-        hits += a;
-        /* Same nearest hit: same primitive, or (a ray through a shared
-         * edge) another one at exactly the same distance. */
-        if (a != c || (a && h1.prim != h2.prim && h1.t != h2.t))
-            bad++;
-        if (a && c && h1.t != h2.t)
-            bad++;
-        if (!bvh_occluded(&b, o, d, 0.0f, 1e30f) != !c)
-            bad++;
-    }
+    bad = compare_bvh(&s, &b, n, &hits);
     printf("  %s: %d triangles, %d spheres, %d nodes; %d of %d rays hit; %d differ\n", path,
            s.ntris, s.nspheres, b.nnodes, hits, n, bad);
     CHECK(bad == 0, "%d rays differ from brute force", bad);
@@ -75,7 +80,7 @@ TEST(test_bvh_soup)
     material m;
     scene s;
     bvh b;
-    int i, k, c, bad = 0, hits = 0;
+    int i, k, c, bad, hits = 0;
     memset(&m, 0, sizeof m);
     memset(&s, 0, sizeof s);
     for (i = 0; i < NT; i++) {
@@ -93,17 +98,7 @@ TEST(test_bvh_soup)
     }
     s.tris = tris; s.ntris = NT; s.spheres = sps; s.nspheres = NS; s.mats = &m; s.nmats = 1;
     CHECK(bvh_build(&b, &s) == 0, "build");
-    for (i = 0; i < RAYS; i++) {
-        float o[3], d[3];
-        bvh_hit h1, h2;
-        int a, r;
-        random_ray(&b, o, d);
-        a = bvh_intersect(&b, o, d, 0.0f, 1e30f, &h1);
-        r = brute_intersect(&s, o, d, 0.0f, 1e30f, &h2);
-        hits += a;
-        if (a != r || (a && h1.t != h2.t) || !bvh_occluded(&b, o, d, 0.0f, 1e30f) != !r)
-            bad++;
-    }
+    bad = compare_bvh(&s, &b, RAYS, &hits);
     printf("  soup: %d nodes; %d of %d rays hit; %d differ\n", b.nnodes, hits, RAYS, bad);
     CHECK(bad == 0, "%d rays differ", bad);
     CHECK(hits > RAYS / 10 && b.nnodes > NT / 4, "hits %d nodes %d", hits, b.nnodes);
