@@ -3,6 +3,7 @@
 #   make demo       build the demo tracer and render the Cornell box
 #   make test       every test; ends with "N passed, N failed"
 #   make bench-core the core benchmark (CSV on stdout)
+#   make fuzz       libFuzzer harnesses for FUZZ_SECONDS each (clang)
 #   make install    PREFIX=/usr/local
 
 CC ?= cc
@@ -95,6 +96,28 @@ $(BUILD)/t_loader: tests/t_loader.c $(LOADER_SRC) demo/scene.h demo/loader_int.h
 $(BUILD)/t_exr: tests/t_exr.c $(IMAGE_SRC) demo/image.h
 	$(CC) $(TEST_CFLAGS) -Idemo $(EXR_CFLAGS) $(OPT) $(CFLAGS) tests/t_exr.c $(IMAGE_SRC) -o $@ $(EXR_LIBS) -lm
 
+# ---------------------------------------------------------------- fuzz
+# make fuzz FUZZ_SECONDS=N runs each harness under libFuzzer (clang) for N
+# seconds, then merges what it found worth keeping into fuzz/corpus/NAME.
+# make test replays the committed corpora without libFuzzer.
+FUZZ_SECONDS ?= 60
+FUZZ_TARGETS = api
+FUZZ_SAN = -O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=all
+
+$(BUILD)/replay_api: fuzz/fuzz_api.c fuzz/replay.c fuzz/fuzz_input.h $(LIBA)
+	$(CC) -std=c99 $(WARN) -Iinclude -Ifuzz $(OPT) $(CFLAGS) fuzz/fuzz_api.c fuzz/replay.c $(LIBA) -o $@ -lm -lpthread
+
+fuzz:
+	$(MAKE) -s CC=clang BUILD=build-fuzz OPT="$(FUZZ_SAN) -fsanitize=fuzzer-no-link" build-fuzz/libirrcache.a
+	for t in $(FUZZ_TARGETS); do \
+	    clang -std=c99 $(FUZZ_SAN) -fsanitize=fuzzer -Iinclude -Ifuzz fuzz/fuzz_$$t.c \
+	        build-fuzz/libirrcache.a -o build-fuzz/fuzz_$$t -lm -lpthread && \
+	    mkdir -p build-fuzz/new-$$t fuzz/corpus/$$t && \
+	    build-fuzz/fuzz_$$t -max_total_time=$(FUZZ_SECONDS) -print_final_stats=1 \
+	        build-fuzz/new-$$t fuzz/corpus/$$t && \
+	    build-fuzz/fuzz_$$t -merge=1 fuzz/corpus/$$t build-fuzz/new-$$t || exit 1; \
+	done
+
 # ---------------------------------------------------------------- bench
 $(BUILD)/bench_core: demo/bench_core.c tests/scenes.c tests/scenes.h $(LIBA)
 	$(CC) $(TEST_CFLAGS) -O2 -g $(CFLAGS) demo/bench_core.c tests/scenes.c $(LIBA) -o $@ -lm -lpthread
@@ -113,4 +136,4 @@ install: all
 clean:
 	rm -rf build build-*
 
-.PHONY: all test demo bench-core install clean
+.PHONY: all test demo fuzz bench-core install clean

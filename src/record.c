@@ -213,6 +213,9 @@ int irc_record_compute(irc_cache *c, const float p[3], const float n[3],
         out->p[0] = p[0];
         out->p[1] = p[1];
         out->p[2] = p[2];
+        /* Finite radiances can still sum past FLT_MAX: such a record is
+         * refused here, before anything is counted. */
+        st = irc__record_check(out);
     }
     /* Scratch goes back to zero so that a failed call leaves the block as
      * it was, and no record's samples outlive it. */

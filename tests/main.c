@@ -8,7 +8,7 @@
     X(test_extrapolation) X(test_lookup_or_compute) X(test_full_no_evict) \
     X(test_evict_clock) X(test_index_exact) X(test_index_scales)          \
     X(test_config_checks) X(test_footprints) X(test_init_block)         \
-    X(test_bad_input_unchanged) X(test_callback_failures) X(test_ports) \
+    X(test_bad_input_unchanged) X(test_callback_failures) X(test_overflow_radiance) X(test_ports) \
     X(test_threads_stress) X(test_threads_determinism)
 
 TESTS(TEST_DECL)

@@ -4,7 +4,8 @@
 # tests; every other stage counts as one.
 #   stage 1  library builds warning-free with gcc and clang (-Werror)
 #   stage 2  the suite, optimised
-#   stage 3  the suites under ASan + UBSan (clang, -fno-sanitize-recover)
+#   stage 3  the suites and the fuzz corpora under ASan + UBSan (clang,
+#            -fno-sanitize-recover)
 #   stage 4  the thread tests under ThreadSanitizer (clang)
 #   stage 2b the demo tracer: BVH, loader, images, the EXR read back by
 #            OpenEXR, malformed scenes
@@ -109,6 +110,9 @@ check build-asan-demo $MAKE -s CC="$SAN_CC" BUILD=build-asan OPT="$SAN" build-as
 for t in demo_tests t_loader t_image; do
     suite "asan-$t" IRC_TEST_QUICK=1 ASAN_OPTIONS=detect_leaks=1 ./build-asan/$t
 done
+# The fuzz corpora, replayed without libFuzzer (make fuzz grows them).
+check build-asan-replay $MAKE -s CC="$SAN_CC" BUILD=build-asan OPT="$SAN" build-asan/replay_api
+suite fuzz-replay-api ASAN_OPTIONS=detect_leaks=1 ./build-asan/replay_api fuzz/corpus/api
 
 echo "== stage 4: threads under TSan"
 check build-tsan $MAKE -s CC="$SAN_CC" BUILD=build-tsan OPT="-O1 -g -fsanitize=thread" build-tsan/irc_tests

@@ -292,6 +292,40 @@ TEST(test_callback_failures)
     }
 }
 
+/* Radiances finite but near FLT_MAX sum past it: the record is refused
+ * (IRC_ERR_NONFINITE), nothing counted, the block unchanged.  Found by
+ * fuzz/fuzz_api.c (corpus entry crash-overflow-counted). */
+TEST(test_overflow_radiance)
+{
+    const float p[3] = {0.5f, 0.25f, 0.0f}, n[3] = {0, 0, 1};
+    irc_config cfg;
+    irc_cache *c;
+    irc_record rec;
+    unsigned char *copy;
+    float rgb[3], w;
+    int st;
+    sky_init();
+    sky.sky_a[0] = 3e38f;
+    cfg = scene_config(&sky, IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION, 8, 16);
+    c = block_cache(&cfg, 8, GUARD);
+    copy = malloc(cfg.buffer_size);
+    memcpy(copy, cfg.buffer, cfg.buffer_size);
+    st = irc_record_compute(c, p, n, &rec);
+    CHECK(st == IRC_ERR_NONFINITE, "compute: %d", st);
+    st = irc_cache_lookup_or_compute(c, p, n, rgb, &w);
+    CHECK(st == IRC_ERR_NONFINITE, "lookup_or_compute: %d", st);
+    CHECK(memcmp(copy, cfg.buffer, cfg.buffer_size) == 0, "block changed");
+    sky.sky_a[0] = 1e30f; /* large but summable: a record, E by the closed form */
+    {
+        const double pd[3] = {0.5, 0.25, 0.0};
+        double want = sphere_plane_e(&sky, pd);
+        CHECK(irc_record_compute(c, p, n, &rec) == IRC_OK && fabs(rec.e[0] - want) < 0.01 * want,
+              "1e30 sky: E %g, closed form %g", rec.e[0], want);
+    }
+    free(copy);
+    block_free(&cfg);
+}
+
 /* Every port runs the same small workload to the same result. */
 TEST(test_ports)
 {

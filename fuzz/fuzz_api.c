@@ -1,0 +1,194 @@
+/*
+ * fuzz_api.c -- the public API driven by a byte string: a config (tiny or
+ * odd strata, accuracy 0 or 1e9, tiny capacities, eviction on or off), then
+ * up to 64 calls (compute, insert, lookup, lookup-or-compute, neighbours,
+ * record, stats, clear) with hostile floats.  The host is an analytic sky
+ * with a sphere whose parameters also come from the bytes.
+ *
+ * Invariants checked on every call (abort() on violation, which libFuzzer
+ * and the replay driver report): the status is one the header documents;
+ * a negative status left the block byte for byte as it was; lookups return
+ * finite, non-negative values; guard bytes after the block are intact.
+ */
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "fuzz_input.h"
+#include "irrcache.h"
+
+#define GUARD 64
+
+typedef struct host {
+    float sky[3], sphere_l[3], c[3], r;
+    int fail_every, calls;
+} host;
+
+static int trace(const irc_trace_args *a)
+{
+    host *h = (host *)a->context;
+    uint32_t i;
+    int k;
+    for (i = 0; i < a->count; i++) {
+        const float *o = a->rays[i].org, *d = a->rays[i].dir;
+        irc_hit *hit = &a->hits[i];
+        float oc[3] = {o[0] - h->c[0], o[1] - h->c[1], o[2] - h->c[2]};
+        float b = oc[0] * d[0] + oc[1] * d[1] + oc[2] * d[2];
+        float cc = oc[0] * oc[0] + oc[1] * oc[1] + oc[2] * oc[2] - h->r * h->r;
+        float disc = b * b - cc, t = -b - sqrtf(disc > 0.0f ? disc : 0.0f);
+        if (h->fail_every && ++h->calls % h->fail_every == 0) {
+            hit->status = IRC_RAY_FAILED;
+        } else if (disc > 0.0f && t > 0.0f) {
+            hit->status = IRC_RAY_HIT;
+            hit->dist = t;
+            for (k = 0; k < 3; k++) {
+                hit->normal[k] = oc[k] + t * d[k];
+                hit->radiance[k] = h->sphere_l[k];
+            }
+        } else {
+            hit->status = IRC_RAY_ESCAPED;
+            for (k = 0; k < 3; k++)
+                hit->radiance[k] = h->sky[k];
+        }
+    }
+    return 0;
+}
+
+/* An invariant the API promises; a violation aborts, naming the line. */
+#define check(ok)                                                              \
+    do {                                                                       \
+        if (!(ok)) {                                                           \
+            fprintf(stderr, "fuzz_api.c:%d: invariant broken: %s\n", __LINE__, #ok); \
+            abort();                                                           \
+        }                                                                      \
+    } while (0)
+
+static void read_vec(fuzz_in *in, float v[3])
+{
+    v[0] = fz_float(in);
+    v[1] = fz_float(in);
+    v[2] = fz_float(in);
+}
+
+static int status_ok(int st)
+{
+    return st >= IRC_ERR_LAST && st <= IRC_NOT_STORED;
+}
+
+static void read_config(fuzz_in *in, irc_config *cfg, host *h, uint32_t *cap)
+{
+    static const uint32_t strata[][2] = {{0, 0}, {1, 1}, {1, 7}, {3, 1}, {2, 8}, {5, 13}, {1024, 64}, {256, 256}};
+    uint8_t s = fz_u8(in);
+    int k;
+    memset(cfg, 0, sizeof *cfg);
+    cfg->trace = trace;
+    cfg->context = h;
+    cfg->features = fz_u8(in) & 3u;
+    cfg->accuracy = fz_float(in);
+    cfg->min_radius = fz_u8(in) & 1 ? fz_float(in) : 0.0f;
+    cfg->max_radius = fz_u8(in) & 1 ? fz_float(in) : 0.0f;
+    cfg->strata_theta = strata[s & 7][0];
+    cfg->strata_phi = strata[s & 7][1];
+    cfg->max_batch = (uint32_t)(fz_u8(in) % 70);
+    cfg->evict = fz_u8(in) & 1;
+    cfg->seed = fz_u32(in);
+    cfg->port = &irc_port_none;
+    *cap = 1u + fz_u8(in) % 40u;
+    for (k = 0; k < 3; k++) {
+        h->sky[k] = fz_float(in);
+        h->sphere_l[k] = fz_float(in);
+        h->c[k] = fz_float(in);
+    }
+    h->r = fz_float(in);
+    h->fail_every = fz_u8(in) % 5;
+    h->calls = 0;
+}
+
+/* One call; returns its status. */
+static int call(fuzz_in *in, irc_cache *c, uint32_t cap)
+{
+    float p[3], n[3], rgb[3] = {0, 0, 0}, w = 0.0f;
+    irc_record rec;
+    irc_stats st;
+    uint32_t ids[8], cnt;
+    int s, k;
+    uint8_t op = fz_u8(in) % 8;
+    read_vec(in, p);
+    read_vec(in, n);
+    switch (op) {
+    case 0:
+        return irc_record_compute(c, p, n, &rec);
+    case 1:
+        memset(&rec, 0, sizeof rec);
+        memcpy(rec.p, p, sizeof p);
+        memcpy(rec.n, n, sizeof n);
+        read_vec(in, rec.e);
+        rec.radius = fz_float(in);
+        read_vec(in, rec.grad_t[fz_u8(in) % 3]);
+        read_vec(in, rec.grad_r[fz_u8(in) % 3]);
+        return irc_cache_insert(c, &rec);
+    case 2:
+    case 3:
+        s = op == 2 ? irc_cache_lookup(c, p, n, rgb, &w) : irc_cache_lookup_or_compute(c, p, n, rgb, &w);
+        if (s >= 0)
+            for (k = 0; k < 3; k++)
+                check(rgb[k] >= 0.0f && rgb[k] <= 3.4028235e38f);
+        if (s >= 0)
+            check(w >= 0.0f && w == w);
+        return s;
+    case 4:
+        s = irc_cache_neighbours(c, p, n, ids, 8, &cnt);
+        return s;
+    case 5:
+        return irc_cache_record(c, fz_u8(in) % (cap + 2u), &rec);
+    case 6:
+        s = irc_cache_stats(c, &st);
+        check(s == IRC_OK && st.records <= cap);
+        return s;
+    default:
+        return fz_u8(in) < 16 ? irc_cache_clear(c) : IRC_OK;
+    }
+}
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
+{
+    fuzz_in in = {data, size};
+    irc_config cfg;
+    irc_cache *c;
+    host h;
+    uint32_t cap;
+    size_t bytes, i;
+    unsigned char *block, *copy;
+    int ops, st;
+    read_config(&in, &cfg, &h, &cap);
+    st = irc_footprint(&cfg, cap, &bytes);
+    check(status_ok(st));
+    if (st < 0 || bytes > (64u << 20))
+        return 0;
+    block = malloc(bytes + GUARD);
+    copy = malloc(bytes);
+    if (!block || !copy) {
+        free(block);
+        free(copy);
+        return 0;
+    }
+    memset(block + bytes, 0xA5, GUARD);
+    cfg.buffer = block;
+    cfg.buffer_size = bytes;
+    check(irc_init(&cfg, cap, &c) == IRC_OK);
+    for (ops = 0; ops < 64 && in.n > 0; ops++) {
+        memcpy(copy, block, bytes);
+        st = call(&in, c, cap);
+        if (getenv("FUZZ_TRACE"))
+            fprintf(stderr, "call %d: status %d (%s)\n", ops, st, irc_strerror(st));
+        check(status_ok(st));
+        if (st < 0)
+            check(memcmp(copy, block, bytes) == 0);
+    }
+    for (i = 0; i < GUARD; i++)
+        check(block[bytes + i] == 0xA5);
+    irc_fini(c);
+    free(copy);
+    free(block);
+    return 0;
+}
