@@ -28,6 +28,34 @@ static double hit_sphere(const tscene *s, const float o[3], const float d[3])
     return t;
 }
 
+/* Slab test; returns the entry distance (> 0) and the face's axis/side. */
+static double hit_box(const tscene *s, const float o[3], const float d[3], int *axis, int *side)
+{
+    double t0 = 0.0, t1 = 1e300;
+    int i, ax = -1, sd = 0;
+    for (i = 0; i < 3; i++) {
+        double inv = 1.0 / d[i], a = (s->box_lo[i] - o[i]) * inv, b = (s->box_hi[i] - o[i]) * inv;
+        int lo_first = a < b;
+        if (!lo_first) {
+            double x = a;
+            a = b;
+            b = x;
+        }
+        if (a > t0) {
+            t0 = a;
+            ax = i;
+            sd = lo_first ? 0 : 1;
+        }
+        if (b < t1)
+            t1 = b;
+    }
+    if (t0 > t1 || ax < 0)
+        return -1.0;
+    *axis = ax;
+    *side = sd;
+    return t0;
+}
+
 static void inject(tscene *s, irc_hit *h)
 {
     switch (s->fail_kind) {
@@ -59,6 +87,18 @@ int scene_trace(const irc_trace_args *a)
         double t = s->has_sphere ? hit_sphere(s, o, d) : -1.0;
         double tp = -1.0;
         int c;
+        if (s->has_box) {
+            int ax, sd;
+            double tb = hit_box(s, o, d, &ax, &sd);
+            if (tb > 0.0 && (t <= 0.0 || tb < t)) {
+                h->status = IRC_RAY_HIT;
+                h->dist = (float)tb;
+                h->normal[0] = h->normal[1] = h->normal[2] = 0.0f;
+                h->normal[ax] = sd ? 1.0f : -1.0f;
+                h->radiance[0] = h->radiance[1] = h->radiance[2] = 0.0f;
+                goto next;
+            }
+        }
         if (s->has_disk && d[2] > 0.0f && o[2] < s->disk_c[2]) {
             double td = (s->disk_c[2] - o[2]) / d[2];
             double x = o[0] + td * d[0] - s->disk_c[0], y = o[1] + td * d[1] - s->disk_c[1];
@@ -124,6 +164,54 @@ double disk_plane_e(const tscene *s, const double p[3])
     double h = s->disk_c[2] - p[2], dx = p[0] - s->disk_c[0], dy = p[1] - s->disk_c[1];
     double a2 = dx * dx + dy * dy, r2 = s->disk_r * s->disk_r;
     double f = 0.5 * (1.0 - (h * h + a2 - r2) / sqrt(pow(h * h + a2 + r2, 2.0) - 4.0 * a2 * r2));
+    return TPI * s->sky_a[0] * (1.0 - f);
+}
+
+/* Lambert: F = 1/(2 pi) sum_i gamma_i n.(R_i x R_i+1)/|R_i x R_i+1| over the
+ * polygon's edges, gamma_i the angle the edge subtends; the absolute value
+ * makes the winding irrelevant. */
+static double polygon_ff(double v[4][3], const double p[3])
+{
+    double f = 0.0;
+    int i, k;
+    for (i = 0; i < 4; i++) {
+        double a[3], b[3], c[3], la = 0, lb = 0, lc, g;
+        for (k = 0; k < 3; k++) {
+            a[k] = v[i][k] - p[k];
+            b[k] = v[(i + 1) % 4][k] - p[k];
+        }
+        c[0] = a[1] * b[2] - a[2] * b[1];
+        c[1] = a[2] * b[0] - a[0] * b[2];
+        c[2] = a[0] * b[1] - a[1] * b[0];
+        for (k = 0; k < 3; k++) {
+            la += a[k] * a[k];
+            lb += b[k] * b[k];
+        }
+        lc = sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+        g = acos((a[0] * b[0] + a[1] * b[1] + a[2] * b[2]) / sqrt(la * lb));
+        f += g * c[2] / lc; /* receiver normal +z */
+    }
+    return fabs(f) / (2.0 * TPI);
+}
+
+double box_plane_e(const tscene *s, const double p[3])
+{
+    double f = 0.0;
+    int ax, sd;
+    for (ax = 0; ax < 3; ax++)
+        for (sd = 0; sd < 2; sd++) {
+            double plane = sd ? s->box_hi[ax] : s->box_lo[ax], v[4][3];
+            int a1 = (ax + 1) % 3, a2 = (ax + 2) % 3, k;
+            /* the face faces p when p lies on its outer side */
+            if (sd ? p[ax] <= plane : p[ax] >= plane)
+                continue;
+            for (k = 0; k < 4; k++) {
+                v[k][ax] = plane;
+                v[k][a1] = (k == 1 || k == 2) ? s->box_hi[a1] : s->box_lo[a1];
+                v[k][a2] = (k >= 2) ? s->box_hi[a2] : s->box_lo[a2];
+            }
+            f += polygon_ff(v, p);
+        }
     return TPI * s->sky_a[0] * (1.0 - f);
 }
 

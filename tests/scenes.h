@@ -21,6 +21,9 @@ typedef struct tscene {
      * the hit distance at its edge is exact, unlike a sphere's). */
     int has_disk;
     double disk_c[3], disk_r;
+    /* Optional black axis-aligned box (a polygonal blocker). */
+    int has_box;
+    double box_lo[3], box_hi[3];
     /* Optional ground plane z = plane_z facing +z with constant radiance. */
     int has_plane;
     double plane_z;
@@ -48,6 +51,12 @@ void sphere_plane_grad(const tscene *s, const double p[3], double g[3]);
  * pi L (1 - F), F = 1/2 [1 - (h^2 + a^2 - R^2) / sqrt((h^2 + a^2 + R^2)^2 -
  * 4 a^2 R^2)] (point to parallel offset disk). */
 double disk_plane_e(const tscene *s, const double p[3]);
+
+/* The same under a black axis-aligned box entirely above the horizon:
+ * E = pi L (1 - F), F the sum of Lambert's polygon form factors of the box
+ * faces that face the point (a convex blocker's faces facing the point tile
+ * its silhouette). */
+double box_plane_e(const tscene *s, const double p[3]);
 
 /* A config for scene s with the given features and strata (0 = default). */
 irc_config scene_config(tscene *s, uint32_t features, uint32_t m, uint32_t n);

@@ -155,6 +155,41 @@ TEST(test_flat_blocker)
     block_free(&cfg);
 }
 
+/* The box blocker's closed form (Lambert's polygon form factor over the
+ * faces that face the point) against the library's brute-force estimate at
+ * 64 x 256 strata: the oracle for polygonal-blocker tests.  A black box
+ * 1.6 x 1.0 x 0.8 with its bottom at height 1, points around and under it,
+ * some seeing one face, some three. */
+TEST(test_box_closed_form)
+{
+    static const double pts[6][3] = {{0.3, 0.2, 0}, {2.5, 0.4, 0}, {-1.0, -1.2, 0},
+                                     {0.8, 2.5, 0}, {3.0, 3.0, 0}, {0.0, -0.5, 0}};
+    tscene s;
+    irc_config cfg;
+    irc_cache *c;
+    int i;
+    scene_init(&s);
+    s.sky_a[0] = s.sky_a[1] = s.sky_a[2] = 1.0f;
+    s.has_box = 1;
+    s.box_lo[0] = -0.5; s.box_lo[1] = -0.3; s.box_lo[2] = 1.0;
+    s.box_hi[0] = 1.1;  s.box_hi[1] = 0.7;  s.box_hi[2] = 1.8;
+    cfg = scene_config(&s, 0, 64, 256);
+    c = block_cache(&cfg, 4, 0);
+    CHECK(c != NULL, "init");
+    if (!c) return;
+    for (i = 0; i < 6; i++) {
+        const float p[3] = {(float)pts[i][0], (float)pts[i][1], 0.0f}, n[3] = {0, 0, 1};
+        double want = box_plane_e(&s, pts[i]);
+        irc_record r;
+        CHECK(irc_record_compute(c, p, n, &r) == IRC_OK, "compute");
+        printf("  point %d: E %.5f, closed form %.5f (%+.3f%%)\n", i, r.e[0], want,
+               100.0 * (r.e[0] - want) / want);
+        CHECK(fabs(r.e[0] - want) <= 0.005 * want, "E %g vs %g", r.e[0], want);
+        CHECK(want < 0.995 * TPI, "the box must shadow the point (%g)", want);
+    }
+    block_free(&cfg);
+}
+
 /* Sky L(w) = a + b w.z: E(n) = pi a + (2 pi/3) b n.z, and so the rotational
  * gradient (E(n') ~ E + (n x n').g) is g = (2 pi/3) b (n x z). */
 TEST(test_rotational_gradient_sky)
