@@ -214,7 +214,7 @@ typedef struct irc_config {
  * records with every gradient, the largest index, scratch for t threads of
  * s strata each and batches of b rays. */
 #define IRC_FOOTPRINT_BOUND(records, s, t, b) \
-    (4096u + (size_t)(t) * (64u + (size_t)(s) * 16u + (size_t)(b) * 56u) + \
+    (4096u + (size_t)(t) * (64u + (size_t)(s) * 16u + (size_t)(b) * 56u + 16384u) + \
      (size_t)(records) * (64u + 4u + 8u + 1u) + ((size_t)(records) / 16u + 16u) * 128u)
 
 /* ------------------------------------------------------------------------ */

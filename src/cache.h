@@ -121,6 +121,20 @@ static inline irc__rec *irc__rec_at(const irc_cache *c, uint32_t id)
     return (irc__rec *)(void *)(c->records + (size_t)id * c->rec_size);
 }
 
+/* A thread's scratch slot: the samples, one batch of rays and hits, and
+ * two weights per row of strata for the translational gradient. */
+static inline irc_ray *irc__slot_rays(const irc_cache *c, unsigned char *slot)
+{
+    return (irc_ray *)(void *)(slot + (size_t)c->strata * sizeof(irc__sample));
+}
+
+static inline double *irc__slot_rows(const irc_cache *c, const irc__sample *s)
+{
+    return (double *)(void *)((unsigned char *)(void *)(irc__sample *)s +
+                              (size_t)c->strata * sizeof(irc__sample) +
+                              (size_t)c->cfg.max_batch * (sizeof(irc_ray) + sizeof(irc_hit)));
+}
+
 /* The first test of irc__weigh, inlined where records are scanned: most
  * candidates fail it, and it needs only the record's first 16 bytes. */
 static inline int irc__within_reach(const irc_cache *c, const irc__rec *r, const float p[3])

@@ -155,7 +155,8 @@ static void irc__layout_of(const irc_config *cfg, uint32_t capacity,
     l->slot_bytes = irc__up((size_t)cfg->strata_theta * cfg->strata_phi *
                                 sizeof(irc__sample) +
                             (size_t)cfg->max_batch *
-                                (sizeof(irc_ray) + sizeof(irc_hit)));
+                                (sizeof(irc_ray) + sizeof(irc_hit)) +
+                            (size_t)cfg->strata_theta * 2u * sizeof(double));
     l->lock = at;
     at += irc__up(cfg->port->lock_size ? cfg->port->lock_size : 1);
     l->scratch = at;

@@ -44,8 +44,17 @@ static void irc__grad_trans(const irc_cache *c, const irc__sample *s,
                             const double t1[3], const double t2[3], double g[3][3])
 {
     const uint32_t m = c->cfg.strata_theta, nphi = c->cfg.strata_phi;
+    double *row = irc__slot_rows(c, s);
     uint32_t j, k;
     int ch, i;
+    /* The boundary weights depend on the row only: once per row, into the
+     * slot, so a stratum costs two divisions. */
+    for (j = 0; j < m; j++) {
+        double s2lo = (double)j / m, s2hi = (double)(j + 1) / m, s2c = (j + 0.5) / m;
+        row[2 * j] = (2.0 * IRC_PI / nphi) * (1.0 - s2lo) * IRC_SQRT(s2lo);
+        row[2 * j + 1] = IRC_SQRT(1.0 - s2c) * (IRC_SQRT(1.0 - s2lo) - IRC_SQRT(1.0 - s2hi)) /
+                         IRC_SQRT(s2c);
+    }
     for (ch = 0; ch < 3; ch++)
         g[ch][0] = g[ch][1] = g[ch][2] = 0.0;
     for (k = 0; k < nphi; k++) {
@@ -58,23 +67,19 @@ static void irc__grad_trans(const irc_cache *c, const irc__sample *s,
         for (j = 0; j < m; j++) {
             const irc__sample *a = &s[j * nphi + k];
             const irc__sample *left = &s[j * nphi + (k + nphi - 1) % nphi];
-            double s2lo = (double)j / m, s2hi = (double)(j + 1) / m;
             double d;
             if (j > 0) {
                 const irc__sample *below = &s[(j - 1) * nphi + k];
                 d = irc__nearer(a->d, below->d);
                 if (d == d && d < HUGE_VAL) {
-                    double w = (2.0 * IRC_PI / nphi) * (1.0 - s2lo) * IRC_SQRT(s2lo) / d;
+                    double w = row[2 * j] / d;
                     for (ch = 0; ch < 3; ch++)
                         ru[ch] += w * ((double)a->l[ch] - below->l[ch]);
                 }
             }
             d = irc__nearer(a->d, left->d);
             if (nphi > 1 && d == d && d < HUGE_VAL) {
-                double s2c = (j + 0.5) / m;
-                double w = IRC_SQRT(1.0 - s2c) *
-                           (IRC_SQRT(1.0 - s2lo) - IRC_SQRT(1.0 - s2hi)) /
-                           (IRC_SQRT(s2c) * d);
+                double w = row[2 * j + 1] / d;
                 for (ch = 0; ch < 3; ch++)
                     rv[ch] += w * ((double)a->l[ch] - left->l[ch]);
             }

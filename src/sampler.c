@@ -97,21 +97,23 @@ static int irc__accept_hit(const irc_hit *h, irc__sample *s)
     return 1;
 }
 
+/* In float: the ray is float, and sincosf costs half of sincos. */
 static void irc__direction(const irc__rng *rng, uint32_t j, uint32_t k,
                            uint32_t m, uint32_t nphi, const double n[3],
                            const double t1[3], const double t2[3], float dir[3])
 {
-    double u1, u2, s2, st, ct, phi, cp, sp;
+    double u1, u2;
+    float s2, st, ct, phi, cp, sp;
     int i;
     irc__rng_pair(rng, j * nphi + k, &u1, &u2);
-    s2 = ((double)j + u1) / (double)m;
-    st = IRC_SQRT(s2);
-    ct = IRC_SQRT(1.0 - s2);
-    phi = 2.0 * IRC_PI * ((double)k + u2) / (double)nphi;
-    cp = IRC_COS(phi);
-    sp = IRC_SIN(phi);
+    s2 = (float)(((double)j + u1) / (double)m);
+    st = IRC_SQRTF(s2);
+    ct = IRC_SQRTF(1.0f - s2);
+    phi = (float)(2.0 * IRC_PI * ((double)k + u2) / (double)nphi);
+    cp = IRC_COSF(phi);
+    sp = IRC_SINF(phi);
     for (i = 0; i < 3; i++)
-        dir[i] = (float)(st * (cp * t1[i] + sp * t2[i]) + ct * n[i]);
+        dir[i] = st * (cp * (float)t1[i] + sp * (float)t2[i]) + ct * (float)n[i];
 }
 
 /* Fills out[j * N + k] for every stratum, casting rays in batches of
@@ -124,7 +126,7 @@ int irc__sample_hemisphere(irc_cache *c, unsigned char *slot, const float p[3],
 {
     const uint32_t m = c->cfg.strata_theta, nphi = c->cfg.strata_phi;
     const uint32_t total = m * nphi, batch = c->cfg.max_batch;
-    irc_ray *rays = (irc_ray *)(void *)(slot + (size_t)total * sizeof(irc__sample));
+    irc_ray *rays = irc__slot_rays(c, slot);
     irc_hit *hits = (irc_hit *)(void *)(rays + batch);
     irc__rng rng;
     irc_trace_args args;
