@@ -82,7 +82,7 @@ static void read_config(fuzz_in *in, irc_config *cfg, host *h, uint32_t *cap)
     memset(cfg, 0, sizeof *cfg);
     cfg->trace = trace;
     cfg->context = h;
-    cfg->features = fz_u8(in) & 3u;
+    cfg->features = fz_u8(in) & 7u;
     cfg->accuracy = fz_float(in);
     cfg->min_radius = fz_u8(in) & 1 ? fz_float(in) : 0.0f;
     cfg->max_radius = fz_u8(in) & 1 ? fz_float(in) : 0.0f;

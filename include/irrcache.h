@@ -159,12 +159,20 @@ extern const irc_port *const irc_port_default; /* what cfg.port = NULL means */
 /* Configuration.  Zero in any field means its default.                    */
 
 /* Gradient terms a record carries.  A cache pays in memory and time only for
- * the terms it enables: 32 bytes per record bare, +16 per gradient. */
+ * the terms it enables: 32 bytes per record bare, +16 per gradient
+ * (VISIBILITY changes how the translational gradient is made, not its
+ * size). */
 enum irc_feature {
     IRC_FEATURE_TRANSLATION = 1u << 0, /* translational gradient (Krivanek et
                                           al. 2005 stratified form) */
     IRC_FEATURE_ROTATION = 1u << 1,    /* rotational gradient (Ward-Heckbert 1992) */
-    IRC_FEATURE_VISIBILITY = 1u << 2,  /* reserved: not in this build */
+    IRC_FEATURE_VISIBILITY = 1u << 2,  /* the translational gradient from exact
+                                          visibility gradients at silhouettes
+                                          (first-order paper, Sec. 6-7): implies
+                                          TRANSLATION; costs extra rays (14 per
+                                          silhouette crossing of the strata
+                                          grid, + 1) and ~200 scratch bytes a
+                                          stratum */
     IRC_FEATURE_SH = 1u << 3           /* reserved: not in this build */
 };
 

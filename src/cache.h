@@ -84,6 +84,10 @@ int irc__check_normal(const float n[3], double unit[3]);
 /* sampler.c */
 typedef struct irc__rng { uint64_t key; } irc__rng;
 irc__rng irc__rng_for(const float p[3], const float n[3], uint64_t seed);
+int irc__accept_hit(const irc_hit *h, irc__sample *s);
+void irc__direction(const irc__rng *rng, uint32_t j, uint32_t k, uint32_t m,
+                    uint32_t nphi, const double n[3], const double t1[3],
+                    const double t2[3], float dir[3]);
 void irc__rng_pair(const irc__rng *rng, uint32_t i, double *u1, double *u2);
 void irc__frame(const double n[3], double t1[3], double t2[3]);
 int irc__sample_hemisphere(irc_cache *c, unsigned char *slot, const float p[3],
@@ -91,10 +95,14 @@ int irc__sample_hemisphere(irc_cache *c, unsigned char *slot, const float p[3],
                            const double t2[3], irc__sample *out,
                            uint32_t *used);
 
+/* visibility.c */
+int irc__grad_visibility(irc_cache *c, unsigned char *slot, const float p[3],
+                         const double n[3], double g[3][3], uint32_t *rays);
+
 /* record.c */
 void irc__record_build(const irc_cache *c, const irc__sample *s,
                        const double n[3], const double t1[3],
-                       const double t2[3], irc_record *out);
+                       const double t2[3], double gvis[3][3], irc_record *out);
 uint32_t irc__oct_encode(const double n[3]);
 void irc__oct_decode(uint32_t code, float n[3]);
 void irc__record_pack(const irc_cache *c, const irc_record *in, void *dst);
@@ -121,8 +129,23 @@ static inline irc__rec *irc__rec_at(const irc_cache *c, uint32_t id)
     return (irc__rec *)(void *)(c->records + (size_t)id * c->rec_size);
 }
 
-/* A thread's scratch slot: the samples, one batch of rays and hits, and
- * two weights per row of strata for the translational gradient. */
+/* A visibility discontinuity on an edge between two neighbouring strata:
+ * the bracket [wa, wb] around the silhouette, a on the blocker's side, b on
+ * the visible side, narrowed by bisection rays (visibility.c). */
+typedef struct irc__cross {
+    float wa[3], wb[3];
+    float da, db;          /* distances; db = +inf when b escaped */
+    float la[3], lb[3];    /* radiances */
+    float na[3];           /* the blocker's unit normal at a */
+    float dnear, dfar;     /* the two strata's original distances */
+    int ok;                /* a silhouette (not a continuous surface) */
+} irc__cross;
+
+/* A thread's scratch slot: the samples, one batch of rays and hits, two
+ * weights per row of strata for the translational gradient, and with
+ * IRC_FEATURE_VISIBILITY per stratum its direction, hit normal, two edge
+ * indices and room for two crossings (plus a spoke and a crossing per
+ * column). */
 static inline irc_ray *irc__slot_rays(const irc_cache *c, unsigned char *slot)
 {
     return (irc_ray *)(void *)(slot + (size_t)c->strata * sizeof(irc__sample));
@@ -133,6 +156,28 @@ static inline double *irc__slot_rows(const irc_cache *c, const irc__sample *s)
     return (double *)(void *)((unsigned char *)(void *)(irc__sample *)s +
                               (size_t)c->strata * sizeof(irc__sample) +
                               (size_t)c->cfg.max_batch * (sizeof(irc_ray) + sizeof(irc_hit)));
+}
+
+static inline float *irc__slot_dirs(const irc_cache *c, const irc__sample *s)
+{
+    return (float *)(void *)(irc__slot_rows(c, s) + 2u * c->cfg.strata_theta);
+}
+
+static inline float *irc__slot_normals(const irc_cache *c, const irc__sample *s)
+{
+    return irc__slot_dirs(c, s) + 3u * c->strata;
+}
+
+static inline int32_t *irc__slot_edges(const irc_cache *c, const irc__sample *s)
+{
+    return (int32_t *)(void *)(irc__slot_normals(c, s) + 3u * c->strata);
+}
+
+/* Edges: H and V per stratum, then one zenith spoke per column; then the
+ * crossings, one per edge at most. */
+static inline irc__cross *irc__slot_cross(const irc_cache *c, const irc__sample *s)
+{
+    return (irc__cross *)(void *)(irc__slot_edges(c, s) + 2u * c->strata + c->cfg.strata_phi);
 }
 
 /* The first test of irc__weigh, inlined where records are scanned: most

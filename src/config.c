@@ -81,14 +81,18 @@ static int irc__port_ok(const irc_port *p)
 /* Copies cfg with defaults applied and checks every field. */
 static int irc__config_resolve(const irc_config *in, irc_config *out)
 {
-    const uint32_t known = IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION;
+    const uint32_t known = IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION |
+                           IRC_FEATURE_VISIBILITY;
     if (!in)
         return IRC_ERR_NULL;
     *out = *in;
     if (!out->trace)
         return IRC_ERR_NULL;
-    if (out->features & (IRC_FEATURE_VISIBILITY | IRC_FEATURE_SH))
+    if (out->features & IRC_FEATURE_SH)
         return IRC_ERR_UNSUPPORTED;
+    /* Visibility gradients are how the translational gradient is made. */
+    if (out->features & IRC_FEATURE_VISIBILITY)
+        out->features |= IRC_FEATURE_TRANSLATION;
     if (out->features & ~known)
         return IRC_ERR_CONFIG;
     if (out->accuracy == 0.0f)
@@ -156,7 +160,14 @@ static void irc__layout_of(const irc_config *cfg, uint32_t capacity,
                                 sizeof(irc__sample) +
                             (size_t)cfg->max_batch *
                                 (sizeof(irc_ray) + sizeof(irc_hit)) +
-                            (size_t)cfg->strata_theta * 2u * sizeof(double));
+                            (size_t)cfg->strata_theta * 2u * sizeof(double) +
+                            (cfg->features & IRC_FEATURE_VISIBILITY
+                                 ? (size_t)cfg->strata_theta * cfg->strata_phi *
+                                           (6u * sizeof(float) + 2u * sizeof(int32_t) +
+                                            2u * sizeof(irc__cross)) +
+                                       (size_t)cfg->strata_phi *
+                                           (sizeof(int32_t) + sizeof(irc__cross))
+                                 : 0u));
     l->lock = at;
     at += irc__up(cfg->port->lock_size ? cfg->port->lock_size : 1);
     l->scratch = at;

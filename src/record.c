@@ -45,6 +45,11 @@ static void irc__grad_trans(const irc_cache *c, const irc__sample *s,
 {
     const uint32_t m = c->cfg.strata_theta, nphi = c->cfg.strata_phi;
     double *row = irc__slot_rows(c, s);
+    /* With visibility gradients, edges holding a silhouette are left to
+     * visibility.c; the others keep these terms. */
+    const int vis = (c->cfg.features & IRC_FEATURE_VISIBILITY) != 0;
+    const int32_t *eh = vis ? irc__slot_edges(c, s) : NULL, *ev = vis ? eh + c->strata : NULL;
+    const irc__cross *x = vis ? irc__slot_cross(c, s) : NULL;
     uint32_t j, k;
     int ch, i;
     /* The boundary weights depend on the row only: once per row, into the
@@ -68,7 +73,7 @@ static void irc__grad_trans(const irc_cache *c, const irc__sample *s,
             const irc__sample *a = &s[j * nphi + k];
             const irc__sample *left = &s[j * nphi + (k + nphi - 1) % nphi];
             double d;
-            if (j > 0) {
+            if (j > 0 && !(vis && ev[(j - 1) * nphi + k] >= 0 && x[ev[(j - 1) * nphi + k]].ok)) {
                 const irc__sample *below = &s[(j - 1) * nphi + k];
                 d = irc__nearer(a->d, below->d);
                 if (d == d && d < HUGE_VAL) {
@@ -78,6 +83,11 @@ static void irc__grad_trans(const irc_cache *c, const irc__sample *s,
                 }
             }
             d = irc__nearer(a->d, left->d);
+            if (vis) {
+                int32_t e = eh[j * nphi + (k + nphi - 1) % nphi];
+                if (e >= 0 && x[e].ok)
+                    d = HUGE_VAL;
+            }
             if (nphi > 1 && d == d && d < HUGE_VAL) {
                 double w = row[2 * j + 1] / d;
                 for (ch = 0; ch < 3; ch++)
@@ -136,7 +146,7 @@ static void irc__grad_rot(const irc_cache *c, const irc__sample *s,
 
 void irc__record_build(const irc_cache *c, const irc__sample *s,
                        const double n[3], const double t1[3],
-                       const double t2[3], irc_record *out)
+                       const double t2[3], double gvis[3][3], irc_record *out)
 {
     const uint32_t total = c->strata;
     double sum[3] = {0, 0, 0}, inv = 0.0, hm, r, g[3][3];
@@ -161,6 +171,9 @@ void irc__record_build(const irc_cache *c, const irc__sample *s,
     r = hm;
     if (c->cfg.features & IRC_FEATURE_TRANSLATION) {
         irc__grad_trans(c, s, t1, t2, g);
+        for (ch = 0; ch < 3; ch++)
+            for (k = 0; k < 3; k++)
+                g[ch][k] += gvis ? gvis[ch][k] : 0.0;
         for (ch = 0; ch < 3; ch++) {
             double len = IRC_SQRT(irc__dot3d(g[ch], g[ch]));
             /* R <= E/|grad E| per channel: the record's reach ends where
@@ -190,9 +203,9 @@ void irc__record_build(const irc_cache *c, const irc__sample *s,
 int irc_record_compute(irc_cache *c, const float p[3], const float n[3],
                        irc_record *out)
 {
-    double un[3], t1[3], t2[3];
+    double un[3], t1[3], t2[3], gvis[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
     uint64_t busy;
-    uint32_t t, used = 0;
+    uint32_t t, used = 0, extra = 0;
     unsigned char *slot;
     int st;
     if (!c || !out)
@@ -213,8 +226,12 @@ int irc_record_compute(irc_cache *c, const float p[3], const float n[3],
     slot = c->scratch + (size_t)t * c->slot_bytes;
     irc__frame(un, t1, t2);
     st = irc__sample_hemisphere(c, slot, p, un, t1, t2, (irc__sample *)(void *)slot, &used);
+    if (st == IRC_OK && (c->cfg.features & IRC_FEATURE_VISIBILITY))
+        st = irc__grad_visibility(c, slot, p, un, gvis, &extra);
     if (st == IRC_OK) {
-        irc__record_build(c, (const irc__sample *)(void *)slot, un, t1, t2, out);
+        irc__record_build(c, (const irc__sample *)(void *)slot, un, t1, t2,
+                          (c->cfg.features & IRC_FEATURE_VISIBILITY) ? gvis : NULL, out);
+        out->rays += extra;
         out->p[0] = p[0];
         out->p[1] = p[1];
         out->p[2] = p[2];
@@ -233,7 +250,7 @@ int irc_record_compute(irc_cache *c, const float p[3], const float n[3],
     if (st < 0)
         return st;
     c->port->fetch_add(&c->ctr[IRC__C_COMPUTES], 1);
-    c->port->fetch_add(&c->ctr[IRC__C_RAYS], c->strata);
+    c->port->fetch_add(&c->ctr[IRC__C_RAYS], c->strata + (uint64_t)extra);
     return IRC_OK;
 }
 

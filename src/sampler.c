@@ -69,7 +69,7 @@ static int irc__nonneg3(const float v[3])
 
 /* Checks one hit and turns it into a sample.  Returns 1 usable, 0 failed
  * (the host said so), or IRC_ERR_CALLBACK. */
-static int irc__accept_hit(const irc_hit *h, irc__sample *s)
+int irc__accept_hit(const irc_hit *h, irc__sample *s)
 {
     switch (h->status) {
     case IRC_RAY_HIT:
@@ -98,7 +98,7 @@ static int irc__accept_hit(const irc_hit *h, irc__sample *s)
 }
 
 /* In float: the ray is float, and sincosf costs half of sincos. */
-static void irc__direction(const irc__rng *rng, uint32_t j, uint32_t k,
+void irc__direction(const irc__rng *rng, uint32_t j, uint32_t k,
                            uint32_t m, uint32_t nphi, const double n[3],
                            const double t1[3], const double t2[3], float dir[3])
 {
@@ -114,6 +114,25 @@ static void irc__direction(const irc__rng *rng, uint32_t j, uint32_t k,
     sp = IRC_SINF(phi);
     for (i = 0; i < 3; i++)
         dir[i] = st * (cp * (float)t1[i] + sp * (float)t2[i]) + ct * (float)n[i];
+}
+
+/* Visibility gradients need each stratum's direction and the unit normal
+ * of what it hit. */
+static void irc__keep_geometry(const irc_cache *c, const irc__sample *s, uint32_t i,
+                               const float dir[3], const irc_hit *h)
+{
+    float *d = irc__slot_dirs(c, s) + 3u * i, *nn = irc__slot_normals(c, s) + 3u * i;
+    int k;
+    for (k = 0; k < 3; k++)
+        d[k] = dir[k];
+    if (h->status == IRC_RAY_HIT) {
+        double v[3];
+        float f[3];
+        f[0] = h->normal[0]; f[1] = h->normal[1]; f[2] = h->normal[2];
+        irc__check_normal(f, v);
+        for (k = 0; k < 3; k++)
+            nn[k] = (float)v[k];
+    }
 }
 
 /* Fills out[j * N + k] for every stratum, casting rays in batches of
@@ -160,6 +179,8 @@ int irc__sample_hemisphere(irc_cache *c, unsigned char *slot, const float p[3],
             if (st < 0)
                 return st;
             good += (uint32_t)st;
+            if (c->cfg.features & IRC_FEATURE_VISIBILITY)
+                irc__keep_geometry(c, out, s0 + i, rays[i].dir, &hits[i]);
         }
     }
     *used = good;

@@ -9,7 +9,8 @@
     X(test_evict_clock) X(test_index_exact) X(test_index_scales)          \
     X(test_config_checks) X(test_footprints) X(test_init_block)         \
     X(test_bad_input_unchanged) X(test_callback_failures) X(test_overflow_radiance) X(test_ports) \
-    X(test_threads_stress) X(test_threads_determinism)
+    X(test_threads_stress) X(test_threads_determinism)                 \
+    X(test_visibility_sphere) X(test_visibility_box) X(test_visibility_open_sky)
 
 TESTS(TEST_DECL)
 

@@ -24,7 +24,7 @@ TEST(test_config_checks)
 {
     irc_config cfg;
     size_t bytes;
-    struct { const char *what; int want; } cases[16];
+    struct { const char *what; int want; } cases[20];
     int i, n = 0;
     sky_init();
 #define CASE(field_set, code)                                               \
@@ -37,7 +37,8 @@ TEST(test_config_checks)
         n++;                                                                \
     } while (0)
     CASE(cfg.trace = NULL, IRC_ERR_NULL);
-    CASE(cfg.features = IRC_FEATURE_VISIBILITY, IRC_ERR_UNSUPPORTED);
+    CASE(cfg.features = IRC_FEATURE_SH, IRC_ERR_UNSUPPORTED);
+    CASE(cfg.features = IRC_FEATURE_VISIBILITY, IRC_OK);
     CASE(cfg.features = 1u << 20, IRC_ERR_CONFIG);
     CASE(cfg.accuracy = -1.0f, IRC_ERR_CONFIG);
     CASE(cfg.accuracy = 1e9f, IRC_ERR_CONFIG);
