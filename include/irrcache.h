@@ -282,6 +282,24 @@ typedef struct irc_record {
 int irc_record_compute(irc_cache *cache, const float p[3], const float n[3],
                        irc_record *out);
 
+/* Net visibility for hosts that cache occlusion rather than irradiance. */
+typedef struct irc_occlusion {
+    float visible;   /* the fraction of the hemisphere's solid angle whose rays
+                        escape (first-order paper, Eq. 47, over 2 pi); every
+                        hit blocks */
+    float grad[3];   /* its gradient along the surface (Eq. 48) */
+    uint32_t rays;   /* rays cast */
+} irc_occlusion;
+
+/*
+ * Sample the hemisphere around (p, n) and return its net visibility and
+ * that visibility's exact gradient from the silhouettes.  Needs
+ * IRC_FEATURE_VISIBILITY in the config (IRC_ERR_UNSUPPORTED otherwise).
+ * Nothing is stored.  Returns IRC_OK, or a negative error code on failure.
+ */
+int irc_occlusion_compute(irc_cache *cache, const float p[3], const float n[3],
+                          irc_occlusion *out);
+
 /*
  * Store a record (a copy, packed).  rec->radius must be > 0 (IRC_ERR_RANGE)
  * and every field finite.  Returns IRC_OK; IRC_ERR_FULL when the pool is

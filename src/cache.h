@@ -97,9 +97,11 @@ int irc__sample_hemisphere(irc_cache *c, unsigned char *slot, const float p[3],
 
 /* visibility.c */
 int irc__grad_visibility(irc_cache *c, unsigned char *slot, const float p[3],
-                         const double n[3], double g[3][3], uint32_t *rays);
+                         const double n[3], int netvis, double g[3][3], uint32_t *rays);
 
 /* record.c */
+int irc__slot_claim(irc_cache *c, uint32_t *t);
+void irc__slot_release(irc_cache *c, uint32_t t);
 void irc__record_build(const irc_cache *c, const irc__sample *s,
                        const double n[3], const double t1[3],
                        const double t2[3], double gvis[3][3], irc_record *out);

@@ -200,11 +200,39 @@ void irc__record_build(const irc_cache *c, const irc__sample *s,
     out->rays_used = used;
 }
 
+/* Claims a free scratch slot (index in *t), or IRC_ERR_BUSY. */
+int irc__slot_claim(irc_cache *c, uint32_t *t)
+{
+    for (;;) {
+        uint64_t busy = c->port->load(&c->slots_busy);
+        uint32_t i;
+        for (i = 0; i < c->cfg.threads && (busy >> i & 1u); i++)
+            ;
+        if (i == c->cfg.threads)
+            return IRC_ERR_BUSY;
+        if (c->port->cas(&c->slots_busy, busy, busy | (1ull << i))) {
+            *t = i;
+            return IRC_OK;
+        }
+    }
+}
+
+/* Zeroes the slot, so that a failed call leaves the block as it was and no
+ * samples outlive it, and releases it through the acq_rel CAS, so that its
+ * next owner sees this thread's writes as done (a relaxed add would not). */
+void irc__slot_release(irc_cache *c, uint32_t t)
+{
+    uint64_t busy;
+    IRC_MEMSET(c->scratch + (size_t)t * c->slot_bytes, 0, c->slot_bytes);
+    do
+        busy = c->port->load(&c->slots_busy);
+    while (!c->port->cas(&c->slots_busy, busy, busy & ~(1ull << t)));
+}
+
 int irc_record_compute(irc_cache *c, const float p[3], const float n[3],
                        irc_record *out)
 {
     double un[3], t1[3], t2[3], gvis[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
-    uint64_t busy;
     uint32_t t, used = 0, extra = 0;
     unsigned char *slot;
     int st;
@@ -214,20 +242,13 @@ int irc_record_compute(irc_cache *c, const float p[3], const float n[3],
         return IRC_ERR_CONFIG;
     if ((st = irc__check_vec(p)) < 0 || (st = irc__check_normal(n, un)) < 0)
         return st;
-    for (;;) { /* claim a free scratch slot */
-        busy = c->port->load(&c->slots_busy);
-        for (t = 0; t < c->cfg.threads && (busy >> t & 1u); t++)
-            ;
-        if (t == c->cfg.threads)
-            return IRC_ERR_BUSY;
-        if (c->port->cas(&c->slots_busy, busy, busy | (1ull << t)))
-            break;
-    }
+    if ((st = irc__slot_claim(c, &t)) < 0)
+        return st;
     slot = c->scratch + (size_t)t * c->slot_bytes;
     irc__frame(un, t1, t2);
     st = irc__sample_hemisphere(c, slot, p, un, t1, t2, (irc__sample *)(void *)slot, &used);
     if (st == IRC_OK && (c->cfg.features & IRC_FEATURE_VISIBILITY))
-        st = irc__grad_visibility(c, slot, p, un, gvis, &extra);
+        st = irc__grad_visibility(c, slot, p, un, 0, gvis, &extra);
     if (st == IRC_OK) {
         irc__record_build(c, (const irc__sample *)(void *)slot, un, t1, t2,
                           (c->cfg.features & IRC_FEATURE_VISIBILITY) ? gvis : NULL, out);
@@ -239,14 +260,7 @@ int irc_record_compute(irc_cache *c, const float p[3], const float n[3],
          * refused here, before anything is counted. */
         st = irc__record_check(out);
     }
-    /* Scratch goes back to zero so that a failed call leaves the block as
-     * it was, and no record's samples outlive it. */
-    IRC_MEMSET(slot, 0, c->slot_bytes);
-    /* Release through the acq_rel CAS, so that the next owner of the slot
-     * sees this thread's writes to it as done (a relaxed add would not). */
-    do
-        busy = c->port->load(&c->slots_busy);
-    while (!c->port->cas(&c->slots_busy, busy, busy & ~(1ull << t)));
+    irc__slot_release(c, t);
     if (st < 0)
         return st;
     c->port->fetch_add(&c->ctr[IRC__C_COMPUTES], 1);

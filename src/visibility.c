@@ -59,7 +59,8 @@ static irc__pt irc__stratum(const irc_cache *c, const irc__sample *s, uint32_t i
 /* Starts a crossing on the edge between a and b if it brackets a
  * silhouette: one side escapes, or the far side lies IRC__DEPTH_JUMP times
  * deeper.  Returns its index, or -1. */
-static int32_t irc__edge(irc_cache *c, irc__sample *s, irc__pt a, irc__pt b, uint32_t *count)
+static int32_t irc__edge(irc_cache *c, irc__sample *s, irc__pt a, irc__pt b, int netvis,
+                         uint32_t *count)
 {
     irc__cross *x;
     irc__pt blk, vis;
@@ -70,16 +71,16 @@ static int32_t irc__edge(irc_cache *c, irc__sample *s, irc__pt a, irc__pt b, uin
         return -1;
     blk = a.s->d <= b.s->d ? a : b;
     vis = blk.s == a.s ? b : a;
-    if (!irc__escaped(vis.s) && vis.s->d < IRC__DEPTH_JUMP * blk.s->d)
-        return -1;
+    if (!irc__escaped(vis.s) && (netvis || vis.s->d < IRC__DEPTH_JUMP * blk.s->d))
+        return -1; /* for net visibility every hit blocks */
     if (*count >= 2u * c->strata + c->cfg.strata_phi)
         return -1; /* cannot happen: one crossing per edge at most */
     x = &irc__slot_cross(c, s)[*count];
     for (k = 0; k < 3; k++) {
         x->wa[k] = blk.dir[k];
         x->wb[k] = vis.dir[k];
-        x->la[k] = blk.s->l[k];
-        x->lb[k] = vis.s->l[k];
+        x->la[k] = netvis ? 0.0f : blk.s->l[k];
+        x->lb[k] = netvis ? 1.0f : vis.s->l[k];
         x->na[k] = blk.nrm[k];
     }
     x->da = x->dnear = blk.s->d;
@@ -90,7 +91,7 @@ static int32_t irc__edge(irc_cache *c, irc__sample *s, irc__pt a, irc__pt b, uin
 
 /* Marks every grid edge: H (same row, k and k+1), V (rows j, j+1), and,
  * given the zenith ray, the spokes from it to the first row's strata. */
-static uint32_t irc__find_edges(irc_cache *c, irc__sample *s, irc__pt zenith)
+static uint32_t irc__find_edges(irc_cache *c, irc__sample *s, irc__pt zenith, int netvis)
 {
     const uint32_t m = c->cfg.strata_theta, nphi = c->cfg.strata_phi;
     int32_t *h = irc__slot_edges(c, s), *v = h + c->strata, *z = v + c->strata;
@@ -99,11 +100,13 @@ static uint32_t irc__find_edges(irc_cache *c, irc__sample *s, irc__pt zenith)
         for (k = 0; k < nphi; k++) {
             uint32_t i = j * nphi + k;
             irc__pt here = irc__stratum(c, s, i);
-            h[i] = irc__edge(c, s, here, irc__stratum(c, s, j * nphi + (k + 1) % nphi), &count);
-            v[i] = j + 1 < m ? irc__edge(c, s, here, irc__stratum(c, s, i + nphi), &count) : -1;
+            h[i] = irc__edge(c, s, here, irc__stratum(c, s, j * nphi + (k + 1) % nphi), netvis,
+                            &count);
+            v[i] = j + 1 < m ? irc__edge(c, s, here, irc__stratum(c, s, i + nphi), netvis, &count)
+                             : -1;
         }
     for (k = 0; k < nphi; k++)
-        z[k] = zenith.s ? irc__edge(c, s, zenith, irc__stratum(c, s, k), &count) : -1;
+        z[k] = zenith.s ? irc__edge(c, s, zenith, irc__stratum(c, s, k), netvis, &count) : -1;
     return count;
 }
 
@@ -119,7 +122,7 @@ static void irc__mid(const float a[3], const float b[3], float out[3])
 /* One answer to a bisection ray: it joins the blocker's side if it hits
  * nearer than the geometric mean of the two sides' depths (or, the far side
  * being sky, within four times the blocker's depth). */
-static void irc__narrow(irc__cross *x, const irc_ray *r, const irc_hit *h)
+static void irc__narrow(irc__cross *x, const irc_ray *r, const irc_hit *h, int netvis)
 {
     double lim = x->dfar < HUGE_VALF ? IRC_SQRT((double)x->dnear * x->dfar) : 4.0 * x->dnear;
     int k;
@@ -130,14 +133,14 @@ static void irc__narrow(irc__cross *x, const irc_ray *r, const irc_hit *h)
         irc__check_normal(h->normal, v);
         for (k = 0; k < 3; k++) {
             x->wa[k] = r->dir[k];
-            x->la[k] = h->radiance[k];
+            x->la[k] = netvis ? 0.0f : h->radiance[k];
             x->na[k] = (float)v[k];
         }
         x->da = h->dist;
     } else {
         for (k = 0; k < 3; k++) {
             x->wb[k] = r->dir[k];
-            x->lb[k] = h->radiance[k];
+            x->lb[k] = netvis ? 1.0f : h->radiance[k];
         }
         x->db = h->status == IRC_RAY_HIT ? h->dist : HUGE_VALF;
     }
@@ -146,7 +149,7 @@ static void irc__narrow(irc__cross *x, const irc_ray *r, const irc_hit *h)
 /* IRC__BISECT rounds over every crossing, batched through the callback.
  * Hits are checked as the sampler checks them. */
 static int irc__bisect(irc_cache *c, unsigned char *slot, irc__sample *s, const float p[3],
-                       uint32_t count, uint32_t *rays)
+                       uint32_t count, int netvis, uint32_t *rays)
 {
     irc__cross *x = irc__slot_cross(c, s);
     irc_ray *rb = irc__slot_rays(c, slot);
@@ -175,7 +178,7 @@ static int irc__bisect(irc_cache *c, unsigned char *slot, irc__sample *s, const 
                 irc__sample chk;
                 if ((st = irc__accept_hit(&hb[i], &chk)) < 0)
                     return st;
-                irc__narrow(&x[i0 + i], &rb[i], &hb[i]);
+                irc__narrow(&x[i0 + i], &rb[i], &hb[i], netvis);
             }
             *rays += cnt;
         }
@@ -194,7 +197,7 @@ typedef struct irc__end {
     int smooth;
 } irc__end;
 
-static void irc__end_of(const irc__cross *c, const double n[3], irc__end *o)
+static void irc__end_of(const irc__cross *c, const double n[3], int netvis, irc__end *o)
 {
     float xf[3];
     double cs, nx = 0.0, len = 0.0, orient = 0.0;
@@ -205,7 +208,8 @@ static void irc__end_of(const irc__cross *c, const double n[3], irc__end *o)
         o->e[k] = (double)c->wb[k] - c->wa[k];
         nx += (double)c->na[k] * xf[k];
     }
-    cs = irc__dot3d(o->x, n);
+    /* Irradiance weighs by cos(theta); net visibility (Eq. 47) does not. */
+    cs = netvis ? 1.0 : irc__dot3d(o->x, n);
     for (k = 0; k < 3; k++)
         o->q[k] = ((double)c->lb[k] - c->la[k]) * (cs > 0.0 ? cs : 0.0) / c->da;
     o->smooth = fabs(nx) < IRC__SMOOTH;
@@ -223,13 +227,13 @@ static void irc__end_of(const irc__cross *c, const double n[3], irc__end *o)
  * blocker's own where both ends are smooth, else the chord's (a polygon
  * edge's image), turned toward the visible side. */
 static void irc__segment(const irc__cross *c1, const irc__cross *c2, const double n[3],
-                         double g[3][3])
+                         int netvis, double g[3][3])
 {
     irc__end a, b;
     double ch[3], len, nu[3], e[3], w, orient;
     int k, i;
-    irc__end_of(c1, n, &a);
-    irc__end_of(c2, n, &b);
+    irc__end_of(c1, n, netvis, &a);
+    irc__end_of(c2, n, netvis, &b);
     for (k = 0; k < 3; k++) {
         ch[k] = b.x[k] - a.x[k];
         e[k] = a.e[k] + b.e[k];
@@ -264,7 +268,8 @@ static const irc__cross *irc__at(const irc__cross *x, int32_t i)
 
 /* Marching squares: a cell (strata j, j+1 by k, k+1) whose edges hold two
  * crossings holds one silhouette segment; four, two (the shorter pairing). */
-static void irc__cells(irc_cache *c, irc__sample *s, const double n[3], double g[3][3])
+static void irc__cells(irc_cache *c, irc__sample *s, const double n[3], int netvis,
+                       double g[3][3])
 {
     const uint32_t m = c->cfg.strata_theta, nphi = c->cfg.strata_phi;
     const int32_t *h = irc__slot_edges(c, s), *v = h + c->strata;
@@ -282,7 +287,7 @@ static void irc__cells(irc_cache *c, irc__sample *s, const double n[3], double g
                 if (e[i])
                     f[cnt++] = e[i];
             if (cnt == 2) {
-                irc__segment(f[0], f[1], n, g);
+                irc__segment(f[0], f[1], n, netvis, g);
             } else if (cnt == 4) {
                 float d01 = 0, d12 = 0;
                 for (i = 0; i < 3; i++) {
@@ -291,15 +296,16 @@ static void irc__cells(irc_cache *c, irc__sample *s, const double n[3], double g
                     d12 += (f[1]->wa[i] - f[2]->wa[i]) * (f[1]->wa[i] - f[2]->wa[i]) +
                            (f[3]->wa[i] - f[0]->wa[i]) * (f[3]->wa[i] - f[0]->wa[i]);
                 }
-                irc__segment(f[0], d01 <= d12 ? f[1] : f[3], n, g);
-                irc__segment(f[2], d01 <= d12 ? f[3] : f[1], n, g);
+                irc__segment(f[0], d01 <= d12 ? f[1] : f[3], n, netvis, g);
+                irc__segment(f[2], d01 <= d12 ? f[3] : f[1], n, netvis, g);
             }
         }
 }
 
 /* The cap above the first row: triangles (zenith, first-row stratum k,
  * stratum k+1), marched like the cells. */
-static void irc__cap(irc_cache *c, irc__sample *s, const double n[3], double g[3][3])
+static void irc__cap(irc_cache *c, irc__sample *s, const double n[3], int netvis,
+                     double g[3][3])
 {
     const uint32_t nphi = c->cfg.strata_phi;
     const int32_t *h = irc__slot_edges(c, s), *z = h + 2u * c->strata;
@@ -315,7 +321,7 @@ static void irc__cap(irc_cache *c, irc__sample *s, const double n[3], double g[3
             if (e[i])
                 f[cnt++] = e[i];
         if (cnt == 2)
-            irc__segment(f[0], f[1], n, g);
+            irc__segment(f[0], f[1], n, netvis, g);
     }
 }
 
@@ -353,10 +359,11 @@ static int irc__zenith(irc_cache *c, unsigned char *slot, const float p[3], cons
 }
 
 /* Adds the silhouettes' share of the translational gradient to g and casts
- * the bisection rays (counted in *rays).  Returns IRC_OK or the callback's
- * error. */
+ * the bisection rays (counted in *rays).  netvis: the gradient of the
+ * visible solid angle (Eq. 48) instead, in g[0].  Returns IRC_OK or the
+ * callback's error. */
 int irc__grad_visibility(irc_cache *c, unsigned char *slot, const float p[3],
-                         const double n[3], double g[3][3], uint32_t *rays)
+                         const double n[3], int netvis, double g[3][3], uint32_t *rays)
 {
     irc__sample *s = (irc__sample *)(void *)slot, top;
     irc__pt zenith;
@@ -367,17 +374,73 @@ int irc__grad_visibility(irc_cache *c, unsigned char *slot, const float p[3],
         return IRC_OK;
     /* The zenith ray only when some silhouette is there to close. */
     zenith.s = NULL;
-    if (irc__find_edges(c, s, zenith) == 0)
+    if (irc__find_edges(c, s, zenith, netvis) == 0)
         return IRC_OK;
     if ((st = irc__zenith(c, slot, p, n, &top, zdir, znrm, rays)) < 0)
         return st;
     zenith.s = &top;
     zenith.dir = zdir;
     zenith.nrm = znrm;
-    count = irc__find_edges(c, s, zenith);
-    if ((st = irc__bisect(c, slot, s, p, count, rays)) < 0)
+    count = irc__find_edges(c, s, zenith, netvis);
+    if ((st = irc__bisect(c, slot, s, p, count, netvis, rays)) < 0)
         return st;
-    irc__cells(c, s, n, g);
-    irc__cap(c, s, n, g);
+    irc__cells(c, s, n, netvis, g);
+    irc__cap(c, s, n, netvis, g);
+    return IRC_OK;
+}
+
+/* Net visibility (Eq. 47, over 2 pi): each stratum's exact solid angle,
+ * (2 pi/N)(cos theta_j- - cos theta_j+), weighs whether its ray escaped, so
+ * no 1/cos(theta) weight from the cosine-weighted sampling enters. */
+static double irc__visible(const irc_cache *c, const irc__sample *s)
+{
+    const uint32_t m = c->cfg.strata_theta, nphi = c->cfg.strata_phi;
+    double vis = 0.0, all = 0.0;
+    uint32_t j, k;
+    for (j = 0; j < m; j++) {
+        double w = IRC_SQRT(1.0 - (double)j / m) - IRC_SQRT(1.0 - (double)(j + 1) / m);
+        for (k = 0; k < nphi; k++) {
+            const irc__sample *a = &s[j * nphi + k];
+            if (a->d != a->d)
+                continue;
+            all += w;
+            if (irc__escaped(a))
+                vis += w;
+        }
+    }
+    return all > 0.0 ? vis / all : 0.0;
+}
+
+int irc_occlusion_compute(irc_cache *c, const float p[3], const float n[3],
+                          irc_occlusion *out)
+{
+    double un[3], t1[3], t2[3], g[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+    uint32_t t, used = 0, extra = 0;
+    unsigned char *slot;
+    int st, k;
+    if (!c || !out)
+        return IRC_ERR_NULL;
+    if (c->magic != IRC__MAGIC)
+        return IRC_ERR_CONFIG;
+    if ((st = irc__check_vec(p)) < 0 || (st = irc__check_normal(n, un)) < 0)
+        return st;
+    if (!(c->cfg.features & IRC_FEATURE_VISIBILITY))
+        return IRC_ERR_UNSUPPORTED;
+    if ((st = irc__slot_claim(c, &t)) < 0)
+        return st;
+    slot = c->scratch + (size_t)t * c->slot_bytes;
+    irc__frame(un, t1, t2);
+    st = irc__sample_hemisphere(c, slot, p, un, t1, t2, (irc__sample *)(void *)slot, &used);
+    if (st == IRC_OK) {
+        out->visible = (float)irc__visible(c, (const irc__sample *)(void *)slot);
+        st = irc__grad_visibility(c, slot, p, un, 1, g, &extra);
+    }
+    irc__slot_release(c, t);
+    if (st < 0)
+        return st;
+    for (k = 0; k < 3; k++)
+        out->grad[k] = (float)(g[0][k] / (2.0 * IRC_PI));
+    out->rays = c->strata + extra;
+    c->port->fetch_add(&c->ctr[IRC__C_RAYS], c->strata + (uint64_t)extra);
     return IRC_OK;
 }
