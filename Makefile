@@ -60,7 +60,7 @@ test:
 
 # ---------------------------------------------------------------- demo
 # The demo tracer: every demo/*.c but the two stand-alone programs.
-DEMO_LIB_SRC = $(filter-out demo/main.c demo/bench_core.c demo/minimal.c,$(wildcard demo/*.c))
+DEMO_LIB_SRC = $(filter-out demo/main.c demo/bench_core.c demo/minimal.c demo/fig15.c,$(wildcard demo/*.c))
 DEMO_CFLAGS = -std=c99 $(WARN) -Iinclude -Idemo $(OPT) $(CFLAGS)
 DEMO_OUT = $(BUILD)/demo
 # The Cornell box at the same rays per shading point in both modes (16 x 64
@@ -76,6 +76,14 @@ demo: $(BUILD)/irc_demo
 	$(BUILD)/irc_demo demo/scenes/cornell.scene $(DEMO_ARGS) --reference 1024 --out $(DEMO_OUT)/cornell-reference
 	$(BUILD)/irc_demo demo/scenes/cornell.scene $(DEMO_ARGS) --reference 1024 --seed 2 --compare $(DEMO_OUT)/cornell-reference.exr
 	$(BUILD)/irc_demo demo/scenes/cornell.scene $(DEMO_ARGS) --cache --compare $(DEMO_OUT)/cornell-reference.exr --out $(DEMO_OUT)/cornell-cache
+
+# The first-order paper's Fig. 15 experiment (README: "Visibility gradients").
+$(BUILD)/fig15: demo/fig15.c $(DEMO_LIB_SRC) demo/*.h $(LIBA)
+	$(CC) $(DEMO_CFLAGS) demo/fig15.c $(DEMO_LIB_SRC) $(LIBA) -o $@ -lm -lpthread
+
+fig15: $(BUILD)/fig15
+	$(BUILD)/fig15 demo/scenes/fig15.scene 200 16384 64 256
+	$(BUILD)/fig15 demo/scenes/fig15-sharp.scene 200 16384 64 256
 
 $(BUILD)/demo_tests: tests/t_demo.c tests/harness.c tests/scenes.c $(DEMO_LIB_SRC) demo/*.h tests/*.h $(LIBA)
 	$(CC) $(TEST_CFLAGS) -Idemo $(OPT) $(CFLAGS) tests/t_demo.c tests/harness.c tests/scenes.c $(DEMO_LIB_SRC) $(LIBA) -o $@ -lm -lpthread
@@ -136,4 +144,4 @@ install: all
 clean:
 	rm -rf build build-*
 
-.PHONY: all test demo fuzz bench-core install clean
+.PHONY: all test demo fig15 fuzz bench-core install clean

@@ -16,7 +16,8 @@ static const char usage[] =
     "usage: irc_demo SCENE [options]\n"
     "  --cache                 irradiance from the cache (the default)\n"
     "  --reference N           brute force: N hemisphere rays per shading point\n"
-    "  --features LIST         cache gradients: none, trans, rot, trans,rot (default)\n"
+    "  --features LIST         cache gradients: none, trans, rot, trans,rot (default),\n"
+    "                          vis, vis,rot (vis: translational from visibility)\n"
     "  --accuracy A            cache accuracy a (default 0.2)\n"
     "  --strata MxN            cache hemisphere strata (default 16x64)\n"
     "  --records N             cache capacity (default 200000; CLOCK eviction)\n"
@@ -65,6 +66,9 @@ static int parse_features(const char *s, uint32_t *f)
     else if (!strcmp(s, "rot")) *f = IRC_FEATURE_ROTATION;
     else if (!strcmp(s, "trans,rot") || !strcmp(s, "rot,trans"))
         *f = IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION;
+    else if (!strcmp(s, "vis")) *f = IRC_FEATURE_VISIBILITY | IRC_FEATURE_TRANSLATION;
+    else if (!strcmp(s, "vis,rot") || !strcmp(s, "rot,vis"))
+        *f = IRC_FEATURE_VISIBILITY | IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION;
     else return 0;
     return 1;
 }
@@ -163,7 +167,9 @@ static void report(FILE *f, const cli *c, const renderer *r, const render_stats 
     fprintf(f, "%s: %s", c->scene, c->o.mode == MODE_CACHE ? "cache" : "reference");
     if (c->o.mode == MODE_CACHE)
         fprintf(f, " (%s, a = %g, %ux%u strata, max radius %g)",
-                c->o.features == 3 ? "trans+rot" : c->o.features == 1 ? "trans" : c->o.features == 2 ? "rot" : "no gradients",
+                (c->o.features & IRC_FEATURE_VISIBILITY) ? (c->o.features & 2 ? "vis+rot" : "vis")
+                : c->o.features == 3 ? "trans+rot" : c->o.features == 1 ? "trans"
+                : c->o.features == 2 ? "rot" : "no gradients",
                 c->o.accuracy, c->o.strata_m, c->o.strata_n, r->o.max_radius);
     else
         fprintf(f, " (%d rays per shading point)", c->o.ref_rays);

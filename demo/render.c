@@ -420,6 +420,16 @@ int render_points(renderer *r, const float *pn, int n, float *rgb, render_stats 
     return 0;
 }
 
+int render_record(renderer *r, const float p[3], const float n[3], irc_record *out)
+{
+    tstate ts;
+    memset(&ts, 0, sizeof ts);
+    if (!r->cache)
+        return IRC_ERR_CONFIG;
+    pthread_setspecific(tkey, &ts);
+    return irc_record_compute(r->cache, p, n, out);
+}
+
 static void hue(uint32_t id, float out[3])
 {
     double h = (double)(hash64(id) >> 11) * (6.0 / 9007199254740992.0);

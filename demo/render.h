@@ -62,6 +62,10 @@ int render_image(renderer *r, float *rgb, render_stats *st);
 /* Irradiance E at n points (p, n: 6 floats a point) into rgb (3 a point). */
 int render_points(renderer *r, const float *pn, int n, float *rgb, render_stats *st);
 
+/* A record at (p, n) through the renderer's cache config and host (for
+ * experiments that place records themselves).  MODE_CACHE only. */
+int render_record(renderer *r, const float p[3], const float n[3], irc_record *out);
+
 /* False colour of the cache's records over the camera's image: each pixel
  * coloured by the record of largest weight there (hue from its id, so
  * neighbouring records differ), black where none counts; record centres
