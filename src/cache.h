@@ -101,6 +101,8 @@ int irc__grad_visibility(irc_cache *c, unsigned char *slot, const float p[3],
 
 /* record.c */
 int irc__slot_claim(irc_cache *c, uint32_t *t);
+int irc__sample_at(irc_cache *c, const float p[3], const float n[3], const void *out,
+                   double un[3], double t1[3], double t2[3], uint32_t *t);
 void irc__slot_release(irc_cache *c, uint32_t t);
 void irc__record_build(const irc_cache *c, const irc__sample *s,
                        const double n[3], const double t1[3],

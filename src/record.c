@@ -229,11 +229,12 @@ void irc__slot_release(irc_cache *c, uint32_t t)
     while (!c->port->cas(&c->slots_busy, busy, busy & ~(1ull << t)));
 }
 
-int irc_record_compute(irc_cache *c, const float p[3], const float n[3],
-                       irc_record *out)
+/* What every sampling call starts with: check the query, claim a scratch
+ * slot, sample the hemisphere into it.  On failure no slot is held. */
+int irc__sample_at(irc_cache *c, const float p[3], const float n[3], const void *out,
+                   double un[3], double t1[3], double t2[3], uint32_t *t)
 {
-    double un[3], t1[3], t2[3], gvis[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
-    uint32_t t, used = 0, extra = 0;
+    uint32_t used = 0;
     unsigned char *slot;
     int st;
     if (!c || !out)
@@ -242,12 +243,27 @@ int irc_record_compute(irc_cache *c, const float p[3], const float n[3],
         return IRC_ERR_CONFIG;
     if ((st = irc__check_vec(p)) < 0 || (st = irc__check_normal(n, un)) < 0)
         return st;
-    if ((st = irc__slot_claim(c, &t)) < 0)
+    if ((st = irc__slot_claim(c, t)) < 0)
         return st;
-    slot = c->scratch + (size_t)t * c->slot_bytes;
+    slot = c->scratch + (size_t)*t * c->slot_bytes;
     irc__frame(un, t1, t2);
     st = irc__sample_hemisphere(c, slot, p, un, t1, t2, (irc__sample *)(void *)slot, &used);
-    if (st == IRC_OK && (c->cfg.features & IRC_FEATURE_VISIBILITY))
+    if (st < 0)
+        irc__slot_release(c, *t);
+    return st;
+}
+
+int irc_record_compute(irc_cache *c, const float p[3], const float n[3],
+                       irc_record *out)
+{
+    double un[3], t1[3], t2[3], gvis[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+    uint32_t t, extra = 0;
+    unsigned char *slot;
+    int st = irc__sample_at(c, p, n, out, un, t1, t2, &t);
+    if (st < 0)
+        return st;
+    slot = c->scratch + (size_t)t * c->slot_bytes;
+    if (c->cfg.features & IRC_FEATURE_VISIBILITY)
         st = irc__grad_visibility(c, slot, p, un, 0, gvis, &extra);
     if (st == IRC_OK) {
         irc__record_build(c, (const irc__sample *)(void *)slot, un, t1, t2,

@@ -415,26 +415,16 @@ int irc_occlusion_compute(irc_cache *c, const float p[3], const float n[3],
                           irc_occlusion *out)
 {
     double un[3], t1[3], t2[3], g[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
-    uint32_t t, used = 0, extra = 0;
+    uint32_t t, extra = 0;
     unsigned char *slot;
     int st, k;
-    if (!c || !out)
-        return IRC_ERR_NULL;
-    if (c->magic != IRC__MAGIC)
-        return IRC_ERR_CONFIG;
-    if ((st = irc__check_vec(p)) < 0 || (st = irc__check_normal(n, un)) < 0)
-        return st;
-    if (!(c->cfg.features & IRC_FEATURE_VISIBILITY))
+    if (c && c->magic == IRC__MAGIC && !(c->cfg.features & IRC_FEATURE_VISIBILITY))
         return IRC_ERR_UNSUPPORTED;
-    if ((st = irc__slot_claim(c, &t)) < 0)
+    if ((st = irc__sample_at(c, p, n, out, un, t1, t2, &t)) < 0)
         return st;
     slot = c->scratch + (size_t)t * c->slot_bytes;
-    irc__frame(un, t1, t2);
-    st = irc__sample_hemisphere(c, slot, p, un, t1, t2, (irc__sample *)(void *)slot, &used);
-    if (st == IRC_OK) {
-        out->visible = (float)irc__visible(c, (const irc__sample *)(void *)slot);
-        st = irc__grad_visibility(c, slot, p, un, 1, g, &extra);
-    }
+    out->visible = (float)irc__visible(c, (const irc__sample *)(void *)slot);
+    st = irc__grad_visibility(c, slot, p, un, 1, g, &extra);
     irc__slot_release(c, t);
     if (st < 0)
         return st;
