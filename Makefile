@@ -15,7 +15,7 @@ OPT ?= -O2 -g
 WARN = -Wall -Wextra -Wpedantic -Werror -Wmissing-prototypes -Wshadow
 CFLAGS_LIB = -std=c99 $(WARN) $(OPT) -fPIC -Iinclude $(CFLAGS)
 
-SRC = src/config.c src/sampler.c src/record.c src/weight.c src/index.c src/cache.c src/visibility.c
+SRC = src/config.c src/sampler.c src/record.c src/weight.c src/index.c src/cache.c src/visibility.c src/sh.c
 PORT_SRC = port/posix/irc_port.c port/c11/irc_port.c port/none/irc_port.c port/irc_port_default.c
 OBJ = $(SRC:%.c=$(BUILD)/%.o)
 PORT_OBJ = $(PORT_SRC:%.c=$(BUILD)/%.o)
@@ -47,7 +47,7 @@ $(LIBSO): $(OBJ) $(PORT_OBJ)
 	$(CC) -shared -o $@ $^ -lm -lpthread
 
 # ---------------------------------------------------------------- tests
-TEST_SRC = tests/main.c tests/harness.c tests/scenes.c tests/t_record.c tests/t_lookup.c tests/t_index.c tests/t_api.c tests/t_threads.c tests/t_visibility.c
+TEST_SRC = tests/main.c tests/harness.c tests/scenes.c tests/t_record.c tests/t_lookup.c tests/t_index.c tests/t_api.c tests/t_threads.c tests/t_visibility.c tests/t_sh.c
 
 TEST_CFLAGS = -std=c99 $(WARN) -Wno-missing-prototypes -Iinclude -Isrc -Itests \
               -D_POSIX_C_SOURCE=200809L

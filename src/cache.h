@@ -95,6 +95,10 @@ int irc__sample_hemisphere(irc_cache *c, unsigned char *slot, const float p[3],
                            const double t2[3], irc__sample *out,
                            uint32_t *used);
 
+/* sh.c */
+#define IRC__SH_MAX_BANDS 5
+void irc__sh_eval(int bands, const double s[3], double *y, double (*grad)[3]);
+
 /* visibility.c */
 int irc__grad_visibility(irc_cache *c, unsigned char *slot, const float p[3],
                          const double n[3], int netvis, double g[3][3], uint32_t *rays);

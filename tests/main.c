@@ -11,7 +11,8 @@
     X(test_bad_input_unchanged) X(test_callback_failures) X(test_overflow_radiance) X(test_ports) \
     X(test_threads_stress) X(test_threads_determinism)                 \
     X(test_visibility_sphere) X(test_visibility_box) X(test_visibility_open_sky) \
-    X(test_occlusion_sphere)
+    X(test_occlusion_sphere) X(test_sh_orthonormal) X(test_sh_closed_forms)  \
+    X(test_sh_gradient)
 
 TESTS(TEST_DECL)
 

@@ -1,0 +1,123 @@
+/* t_sh.c -- the real SH basis and its Cartesian gradient. */
+#include <math.h>
+
+#include "cache.h"
+#include "scenes.h"
+#include "test.h"
+
+/* Gauss-Legendre nodes and weights on [-1, 1] by Newton's method on P_n. */
+static void gauss_legendre(int n, double *x, double *w)
+{
+    int i, k, it;
+    for (i = 0; i < n; i++) {
+        double z = cos(TPI * (i + 0.75) / (n + 0.5)), p0, p1, dp = 1.0;
+        for (it = 0; it < 100; it++) {
+            double zl;
+            p0 = 1.0;
+            p1 = z;
+            for (k = 2; k <= n; k++) {
+                double p2 = ((2.0 * k - 1.0) * z * p1 - (k - 1.0) * p0) / k;
+                p0 = p1;
+                p1 = p2;
+            }
+            dp = n * (z * p1 - p0) / (z * z - 1.0);
+            zl = z;
+            z -= p1 / dp;
+            if (fabs(z - zl) < 1e-15)
+                break;
+        }
+        x[i] = z;
+        w[i] = 2.0 / ((1.0 - z * z) * dp * dp);
+    }
+}
+
+/* Integral of y_i y_j over the sphere: 16 Gauss-Legendre nodes in z by 32
+ * in phi integrate these degree-8 products exactly. */
+TEST(test_sh_orthonormal)
+{
+    enum { NZ = 16, NP = 32, B = IRC__SH_MAX_BANDS, C = B * B };
+    double gx[NZ], gw[NZ], acc[C][C], worst = 0.0;
+    int a, b, i, j;
+    gauss_legendre(NZ, gx, gw);
+    for (i = 0; i < C; i++)
+        for (j = 0; j < C; j++)
+            acc[i][j] = 0.0;
+    for (a = 0; a < NZ; a++)
+        for (b = 0; b < NP; b++) {
+            double ph = 2.0 * TPI * b / NP, r = sqrt(1.0 - gx[a] * gx[a]);
+            double s[3] = {r * cos(ph), r * sin(ph), gx[a]}, y[C];
+            irc__sh_eval(B, s, y, NULL);
+            for (i = 0; i < C; i++)
+                for (j = 0; j < C; j++)
+                    acc[i][j] += gw[a] * (2.0 * TPI / NP) * y[i] * y[j];
+        }
+    for (i = 0; i < C; i++)
+        for (j = 0; j < C; j++) {
+            double e = fabs(acc[i][j] - (i == j));
+            if (e > worst)
+                worst = e;
+        }
+    printf("  largest |<y_i, y_j> - delta_ij| over 25 x 25: %.2e\n", worst);
+    CHECK(worst < 1e-6, "not orthonormal: %g", worst);
+}
+
+/* Bands 0-2 against their closed forms (Condon-Shortley phase). */
+TEST(test_sh_closed_forms)
+{
+    unsigned long long st = 5;
+    int t;
+    for (t = 0; t < 100; t++) {
+        double s[3], y[9], x, yy, z, l, want[9];
+        int i;
+        for (i = 0; i < 3; i++)
+            s[i] = xrand(&st) * 2.0 - 1.0;
+        l = sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
+        x = s[0] / l; yy = s[1] / l; z = s[2] / l;
+        irc__sh_eval(3, s, y, NULL);
+        want[0] = 0.5 / sqrt(TPI);
+        want[1] = -sqrt(3.0 / (4.0 * TPI)) * yy;
+        want[2] = sqrt(3.0 / (4.0 * TPI)) * z;
+        want[3] = -sqrt(3.0 / (4.0 * TPI)) * x;
+        want[4] = sqrt(15.0 / (4.0 * TPI)) * x * yy;
+        want[5] = -sqrt(15.0 / (4.0 * TPI)) * yy * z;
+        want[6] = sqrt(5.0 / (16.0 * TPI)) * (3.0 * z * z - 1.0);
+        want[7] = -sqrt(15.0 / (4.0 * TPI)) * x * z;
+        want[8] = sqrt(15.0 / (16.0 * TPI)) * (x * x - yy * yy);
+        for (i = 0; i < 9; i++)
+            CHECK(fabs(y[i] - want[i]) < 1e-12, "y_%d %g vs %g", i, y[i], want[i]);
+    }
+}
+
+/* The gradient of y_i(s/|s|) against central differences, at s of lengths
+ * 0.01 to 100. */
+TEST(test_sh_gradient)
+{
+    enum { B = IRC__SH_MAX_BANDS, C = B * B };
+    unsigned long long st = 9;
+    double worst = 0.0;
+    int t;
+    for (t = 0; t < 200; t++) {
+        double s[3], y[C], g[C][3], scale = pow(10.0, xrand(&st) * 4.0 - 2.0);
+        int i, k;
+        double len;
+        for (i = 0; i < 3; i++)
+            s[i] = (xrand(&st) * 2.0 - 1.0) * scale;
+        len = sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
+        irc__sh_eval(B, s, y, g);
+        for (k = 0; k < 3; k++) {
+            double sp[3] = {s[0], s[1], s[2]}, sm[3] = {s[0], s[1], s[2]}, yp[C], ym[C];
+            double h = 1e-5 * len; /* the step and the error scale with |s| */
+            sp[k] += h;
+            sm[k] -= h;
+            irc__sh_eval(B, sp, yp, NULL);
+            irc__sh_eval(B, sm, ym, NULL);
+            for (i = 0; i < C; i++) {
+                double fd = (yp[i] - ym[i]) / (2.0 * h), e = fabs(fd - g[i][k]) * len;
+                if (e > worst)
+                    worst = e;
+            }
+        }
+    }
+    printf("  largest |analytic - central difference| x |s|: %.2e\n", worst);
+    CHECK(worst < 1e-6, "gradient off by %g", worst);
+}
