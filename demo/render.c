@@ -426,8 +426,11 @@ int render_record(renderer *r, const float p[3], const float n[3], irc_record *o
     memset(&ts, 0, sizeof ts);
     if (!r->cache)
         return IRC_ERR_CONFIG;
+    int st;
     pthread_setspecific(tkey, &ts);
-    return irc_record_compute(r->cache, p, n, out);
+    st = irc_record_compute(r->cache, p, n, out);
+    pthread_setspecific(tkey, NULL); /* ts dies with this frame */
+    return st;
 }
 
 static void hue(uint32_t id, float out[3])

@@ -10,6 +10,25 @@ void scene_init(tscene *s)
     memset(s, 0, sizeof *s);
 }
 
+void scene_sphere_plane(tscene *s)
+{
+    scene_init(s);
+    s->sky_a[0] = s->sky_a[1] = s->sky_a[2] = 1.0f;
+    s->has_sphere = 1;
+    s->centre[2] = 2.0;
+    s->radius = 1.0;
+}
+
+void scene_box_plane(tscene *s)
+{
+    static const double lo[3] = {-0.5, -0.3, 1.0}, hi[3] = {1.1, 0.7, 1.8};
+    scene_init(s);
+    s->sky_a[0] = s->sky_a[1] = s->sky_a[2] = 1.0f;
+    s->has_box = 1;
+    memcpy(s->box_lo, lo, sizeof lo);
+    memcpy(s->box_hi, hi, sizeof hi);
+}
+
 static double hit_sphere(const tscene *s, const float o[3], const float d[3])
 {
     double oc[3], b, c, disc, t;

@@ -40,6 +40,11 @@ enum {
 };
 
 void scene_init(tscene *s);
+/* The tests' two oracle scenes, under a uniform sky of radiance 1: a black
+ * sphere of radius 1 centred at (0, 0, 2) (sphere_plane_e), and a black box
+ * [-0.5, 1.1] x [-0.3, 0.7] x [1.0, 1.8] (box_plane_e). */
+void scene_sphere_plane(tscene *s);
+void scene_box_plane(tscene *s);
 int scene_trace(const irc_trace_args *a);
 
 /* E at a point on the plane z = 0 (normal +z) under a uniform sky L with a

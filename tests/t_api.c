@@ -13,11 +13,7 @@ static tscene sky;
 
 static void sky_init(void)
 {
-    scene_init(&sky);
-    sky.sky_a[0] = sky.sky_a[1] = sky.sky_a[2] = 1.0f;
-    sky.has_sphere = 1;
-    sky.centre[2] = 2.0;
-    sky.radius = 1.0;
+    scene_sphere_plane(&sky);
 }
 
 TEST(test_config_checks)

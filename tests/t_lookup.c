@@ -115,9 +115,7 @@ TEST(test_lookup_or_compute)
     irc_stats st;
     const float p[3] = {0.3f, 0.2f, 0.0f}, n[3] = {0, 0, 1};
     float rgb[3], rgb2[3], w;
-    scene_init(&s);
-    s.sky_a[0] = s.sky_a[1] = s.sky_a[2] = 1.0f;
-    s.has_sphere = 1; s.centre[2] = 2.0; s.radius = 1.0;
+    scene_sphere_plane(&s);
     cfg = scene_config(&s, IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION, 8, 32);
     c = block_cache(&cfg, 1, 0);
     CHECK(c != NULL, "init");

@@ -49,15 +49,6 @@ TEST(test_uniform_sky)
 static const double sp_points[5][3] = {
     {0.5, 0.0, 0.0}, {1.0, 1.0, 0.0}, {-1.5, 0.5, 0.0}, {2.0, -1.0, 0.0}, {0.0, 3.0, 0.0}};
 
-static void sphere_plane_scene(tscene *s)
-{
-    scene_init(s);
-    s->sky_a[0] = s->sky_a[1] = s->sky_a[2] = 1.0f;
-    s->has_sphere = 1;
-    s->centre[2] = 2.0;
-    s->radius = 1.0;
-}
-
 /* Checks one record's E and translational gradient against the exact
  * values; prints them.  Returns the relative gradient magnitude error. */
 static double check_grad(int i, const irc_record *r, double e, const double g[3],
@@ -91,7 +82,7 @@ TEST(test_sphere_over_plane)
     static const uint32_t strata[2][2] = {{32, 128}, {64, 256}};
     tscene s;
     int i, k;
-    sphere_plane_scene(&s);
+    scene_sphere_plane(&s);
     for (k = 0; k < 2; k++) {
         irc_config cfg = scene_config(&s, IRC_FEATURE_TRANSLATION, strata[k][0], strata[k][1]);
         irc_cache *c = block_cache(&cfg, 16, 0);
@@ -168,11 +159,7 @@ TEST(test_box_closed_form)
     irc_config cfg;
     irc_cache *c;
     int i;
-    scene_init(&s);
-    s.sky_a[0] = s.sky_a[1] = s.sky_a[2] = 1.0f;
-    s.has_box = 1;
-    s.box_lo[0] = -0.5; s.box_lo[1] = -0.3; s.box_lo[2] = 1.0;
-    s.box_hi[0] = 1.1;  s.box_hi[1] = 0.7;  s.box_hi[2] = 1.8;
+    scene_box_plane(&s);
     cfg = scene_config(&s, 0, 64, 256);
     c = block_cache(&cfg, 4, 0);
     CHECK(c != NULL, "init");
@@ -243,7 +230,7 @@ TEST(test_radius_rules)
     irc_cache *c;
     irc_record r0, r1;
     const float p[3] = {0.5f, 0, 0}, n[3] = {0, 0, 1};
-    sphere_plane_scene(&s);
+    scene_sphere_plane(&s);
     cfg = scene_config(&s, 0, 16, 64);
     c = block_cache(&cfg, 4, 0);
     CHECK(c && irc_record_compute(c, p, n, &r0) == IRC_OK, "compute");
@@ -280,7 +267,7 @@ TEST(test_pack_roundtrip)
     irc_record r, back;
     unsigned long long st = 7;
     int i, ch, k;
-    sphere_plane_scene(&s);
+    scene_sphere_plane(&s);
     cfg = scene_config(&s, IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION, 4, 8);
     c = block_cache(&cfg, 64, 0);
     CHECK(c != NULL, "init");

@@ -41,11 +41,7 @@ TEST(test_visibility_sphere)
     double pts[20][3], g[20][3], big = 0.0, worst = 0.0;
     irc_record v[20], w[20];
     int i;
-    scene_init(&s);
-    s.sky_a[0] = s.sky_a[1] = s.sky_a[2] = 1.0f;
-    s.has_sphere = 1;
-    s.centre[2] = 2.0;
-    s.radius = 1.0;
+    scene_sphere_plane(&s);
     for (i = 0; i < 20; i++) {
         double ang = (i & 1 ? 2.1 : 0.4) + 0.05 * i;
         pts[i][0] = rad[i / 2] * cos(ang);
@@ -88,11 +84,7 @@ TEST(test_visibility_box)
         {0.6, -0.31}, {0.0, 0.71},   {5.0, 0.5},   {0.3, -4.0},  {-3.0, 3.0}};
     tscene s;
     int i, k;
-    scene_init(&s);
-    s.sky_a[0] = s.sky_a[1] = s.sky_a[2] = 1.0f;
-    s.has_box = 1;
-    s.box_lo[0] = -0.5; s.box_lo[1] = -0.3; s.box_lo[2] = 1.0;
-    s.box_hi[0] = 1.1;  s.box_hi[1] = 0.7;  s.box_hi[2] = 1.8;
+    scene_box_plane(&s);
     for (i = 0; i < 20; i++) {
         double p[3] = {pts[i][0], pts[i][1], 0.0}, g[3] = {0, 0, 0}, gm, ev, ew;
         const double h = 1e-4;
@@ -150,11 +142,7 @@ TEST(test_occlusion_sphere)
     double big = 0.0, g[10][2], fr[10];
     float pts[10][3];
     int i;
-    scene_init(&s);
-    s.sky_a[0] = s.sky_a[1] = s.sky_a[2] = 1.0f;
-    s.has_sphere = 1;
-    s.centre[2] = 2.0;
-    s.radius = 1.0;
+    scene_sphere_plane(&s);
     for (i = 0; i < 10; i++) {
         double a = 0.3 + 0.7 * i, x = rad[i] * cos(a), y = rad[i] * sin(a);
         double d2 = x * x + y * y + 4.0, q = sqrt(1.0 - 1.0 / d2);
