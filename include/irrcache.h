@@ -76,7 +76,9 @@ typedef enum irc_status {
                                  usable (the host reported them as failed) */
     IRC_ERR_BUSY = -9,        /* more concurrent record computations than
                                  cfg.threads scratch slots */
-    IRC_ERR_UNSUPPORTED = -10,/* a feature flag this build does not implement */
+    IRC_ERR_UNSUPPORTED = -10,/* a feature flag this build does not know, or a
+                                 call the cache's features do not serve (an
+                                 irradiance call on an SH cache, or back) */
     IRC_ERR_PORT = -11,       /* the port failed to initialise its lock */
     IRC_ERR_RANGE = -12,      /* an index argument is past the end */
     IRC_ERR_LAST = -12        /* the most negative code the library returns */
@@ -173,7 +175,15 @@ enum irc_feature {
                                           silhouette crossing of the strata
                                           grid, + 1) and ~200 scratch bytes a
                                           stratum */
-    IRC_FEATURE_SH = 1u << 3           /* reserved: not in this build */
+    IRC_FEATURE_SH = 1u << 3,          /* records hold spherical-harmonic
+                                          coefficients of incident radiance
+                                          instead of irradiance (see "SH
+                                          records" below); excludes the three
+                                          flags above */
+    IRC_FEATURE_SH_GRADIENT = 1u << 4  /* SH records also carry the
+                                          coefficients' translational
+                                          gradients (SH-gradient paper, Eq.
+                                          6-12), from the same rays: implies SH */
 };
 
 /* What insert does when the record pool is full. */
@@ -205,6 +215,13 @@ typedef struct irc_config {
     uint32_t threads;        /* how many record computations may run at once,
                                 1..64 (default 1); each has its own scratch */
     uint32_t evict;          /* an irc_evict (default IRC_EVICT_NONE) */
+    uint32_t sh_bands;       /* SH records: L, bands 0..L-1, L*L coefficients
+                                per channel; 1..IRC_SH_MAX_BANDS (default 3) */
+    uint32_t sh_channels;    /* SH records: 3 (RGB, default) or 1 (the hit's
+                                radiance[0] only) */
+    float sh_power;          /* SH records at free points: the exponent b of
+                                the weight (R_j/|p - p_j|)^b; (0, 16]
+                                (default 2) */
     uint64_t seed;           /* mixed into every record's random numbers */
     const irc_port *port;    /* locks and atomics (default irc_port_default) */
     void *buffer;            /* the caller's block, any alignment; the library
@@ -212,14 +229,17 @@ typedef struct irc_config {
     size_t buffer_size;      /* bytes, >= what irc_footprint() returned */
 } irc_config;
 
-#define IRC_MAX_STRATA 65536u
+#define IRC_MAX_STRATA 4194304u /* 1024 x 4096 */
 #define IRC_MAX_BATCH 4096u
 #define IRC_MAX_THREADS 64u
 #define IRC_MAX_RECORDS 0x3fffffffu
 #define IRC_RADIUS_CAP 1e30f  /* radii are clamped to this (all rays escaped) */
+#define IRC_SH_MAX_BANDS 5u
+#define IRC_SH_MAX_COEFFS 25u /* IRC_SH_MAX_BANDS squared */
 
-/* A conservative compile-time bound on irc_footprint(), for static blocks:
- * records with every gradient, the largest index, scratch for t threads of
+/* A conservative compile-time bound on irc_footprint(), for static blocks
+ * of irradiance caches (not SH caches: ask irc_footprint()): records with
+ * every gradient, the largest index, scratch for t threads of
  * s strata each and batches of b rays. */
 #define IRC_FOOTPRINT_BOUND(records, s, t, b) \
     (4096u + (size_t)(t) * (64u + (size_t)(s) * 16u + (size_t)(b) * 56u + 16384u) + \
@@ -347,6 +367,114 @@ int irc_cache_record(irc_cache *cache, uint32_t id, irc_record *out);
 /* Remove every record (the counters in irc_stats are kept).  Returns IRC_OK,
  * or a negative error code on failure. */
 int irc_cache_clear(irc_cache *cache);
+
+/* ------------------------------------------------------------------------ */
+/* SH records (IRC_FEATURE_SH).                                              */
+/*
+ * An SH cache stores, per record, the real spherical-harmonic coefficients
+ * c_i = integral of y_i(w) L(w) dw of the incident radiance, bands 0..L-1
+ * (index l*l + l + m, Condon-Shortley phase), per channel, and with
+ * IRC_FEATURE_SH_GRADIENT their translational gradients, so that
+ * c_i(p + d) ~ c_i + grad c_i . d (SH-gradient paper, Eq. 14).  From the
+ * coefficients, irc_sh_irradiance and irc_sh_glossy shade any normal.
+ *
+ * Two kinds of record:
+ *   - surface records (n given): the hemisphere around n is sampled, the
+ *     radiance below it counts as 0; lookups use the Ward-Heckbert weight of
+ *     irc_cache_lookup and see surface records only;
+ *   - free-point records (n NULL): the whole sphere is sampled (two
+ *     hemispheres, twice the rays), as at an object's centre; lookups with
+ *     n NULL see free-point records only, accept those with
+ *     |p - p_j| < accuracy * R_j and weigh them (R_j/|p - p_j|)^b, b =
+ *     cfg.sh_power (Eq. 16, made scale-free by R_j; capped at 1e6).
+ * Strata are M x N of equal solid angle (cos theta uniform, not cosine
+ * weighted): 2 pi/(M N) steradians each.  R_j is the harmonic mean hit
+ * distance, clamped by |c_0|/|grad c_0| per channel (with gradients) and by
+ * [min_radius, max_radius].
+ *
+ * Bytes per record: 32 + 4 L^2 channels, + 12 L^2 channels with gradients
+ * (L = 3, RGB: 140, with gradients 464).  The irradiance calls
+ * (irc_record_compute, irc_cache_insert, irc_cache_lookup,
+ * irc_cache_lookup_or_compute, irc_cache_record, irc_occlusion_compute) return
+ * IRC_ERR_UNSUPPORTED on an SH cache, and the irc_sh_* calls on any other.
+ */
+typedef struct irc_sh {
+    float p[3];            /* position (a lookup: the query's) */
+    float n[3];            /* unit normal; 0, 0, 0 for a free point */
+    float radius;          /* R_j (a lookup: 0) */
+    float e[3];            /* irradiance about n integrated from the samples
+                              themselves, not band limited (0 for a free
+                              point; a lookup: the records' weighted mean) */
+    uint32_t bands;        /* L */
+    uint32_t channels;     /* 1 or 3 */
+    float c[3][IRC_SH_MAX_COEFFS];       /* c[ch][i], i < L*L, ch < channels */
+    float grad[3][IRC_SH_MAX_COEFFS][3]; /* d c[ch][i] / dp (zero without
+                                            IRC_FEATURE_SH_GRADIENT; a
+                                            lookup: the weighted mean) */
+    uint32_t features;     /* cfg.features */
+    uint32_t rays;         /* rays cast, and how many were usable */
+    uint32_t rays_used;
+} irc_sh;
+
+/*
+ * Sample around p through the trace callback and build an SH record: the
+ * hemisphere around n, or with n NULL the whole sphere.  Nothing is stored.
+ * Returns IRC_OK, or a negative error code on failure (IRC_ERR_NOSAMPLES
+ * when fewer than half the rays were usable, the host's own code if trace
+ * returned one).
+ */
+int irc_sh_compute(irc_cache *cache, const float p[3], const float n[3],
+                   irc_sh *out);
+
+/*
+ * Store an SH record (a copy).  rec->bands and rec->channels must match the
+ * cache's config (IRC_ERR_RANGE), rec->radius > 0 (IRC_ERR_RANGE), every
+ * used field finite.  Returns IRC_OK, IRC_ERR_FULL, or a negative error code.
+ */
+int irc_sh_insert(irc_cache *cache, const irc_sh *rec);
+
+/*
+ * Interpolated coefficients at p (Eq. 15): every accepted record
+ * extrapolated to p with its gradient, averaged with the weights above; n
+ * NULL looks up free-point records, n given surface records.  out->c gets
+ * the average and *weight (optional) the summed weight.  Returns IRC_OK,
+ * IRC_MISS (out->c = 0, weight = 0), or a negative error code.
+ */
+int irc_sh_lookup(irc_cache *cache, const float p[3], const float n[3],
+                  irc_sh *out, float *weight);
+
+/* Lookup; on a miss, compute, insert and return the new record (*weight =
+ * 0).  Returns IRC_OK, IRC_NOT_STORED (pool full, eviction off), or a
+ * negative error code. */
+int irc_sh_lookup_or_compute(irc_cache *cache, const float p[3],
+                             const float n[3], irc_sh *out, float *weight);
+
+/* Read the SH record in slot id.  Returns IRC_OK, IRC_MISS (empty slot),
+ * IRC_ERR_RANGE, or a negative error code. */
+int irc_sh_record(irc_cache *cache, uint32_t id, irc_sh *out);
+
+/*
+ * Irradiance about the unit-ish normal n from sh's coefficients: the
+ * clamped-cosine convolution (Ramamoorthi-Hanrahan 2001), sum over l, m of
+ * A_l c_lm y_lm(n) with A_0 = pi, A_1 = 2 pi/3, A_2 = pi/4, A_3 = 0,
+ * A_4 = -pi/24.  Exact for radiance of band < L; the band-limit error of
+ * L = 3 is about 1% average for smooth skies (README).  rgb gets
+ * sh->channels values (one channel is copied to all three).  Returns IRC_OK,
+ * IRC_ERR_NULL, IRC_ERR_NORMAL, or IRC_ERR_RANGE (bands or channels out of
+ * range).
+ */
+int irc_sh_irradiance(const irc_sh *sh, const float n[3], float rgb[3]);
+
+/*
+ * A Phong-like lobe: integral of L(w) max(0, w.r)^s dw about the unit-ish
+ * axis r (a mirror direction), as the zonal convolution sum A_l(s) c_lm
+ * y_lm(r), A_l(s) = 2 pi integral_0^1 z^s P_l(z) dz.  s = 1 is the
+ * irradiance; multiply by your BRDF's normalisation, e.g. (s + 2)/(2 pi)
+ * for normalised Phong.  L bands resolve lobes up to s of about L^2; sharper
+ * lobes come out blurred.  0 <= s <= 1e4.  Returns as irc_sh_irradiance
+ * (IRC_ERR_RANGE also for s out of range).
+ */
+int irc_sh_glossy(const irc_sh *sh, const float r[3], float s, float rgb[3]);
 
 typedef struct irc_stats {
     uint64_t records;        /* live records */

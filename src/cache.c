@@ -7,11 +7,20 @@
  */
 #include "cache.h"
 
-static int irc__check_cache(const irc_cache *c)
+int irc__check_cache(const irc_cache *c)
 {
     if (!c)
         return IRC_ERR_NULL;
     return c->magic == IRC__MAGIC ? IRC_OK : IRC_ERR_CONFIG;
+}
+
+/* The irradiance calls serve caches without IRC_FEATURE_SH only. */
+static int irc__check_irr(const irc_cache *c)
+{
+    int st = irc__check_cache(c);
+    if (st < 0)
+        return st;
+    return c->sh_n ? IRC_ERR_UNSUPPORTED : IRC_OK;
 }
 
 static void irc__count(irc_cache *c, int which, uint64_t v)
@@ -33,16 +42,11 @@ static uint32_t irc__clock_victim(irc_cache *c)
     }
 }
 
-int irc_cache_insert(irc_cache *c, const irc_record *rec)
+/* Stores a packed record (rec_size bytes, already checked) in a free slot,
+ * or in CLOCK's victim. */
+int irc__store(irc_cache *c, const void *packed)
 {
     uint32_t id;
-    int st;
-    if ((st = irc__check_cache(c)) < 0)
-        return st;
-    if (!rec)
-        return IRC_ERR_NULL;
-    if ((st = irc__record_check(rec)) < 0)
-        return st;
     c->port->write_lock(c->lock);
     if (c->count < c->capacity) {
         id = c->count++;
@@ -54,11 +58,36 @@ int irc_cache_insert(irc_cache *c, const irc_record *rec)
         c->port->write_unlock(c->lock);
         return IRC_ERR_FULL;
     }
-    irc__record_pack(c, rec, irc__rec_at(c, id));
+    IRC_MEMCPY(irc__rec_at(c, id), packed, c->rec_size);
     irc__index_insert(c, id);
     irc__count(c, IRC__C_INSERTS, 1);
     c->port->write_unlock(c->lock);
     return IRC_OK;
+}
+
+int irc_cache_insert(irc_cache *c, const irc_record *rec)
+{
+    union { irc__rec head; unsigned char b[64]; } packed;
+    int st;
+    if ((st = irc__check_irr(c)) < 0)
+        return st;
+    if (!rec)
+        return IRC_ERR_NULL;
+    if ((st = irc__record_check(rec)) < 0)
+        return st;
+    irc__record_pack(c, rec, &packed);
+    return irc__store(c, &packed);
+}
+
+/* CLOCK's use bit: set by lookups, only when not yet set (no write when the
+ * line is shared). */
+void irc__mark_used(irc_cache *c, uint32_t id)
+{
+    if (c->used) {
+        uint64_t *word = &c->used[id >> 6], bit = 1ull << (id & 63u);
+        if (!(c->port->load(word) & bit))
+            c->port->fetch_or(word, bit);
+    }
 }
 
 typedef struct irc__acc {
@@ -83,11 +112,7 @@ static void irc__visit_lookup(void *ud, uint32_t id)
         a->sum[1] += w * v[1];
         a->sum[2] += w * v[2];
         a->w += w;
-        if (c->used) {
-            uint64_t *word = &c->used[id >> 6], bit = 1ull << (id & 63u);
-            if (!(c->port->load(word) & bit))
-                c->port->fetch_or(word, bit);
-        }
+        irc__mark_used(a->c, id);
     }
 }
 
@@ -108,11 +133,12 @@ static void irc__visit_ids(void *ud, uint32_t id)
 
 /* Validates the query and turns n into a unit float normal. */
 static int irc__query_init(irc_cache *c, const float p[3], const float n[3],
-                           float un[3], irc__acc *a)
+                           float un[3], irc__acc *a, int any)
 {
     double d[3];
     int st;
-    if ((st = irc__check_cache(c)) < 0 || (st = irc__check_vec(p)) < 0 ||
+    if ((st = any ? irc__check_cache(c) : irc__check_irr(c)) < 0 ||
+        (st = irc__check_vec(p)) < 0 ||
         (st = irc__check_normal(n, d)) < 0)
         return st;
     un[0] = (float)d[0];
@@ -130,7 +156,7 @@ static int irc__lookup(irc_cache *c, const float p[3], const float n[3],
 {
     irc__acc a;
     float un[3];
-    int st = irc__query_init(c, p, n, un, &a), ch;
+    int st = irc__query_init(c, p, n, un, &a, 0), ch;
     if (st < 0)
         return st;
     if (!rgb)
@@ -188,7 +214,7 @@ int irc_cache_neighbours(irc_cache *c, const float p[3], const float n[3],
 {
     irc__acc a;
     float un[3];
-    int st = irc__query_init(c, p, n, un, &a);
+    int st = irc__query_init(c, p, n, un, &a, 1);
     if (st < 0)
         return st;
     if (!count || (!ids && cap))
@@ -204,7 +230,7 @@ int irc_cache_neighbours(irc_cache *c, const float p[3], const float n[3],
 
 int irc_cache_record(irc_cache *c, uint32_t id, irc_record *out)
 {
-    int st = irc__check_cache(c);
+    int st = irc__check_irr(c);
     if (st < 0)
         return st;
     if (!out)

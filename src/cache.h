@@ -56,6 +56,12 @@ struct irc_cache {
     uint32_t rec_size;       /* 32, 48 or 64 */
     uint32_t off_t, off_r;   /* byte offsets of the gradients, 0 = absent */
     uint32_t strata;         /* M * N */
+    uint32_t slot_samples;   /* samples a scratch slot holds: M N, or 2 M N
+                                in an SH cache (free points: two hemispheres) */
+    uint32_t keep_geom;      /* the sampler keeps directions and hit normals */
+    uint32_t sh_n, sh_ch;    /* SH cache: L*L coefficients, channels; else 0 */
+    uint32_t off_sh, off_shg;/* byte offsets of SH coefficients and gradients,
+                                0 = absent */
     uint32_t node_cap;       /* nodes in the pool (1 + 8 k) */
     size_t slot_bytes;       /* scratch bytes per thread slot */
     size_t total_bytes;      /* bytes of the block in use from the cache on */
@@ -86,17 +92,17 @@ typedef struct irc__rng { uint64_t key; } irc__rng;
 irc__rng irc__rng_for(const float p[3], const float n[3], uint64_t seed);
 int irc__accept_hit(const irc_hit *h, irc__sample *s);
 void irc__direction(const irc__rng *rng, uint32_t j, uint32_t k, uint32_t m,
-                    uint32_t nphi, const double n[3], const double t1[3],
+                    uint32_t nphi, int uniform, const double n[3], const double t1[3],
                     const double t2[3], float dir[3]);
 void irc__rng_pair(const irc__rng *rng, uint32_t i, double *u1, double *u2);
 void irc__frame(const double n[3], double t1[3], double t2[3]);
 int irc__sample_hemisphere(irc_cache *c, unsigned char *slot, const float p[3],
                            const double n[3], const double t1[3],
-                           const double t2[3], irc__sample *out,
-                           uint32_t *used);
+                           const double t2[3], uint32_t first, uint32_t *used);
 
 /* sh.c */
 #define IRC__SH_MAX_BANDS 5
+#define IRC__FREE 0xffffffffu /* irc__rec.n of a free-point SH record */
 void irc__sh_eval(int bands, const double s[3], double *y, double (*grad)[3]);
 
 /* visibility.c */
@@ -122,6 +128,11 @@ int irc__weigh(const irc_cache *c, const irc__rec *r, const float p[3],
                const float n[3], double *w, float ni[3]);
 void irc__extrapolate(const irc_cache *c, const irc__rec *r, const float ni[3],
                       const float p[3], const float n[3], double out[3]);
+
+/* cache.c */
+int irc__check_cache(const irc_cache *c);
+int irc__store(irc_cache *c, const void *packed);
+void irc__mark_used(irc_cache *c, uint32_t id);
 
 /* index.c */
 /* Called with the first record of each visited node's list. */
@@ -149,20 +160,20 @@ typedef struct irc__cross {
     int ok;                /* a silhouette (not a continuous surface) */
 } irc__cross;
 
-/* A thread's scratch slot: the samples, one batch of rays and hits, two
- * weights per row of strata for the translational gradient, and with
- * IRC_FEATURE_VISIBILITY per stratum its direction, hit normal, two edge
- * indices and room for two crossings (plus a spoke and a crossing per
- * column). */
+/* A thread's scratch slot: the samples (slot_samples of them), one batch of
+ * rays and hits, two weights per row of strata for the translational
+ * gradient; with IRC_FEATURE_VISIBILITY or SH each sample's direction and
+ * hit normal; with VISIBILITY per stratum two edge indices and room for two
+ * crossings (plus a spoke and a crossing per column). */
 static inline irc_ray *irc__slot_rays(const irc_cache *c, unsigned char *slot)
 {
-    return (irc_ray *)(void *)(slot + (size_t)c->strata * sizeof(irc__sample));
+    return (irc_ray *)(void *)(slot + (size_t)c->slot_samples * sizeof(irc__sample));
 }
 
 static inline double *irc__slot_rows(const irc_cache *c, const irc__sample *s)
 {
     return (double *)(void *)((unsigned char *)(void *)(irc__sample *)s +
-                              (size_t)c->strata * sizeof(irc__sample) +
+                              (size_t)c->slot_samples * sizeof(irc__sample) +
                               (size_t)c->cfg.max_batch * (sizeof(irc_ray) + sizeof(irc_hit)));
 }
 
@@ -173,12 +184,12 @@ static inline float *irc__slot_dirs(const irc_cache *c, const irc__sample *s)
 
 static inline float *irc__slot_normals(const irc_cache *c, const irc__sample *s)
 {
-    return irc__slot_dirs(c, s) + 3u * c->strata;
+    return irc__slot_dirs(c, s) + 3u * c->slot_samples;
 }
 
 static inline int32_t *irc__slot_edges(const irc_cache *c, const irc__sample *s)
 {
-    return (int32_t *)(void *)(irc__slot_normals(c, s) + 3u * c->strata);
+    return (int32_t *)(void *)(irc__slot_normals(c, s) + 3u * c->slot_samples);
 }
 
 /* Edges: H and V per stratum, then one zenith spoke per column; then the

@@ -12,11 +12,13 @@
 #define IRC__DEF_ACCURACY 0.2f
 #define IRC__DEF_THETA 16u
 #define IRC__DEF_PHI 64u
+#define IRC__DEF_BANDS 3u
+#define IRC__DEF_POWER 2.0f
 
 typedef struct irc__layout {
     size_t lock, scratch, records, next, nodes, used, total;
     size_t slot_bytes;
-    uint32_t rec_size, off_t, off_r, node_cap;
+    uint32_t rec_size, off_t, off_r, off_sh, off_shg, node_cap, samples;
 } irc__layout;
 
 const char *irc_strerror(int status)
@@ -34,7 +36,7 @@ const char *irc_strerror(int status)
     case IRC_ERR_CALLBACK: return "the trace callback reported an invalid result";
     case IRC_ERR_NOSAMPLES: return "too few usable rays for a record";
     case IRC_ERR_BUSY: return "more concurrent computations than cfg.threads";
-    case IRC_ERR_UNSUPPORTED: return "a feature this build does not implement";
+    case IRC_ERR_UNSUPPORTED: return "an unknown feature flag, or a call this cache's features do not serve";
     case IRC_ERR_PORT: return "the port could not initialise its lock";
     case IRC_ERR_RANGE: return "an index is past the end";
     default: return status < 0 ? "error from the trace callback" : "unknown status";
@@ -81,20 +83,34 @@ static int irc__port_ok(const irc_port *p)
 /* Copies cfg with defaults applied and checks every field. */
 static int irc__config_resolve(const irc_config *in, irc_config *out)
 {
-    const uint32_t known = IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION |
-                           IRC_FEATURE_VISIBILITY;
+    const uint32_t irr = IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION |
+                         IRC_FEATURE_VISIBILITY;
+    const uint32_t sh = IRC_FEATURE_SH | IRC_FEATURE_SH_GRADIENT;
     if (!in)
         return IRC_ERR_NULL;
     *out = *in;
     if (!out->trace)
         return IRC_ERR_NULL;
-    if (out->features & IRC_FEATURE_SH)
+    if (out->features & ~(irr | sh))
         return IRC_ERR_UNSUPPORTED;
     /* Visibility gradients are how the translational gradient is made. */
     if (out->features & IRC_FEATURE_VISIBILITY)
         out->features |= IRC_FEATURE_TRANSLATION;
-    if (out->features & ~known)
+    if (out->features & IRC_FEATURE_SH_GRADIENT)
+        out->features |= IRC_FEATURE_SH;
+    if ((out->features & sh) && (out->features & irr))
         return IRC_ERR_CONFIG;
+    if (out->features & IRC_FEATURE_SH) {
+        if (out->sh_bands == 0) out->sh_bands = IRC__DEF_BANDS;
+        if (out->sh_channels == 0) out->sh_channels = 3u;
+        if (out->sh_power == 0.0f) out->sh_power = IRC__DEF_POWER;
+        if (out->sh_bands > IRC_SH_MAX_BANDS ||
+            (out->sh_channels != 1u && out->sh_channels != 3u) ||
+            !(out->sh_power > 0.0f && out->sh_power <= 16.0f))
+            return IRC_ERR_CONFIG;
+    } else if (out->sh_bands || out->sh_channels || out->sh_power != 0.0f) {
+        return IRC_ERR_CONFIG;
+    }
     if (out->accuracy == 0.0f)
         out->accuracy = IRC__DEF_ACCURACY;
     if (!(out->accuracy > 0.0f && out->accuracy <= 10.0f))
@@ -144,9 +160,10 @@ static uint32_t irc__node_cap(uint32_t capacity)
 static void irc__layout_of(const irc_config *cfg, uint32_t capacity,
                            irc__layout *l)
 {
-    size_t at = irc__up(sizeof(irc_cache));
+    size_t at = irc__up(sizeof(irc_cache)), geom = 0;
     l->rec_size = (uint32_t)sizeof(irc__rec);
-    l->off_t = l->off_r = 0;
+    l->off_t = l->off_r = l->off_sh = l->off_shg = 0;
+    l->samples = cfg->strata_theta * cfg->strata_phi;
     if (cfg->features & IRC_FEATURE_TRANSLATION) {
         l->off_t = l->rec_size;
         l->rec_size += (uint32_t)sizeof(irc__grad);
@@ -155,19 +172,26 @@ static void irc__layout_of(const irc_config *cfg, uint32_t capacity,
         l->off_r = l->rec_size;
         l->rec_size += (uint32_t)sizeof(irc__grad);
     }
+    if (cfg->features & IRC_FEATURE_SH) {
+        uint32_t k = cfg->sh_bands * cfg->sh_bands * cfg->sh_channels;
+        l->off_sh = l->rec_size;
+        l->rec_size += k * (uint32_t)sizeof(float);
+        if (cfg->features & IRC_FEATURE_SH_GRADIENT) {
+            l->off_shg = l->rec_size;
+            l->rec_size += 3u * k * (uint32_t)sizeof(float);
+        }
+        l->samples *= 2u;
+        geom = (size_t)l->samples * 6u * sizeof(float);
+    }
+    if (cfg->features & IRC_FEATURE_VISIBILITY)
+        geom = (size_t)l->samples * (6u * sizeof(float) + 2u * sizeof(int32_t) +
+                                     2u * sizeof(irc__cross)) +
+               (size_t)cfg->strata_phi * (sizeof(int32_t) + sizeof(irc__cross));
     l->node_cap = irc__node_cap(capacity);
-    l->slot_bytes = irc__up((size_t)cfg->strata_theta * cfg->strata_phi *
-                                sizeof(irc__sample) +
+    l->slot_bytes = irc__up((size_t)l->samples * sizeof(irc__sample) +
                             (size_t)cfg->max_batch *
                                 (sizeof(irc_ray) + sizeof(irc_hit)) +
-                            (size_t)cfg->strata_theta * 2u * sizeof(double) +
-                            (cfg->features & IRC_FEATURE_VISIBILITY
-                                 ? (size_t)cfg->strata_theta * cfg->strata_phi *
-                                           (6u * sizeof(float) + 2u * sizeof(int32_t) +
-                                            2u * sizeof(irc__cross)) +
-                                       (size_t)cfg->strata_phi *
-                                           (sizeof(int32_t) + sizeof(irc__cross))
-                                 : 0u));
+                            (size_t)cfg->strata_theta * 2u * sizeof(double) + geom);
     l->lock = at;
     at += irc__up(cfg->port->lock_size ? cfg->port->lock_size : 1);
     l->scratch = at;
@@ -197,7 +221,7 @@ int irc_footprint(const irc_config *cfg, uint32_t max_records, size_t *bytes)
     if (max_records == 0 || max_records > IRC_MAX_RECORDS)
         return IRC_ERR_CONFIG;
     /* Sizes are summed in size_t: refuse what would not fit it. */
-    if ((double)max_records * 128.0 + (double)r.threads * 8.0 * IRC_MAX_STRATA * 16.0 >
+    if ((double)max_records * 2048.0 + (double)r.threads * IRC_MAX_STRATA * 512.0 >
         (double)SIZE_MAX / 2.0)
         return IRC_ERR_CONFIG;
     irc__layout_of(&r, max_records, &l);
@@ -234,7 +258,15 @@ int irc_init(const irc_config *cfg, uint32_t max_records, irc_cache **out)
     c->rec_size = l.rec_size;
     c->off_t = l.off_t;
     c->off_r = l.off_r;
+    c->off_sh = l.off_sh;
+    c->off_shg = l.off_shg;
     c->strata = r.strata_theta * r.strata_phi;
+    c->slot_samples = l.samples;
+    c->keep_geom = (r.features & (IRC_FEATURE_VISIBILITY | IRC_FEATURE_SH)) != 0;
+    if (r.features & IRC_FEATURE_SH) {
+        c->sh_n = r.sh_bands * r.sh_bands;
+        c->sh_ch = r.sh_channels;
+    }
     c->node_cap = l.node_cap;
     c->slot_bytes = l.slot_bytes;
     c->total_bytes = l.total;

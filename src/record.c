@@ -241,13 +241,15 @@ int irc__sample_at(irc_cache *c, const float p[3], const float n[3], const void 
         return IRC_ERR_NULL;
     if (c->magic != IRC__MAGIC)
         return IRC_ERR_CONFIG;
+    if (c->sh_n)
+        return IRC_ERR_UNSUPPORTED;
     if ((st = irc__check_vec(p)) < 0 || (st = irc__check_normal(n, un)) < 0)
         return st;
     if ((st = irc__slot_claim(c, t)) < 0)
         return st;
     slot = c->scratch + (size_t)*t * c->slot_bytes;
     irc__frame(un, t1, t2);
-    st = irc__sample_hemisphere(c, slot, p, un, t1, t2, (irc__sample *)(void *)slot, &used);
+    st = irc__sample_hemisphere(c, slot, p, un, t1, t2, 0, &used);
     if (st < 0)
         irc__slot_release(c, *t);
     return st;
@@ -298,7 +300,8 @@ uint32_t irc__oct_encode(const double n[3])
     }
     qx = (uint32_t)floor((x * 0.5 + 0.5) * 65535.0 + 0.5);
     qy = (uint32_t)floor((y * 0.5 + 0.5) * 65535.0 + 0.5);
-    return qx | qy << 16;
+    /* All ones is IRC__FREE; its neighbour is as good a normal. */
+    return (qx | qy << 16) == IRC__FREE ? IRC__FREE - 1u : qx | qy << 16;
 }
 
 /* Decoded in float: lookups decode every accepted record's normal. */

@@ -97,18 +97,26 @@ int irc__accept_hit(const irc_hit *h, irc__sample *s)
     return 1;
 }
 
-/* In float: the ray is float, and sincosf costs half of sincos. */
+/* In float: the ray is float, and sincosf costs half of sincos.  Rows are
+ * Ward's cosine-weighted sin^2(theta) = (j + u)/M, or for SH records equal
+ * solid angle, cos(theta) = 1 - (j + u)/M. */
 void irc__direction(const irc__rng *rng, uint32_t j, uint32_t k,
-                           uint32_t m, uint32_t nphi, const double n[3],
+                           uint32_t m, uint32_t nphi, int uniform, const double n[3],
                            const double t1[3], const double t2[3], float dir[3])
 {
     double u1, u2;
     float s2, st, ct, phi, cp, sp;
     int i;
     irc__rng_pair(rng, j * nphi + k, &u1, &u2);
-    s2 = (float)(((double)j + u1) / (double)m);
-    st = IRC_SQRTF(s2);
-    ct = IRC_SQRTF(1.0f - s2);
+    if (uniform) {
+        ct = (float)(1.0 - ((double)j + u1) / (double)m);
+        s2 = (1.0f - ct) * (1.0f + ct);
+        st = IRC_SQRTF(s2);
+    } else {
+        s2 = (float)(((double)j + u1) / (double)m);
+        st = IRC_SQRTF(s2);
+        ct = IRC_SQRTF(1.0f - s2);
+    }
     phi = (float)(2.0 * IRC_PI * ((double)k + u2) / (double)nphi);
     cp = IRC_COSF(phi);
     sp = IRC_SINF(phi);
@@ -116,8 +124,8 @@ void irc__direction(const irc__rng *rng, uint32_t j, uint32_t k,
         dir[i] = st * (cp * (float)t1[i] + sp * (float)t2[i]) + ct * (float)n[i];
 }
 
-/* Visibility gradients need each stratum's direction and the unit normal
- * of what it hit. */
+/* Visibility gradients and SH records need each stratum's direction and the
+ * unit normal of what it hit (left 0 for escaped rays). */
 static void irc__keep_geometry(const irc_cache *c, const irc__sample *s, uint32_t i,
                                const float dir[3], const irc_hit *h)
 {
@@ -135,14 +143,16 @@ static void irc__keep_geometry(const irc_cache *c, const irc__sample *s, uint32_
     }
 }
 
-/* Fills out[j * N + k] for every stratum, casting rays in batches of
- * cfg.max_batch.  *used gets the number of usable samples.  Returns IRC_OK
- * or a negative code (the callback's own, passed through). */
+/* Fills the slot's samples first + j * N + k for every stratum, casting
+ * rays in batches of cfg.max_batch.  *used gets the number of usable
+ * samples.  Returns IRC_OK or a negative code (the callback's own, passed
+ * through). */
 int irc__sample_hemisphere(irc_cache *c, unsigned char *slot, const float p[3],
                            const double n[3], const double t1[3],
-                           const double t2[3], irc__sample *out,
-                           uint32_t *used)
+                           const double t2[3], uint32_t first, uint32_t *used)
 {
+    irc__sample *base = (irc__sample *)(void *)slot, *out = base + first;
+    const int uniform = (c->cfg.features & IRC_FEATURE_SH) != 0;
     const uint32_t m = c->cfg.strata_theta, nphi = c->cfg.strata_phi;
     const uint32_t total = m * nphi, batch = c->cfg.max_batch;
     irc_ray *rays = irc__slot_rays(c, slot);
@@ -165,7 +175,8 @@ int irc__sample_hemisphere(irc_cache *c, unsigned char *slot, const float p[3],
             rays[i].org[0] = p[0];
             rays[i].org[1] = p[1];
             rays[i].org[2] = p[2];
-            irc__direction(&rng, s / nphi, s % nphi, m, nphi, n, t1, t2, rays[i].dir);
+            irc__direction(&rng, s / nphi, s % nphi, m, nphi, uniform, n, t1, t2,
+                           rays[i].dir);
             hits[i].status = -1;
         }
         args.count = cnt;
@@ -179,8 +190,8 @@ int irc__sample_hemisphere(irc_cache *c, unsigned char *slot, const float p[3],
             if (st < 0)
                 return st;
             good += (uint32_t)st;
-            if (c->cfg.features & IRC_FEATURE_VISIBILITY)
-                irc__keep_geometry(c, out, s0 + i, rays[i].dir, &hits[i]);
+            if (c->keep_geom)
+                irc__keep_geometry(c, base, first + s0 + i, rays[i].dir, &hits[i]);
         }
     }
     *used = good;

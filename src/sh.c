@@ -8,102 +8,89 @@
  * Q_l^m Im (x+iy)^m, K_lm = sqrt((2l+1)/(4 pi) (l-m)!/(l+m)!), with the
  * Condon-Shortley phase; coefficient index l^2 + l + m.
  *
- * Every quantity is carried with its derivatives along x, y and z (forward
- * differentiation of the recurrence), which gives the gradient of the
- * polynomial that equals y on the sphere; the gradient of y(s/|s|) is its
- * part tangent to the sphere over |s|, whichever polynomial that is.
+ * Differentiating the recurrences gives the gradient of the polynomial
+ * that equals y on the sphere; the gradient of y(s/|s|) is its part tangent
+ * to the sphere over |s|, whichever polynomial that is.
  */
 #include "cache.h"
 
-typedef struct irc__dual {
-    double v, d[3]; /* value and d/dx, d/dy, d/dz */
-} irc__dual;
+/* K_lm = sqrt((2l+1)/(4 pi) (l-m)!/(l+m)!), times sqrt2 for m > 0, for
+ * l < 5 (a wrong digit fails test_sh's orthonormality check). */
+static const double irc__sh_k[IRC__SH_MAX_BANDS][IRC__SH_MAX_BANDS] = {
+    {0.28209479177387814},
+    {0.48860251190291992, 0.48860251190291998},
+    {0.63078313050504009, 0.36418281019735976, 0.18209140509867988},
+    {0.7463526651802308, 0.3046971996429772, 0.096353714754685155, 0.039336239328442907},
+    {0.84628437532163447, 0.26761861742291571, 0.063078313050504001,
+     0.016858388283618388, 0.0059603403376112026}};
 
-static irc__dual irc__dmul(irc__dual a, irc__dual b)
-{
-    irc__dual r;
-    int k;
-    r.v = a.v * b.v;
-    for (k = 0; k < 3; k++)
-        r.d[k] = a.d[k] * b.v + a.v * b.d[k];
-    return r;
-}
+/* Q_m^m = (-1)^m (2m-1)!! */
+static const double irc__sh_qmm[IRC__SH_MAX_BANDS] = {1.0, -1.0, 3.0, -15.0, 105.0};
 
-static irc__dual irc__dlin(double a, irc__dual x, double b, irc__dual y)
+/* Q_l^m(z) for l, m < bands and, when dq is not NULL, dQ_l^m/dz: the
+ * recurrence Q_m+1^m = (2m+1) z Q_m^m, (l-m) Q_l^m = (2l-1) z Q_l-1^m -
+ * (l+m-1) Q_l-2^m, differentiated term by term. */
+static void irc__sh_legendre(int bands, double z, double q[][IRC__SH_MAX_BANDS],
+                             double dq[][IRC__SH_MAX_BANDS])
 {
-    irc__dual r;
-    int k;
-    r.v = a * x.v + b * y.v;
-    for (k = 0; k < 3; k++)
-        r.d[k] = a * x.d[k] + b * y.d[k];
-    return r;
-}
-
-static irc__dual irc__dconst(double v)
-{
-    irc__dual r;
-    r.v = v;
-    r.d[0] = r.d[1] = r.d[2] = 0.0;
-    return r;
-}
-
-/* K_lm for l < 5: sqrt((2l+1)/(4 pi) (l-m)!/(l+m)!). */
-static double irc__sh_k(int l, int m)
-{
-    static const double fact[9] = {1, 1, 2, 6, 24, 120, 720, 5040, 40320};
-    return IRC_SQRT((2.0 * l + 1.0) / (4.0 * IRC_PI) * fact[l - m] / fact[l + m]);
+    int l, m;
+    for (m = 0; m < bands; m++) {
+        q[m][m] = irc__sh_qmm[m];
+        if (dq)
+            dq[m][m] = 0.0;
+        if (m + 1 < bands) {
+            q[m + 1][m] = (2.0 * m + 1.0) * z * q[m][m];
+            if (dq)
+                dq[m + 1][m] = (2.0 * m + 1.0) * q[m][m];
+        }
+        for (l = m + 2; l < bands; l++) {
+            q[l][m] = ((2.0 * l - 1.0) * z * q[l - 1][m] - (l + m - 1.0) * q[l - 2][m]) /
+                      (l - m);
+            if (dq)
+                dq[l][m] = ((2.0 * l - 1.0) * (q[l - 1][m] + z * dq[l - 1][m]) -
+                            (l + m - 1.0) * dq[l - 2][m]) / (l - m);
+        }
+    }
 }
 
 /* y[i] = y_i(s/|s|) for the L*L basis functions and, when grad is not
  * NULL, grad[i] = the gradient of y_i(s/|s|) with respect to s.  s must be
- * finite and nonzero; 1 <= L <= IRC__SH_MAX_BANDS. */
+ * finite and nonzero; 1 <= L <= IRC__SH_MAX_BANDS.  The polynomial
+ * K Q_l^m(z) C_m(x, y), C_m + i S_m = (x + i y)^m, has the gradient
+ * K (Q C_m-1 m, -Q S_m-1 m, Q' C_m) (and for S_m: (m S_m-1, m C_m-1)); the
+ * gradient on the sphere is its tangent part over |s|. */
 void irc__sh_eval(int bands, const double s[3], double *y, double (*grad)[3])
 {
-    irc__dual x, yy, z, q[IRC__SH_MAX_BANDS][IRC__SH_MAX_BANDS], cm, sm;
-    double len = IRC_SQRT(irc__dot3d(s, s)), u[3];
+    double q[IRC__SH_MAX_BANDS][IRC__SH_MAX_BANDS], dq[IRC__SH_MAX_BANDS][IRC__SH_MAX_BANDS];
+    double len = IRC_SQRT(irc__dot3d(s, s)), u[3], cm = 1.0, sm = 0.0, cp = 0.0, sp = 0.0;
     int l, m, k;
     for (k = 0; k < 3; k++)
         u[k] = s[k] / len;
-    x = irc__dconst(u[0]);
-    yy = irc__dconst(u[1]);
-    z = irc__dconst(u[2]);
-    x.d[0] = yy.d[1] = z.d[2] = 1.0;
-    /* Q_m^m = (-1)^m (2m-1)!!, Q_m+1^m = (2m+1) z Q_m^m, then the
-     * three-term recurrence in l. */
-    for (m = 0; m < bands; m++) {
-        double dfact = 1.0;
-        for (k = 1; k < 2 * m; k += 2)
-            dfact *= k;
-        q[m][m] = irc__dconst(m & 1 ? -dfact : dfact);
-        if (m + 1 < bands)
-            q[m + 1][m] = irc__dmul(irc__dconst(2.0 * m + 1.0), irc__dmul(z, q[m][m]));
-        for (l = m + 2; l < bands; l++)
-            q[l][m] = irc__dlin((2.0 * l - 1.0) / (l - m), irc__dmul(z, q[l - 1][m]),
-                                -(l + m - 1.0) / (l - m), q[l - 2][m]);
-    }
-    cm = irc__dconst(1.0); /* Re, Im of (x + i y)^m */
-    sm = irc__dconst(0.0);
+    irc__sh_legendre(bands, u[2], q, grad ? dq : NULL);
     for (m = 0; m < bands; m++) {
         for (l = m; l < bands; l++) {
-            double kk = m ? IRC_SQRT(2.0) * irc__sh_k(l, m) : irc__sh_k(l, 0);
-            irc__dual a = irc__dmul(q[l][m], cm), b = irc__dmul(q[l][m], sm);
-            int ip = l * l + l + m, in = l * l + l - m;
-            y[ip] = kk * a.v;
-            if (grad)
-                for (k = 0; k < 3; k++)
-                    grad[ip][k] = kk * a.d[k];
+            const double kq = irc__sh_k[l][m] * q[l][m];
+            const int ip = l * l + l + m, in = l * l + l - m;
+            double kd;
+            y[ip] = kq * cm;
+            if (m)
+                y[in] = kq * sm;
+            if (!grad)
+                continue;
+            kd = irc__sh_k[l][m] * dq[l][m];
+            grad[ip][0] = kq * m * cp;
+            grad[ip][1] = -kq * m * sp;
+            grad[ip][2] = kd * cm;
             if (m) {
-                y[in] = kk * b.v;
-                if (grad)
-                    for (k = 0; k < 3; k++)
-                        grad[in][k] = kk * b.d[k];
+                grad[in][0] = kq * m * sp;
+                grad[in][1] = kq * m * cp;
+                grad[in][2] = kd * sm;
             }
         }
-        {
-            irc__dual c2 = irc__dlin(1.0, irc__dmul(x, cm), -1.0, irc__dmul(yy, sm));
-            sm = irc__dlin(1.0, irc__dmul(x, sm), 1.0, irc__dmul(yy, cm));
-            cm = c2;
-        }
+        cp = cm; /* C_m-1, S_m-1 for the next m */
+        sp = sm;
+        cm = u[0] * cp - u[1] * sp;
+        sm = u[0] * sp + u[1] * cp;
     }
     if (!grad)
         return;
@@ -112,4 +99,64 @@ void irc__sh_eval(int bands, const double s[3], double *y, double (*grad)[3])
         for (k = 0; k < 3; k++)
             grad[l][k] = (grad[l][k] - gn * u[k]) / len;
     }
+}
+
+/* A_l(s) = 2 pi integral_0^1 z^s P_l(z) dz from the coefficients of P_l,
+ * the zonal convolution of a lobe max(0, z)^s (Ramamoorthi-Hanrahan 2001,
+ * for s = 1: pi, 2 pi/3, pi/4, 0, -pi/24). */
+static double irc__sh_zonal(int l, double s)
+{
+    static const double p[IRC__SH_MAX_BANDS][IRC__SH_MAX_BANDS] = {
+        {1, 0, 0, 0, 0},
+        {0, 1, 0, 0, 0},
+        {-0.5, 0, 1.5, 0, 0},
+        {0, -1.5, 0, 2.5, 0},
+        {0.375, 0, -3.75, 0, 4.375}};
+    double sum = 0.0;
+    int k;
+    for (k = 0; k <= l; k++)
+        sum += p[l][k] / (s + k + 1.0);
+    return 2.0 * IRC_PI * sum;
+}
+
+static int irc__sh_valid(const irc_sh *sh, const float r[3], const float *rgb,
+                         double u[3])
+{
+    uint32_t ch, i;
+    if (!sh || !r || !rgb)
+        return IRC_ERR_NULL;
+    if (sh->bands < 1 || sh->bands > IRC__SH_MAX_BANDS ||
+        (sh->channels != 1 && sh->channels != 3))
+        return IRC_ERR_RANGE;
+    for (ch = 0; ch < sh->channels; ch++)
+        for (i = 0; i < sh->bands * sh->bands; i++)
+            if (!irc__finite(sh->c[ch][i]))
+                return IRC_ERR_NONFINITE;
+    return irc__check_normal(r, u);
+}
+
+int irc_sh_glossy(const irc_sh *sh, const float r[3], float s, float rgb[3])
+{
+    double u[3], y[IRC__SH_MAX_BANDS * IRC__SH_MAX_BANDS], sum[3] = {0, 0, 0};
+    uint32_t ch;
+    int st = irc__sh_valid(sh, r, rgb, u), l, m;
+    if (st < 0)
+        return st;
+    if (!(s >= 0.0f && s <= 1e4f))
+        return IRC_ERR_RANGE;
+    irc__sh_eval((int)sh->bands, u, y, NULL);
+    for (l = 0; l < (int)sh->bands; l++) {
+        double a = irc__sh_zonal(l, s);
+        for (m = -l; m <= l; m++)
+            for (ch = 0; ch < sh->channels; ch++)
+                sum[ch] += a * sh->c[ch][l * l + l + m] * y[l * l + l + m];
+    }
+    for (ch = 0; ch < 3; ch++)
+        rgb[ch] = (float)sum[sh->channels == 3 ? ch : 0];
+    return IRC_OK;
+}
+
+int irc_sh_irradiance(const irc_sh *sh, const float n[3], float rgb[3])
+{
+    return irc_sh_glossy(sh, n, 1.0f, rgb);
 }

@@ -24,6 +24,7 @@
 #define IRC_SIN(x) sin(x)
 #define IRC_COS(x) cos(x)
 #define IRC_ASIN(x) asin(x)
+#define IRC_ACOS(x) acos(x)
 #define IRC_COSF(x) cosf(x)
 #define IRC_SINF(x) sinf(x)
 #endif

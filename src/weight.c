@@ -21,7 +21,7 @@ int irc__weigh(const irc_cache *c, const irc__rec *r, const float p[3],
     double dx = (double)p[0] - r->p[0], dy = (double)p[1] - r->p[1],
            dz = (double)p[2] - r->p[2];
     double d2 = dx * dx + dy * dy + dz * dz, nn, e;
-    if (d2 >= a * a * rad * rad)
+    if (d2 >= a * a * rad * rad || r->n == IRC__FREE)
         return 0;
     irc__oct_decode(r->n, ni);
     nn = (double)n[0] * ni[0] + (double)n[1] * ni[1] + (double)n[2] * ni[2];
