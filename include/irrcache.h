@@ -76,9 +76,10 @@ typedef enum irc_status {
                                  usable (the host reported them as failed) */
     IRC_ERR_BUSY = -9,        /* more concurrent record computations than
                                  cfg.threads scratch slots */
-    IRC_ERR_UNSUPPORTED = -10,/* a feature flag this build does not know, or a
-                                 call the cache's features do not serve (an
-                                 irradiance call on an SH cache, or back) */
+    IRC_ERR_UNSUPPORTED = -10,/* a call the cache's features do not serve (an
+                                 irradiance call on an SH cache, an SH call on
+                                 an irradiance cache, occlusion without
+                                 VISIBILITY) */
     IRC_ERR_PORT = -11,       /* the port failed to initialise its lock */
     IRC_ERR_RANGE = -12,      /* an index argument is past the end */
     IRC_ERR_LAST = -12        /* the most negative code the library returns */

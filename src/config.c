@@ -36,7 +36,7 @@ const char *irc_strerror(int status)
     case IRC_ERR_CALLBACK: return "the trace callback reported an invalid result";
     case IRC_ERR_NOSAMPLES: return "too few usable rays for a record";
     case IRC_ERR_BUSY: return "more concurrent computations than cfg.threads";
-    case IRC_ERR_UNSUPPORTED: return "an unknown feature flag, or a call this cache's features do not serve";
+    case IRC_ERR_UNSUPPORTED: return "a call this cache's features do not serve";
     case IRC_ERR_PORT: return "the port could not initialise its lock";
     case IRC_ERR_RANGE: return "an index is past the end";
     default: return status < 0 ? "error from the trace callback" : "unknown status";
@@ -92,7 +92,7 @@ static int irc__config_resolve(const irc_config *in, irc_config *out)
     if (!out->trace)
         return IRC_ERR_NULL;
     if (out->features & ~(irr | sh))
-        return IRC_ERR_UNSUPPORTED;
+        return IRC_ERR_CONFIG;
     /* Visibility gradients are how the translational gradient is made. */
     if (out->features & IRC_FEATURE_VISIBILITY)
         out->features |= IRC_FEATURE_TRANSLATION;

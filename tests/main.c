@@ -12,7 +12,7 @@
     X(test_threads_stress) X(test_threads_determinism)                 \
     X(test_visibility_sphere) X(test_visibility_box) X(test_visibility_open_sky) \
     X(test_occlusion_sphere) X(test_sh_orthonormal) X(test_sh_closed_forms)  \
-    X(test_sh_gradient)
+    X(test_sh_gradient) X(test_sh_cap_closed_form) X(test_sh_emitter_gradient)
 
 TESTS(TEST_DECL)
 

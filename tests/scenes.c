@@ -96,6 +96,17 @@ static void inject(tscene *s, irc_hit *h)
     }
 }
 
+double scene_sky(const tscene *s, const double d[3], int c)
+{
+    double v = s->sky_a[c] + s->sky_b[c] * d[2];
+    if (s->lobe_l[c] != 0.0f) {
+        double t = d[0] * s->lobe_dir[0] + d[1] * s->lobe_dir[1] + d[2] * s->lobe_dir[2];
+        if (t > 0.0)
+            v += s->lobe_l[c] * pow(t, s->lobe_k);
+    }
+    return v;
+}
+
 int scene_trace(const irc_trace_args *a)
 {
     tscene *s = (tscene *)a->context;
@@ -148,8 +159,10 @@ int scene_trace(const irc_trace_args *a)
                 h->radiance[c] = s->plane_l[c];
         } else {
             h->status = IRC_RAY_ESCAPED;
+            double dd[3];
+            dd[0] = d[0]; dd[1] = d[1]; dd[2] = d[2];
             for (c = 0; c < 3; c++)
-                h->radiance[c] = s->sky_a[c] + s->sky_b[c] * d[2];
+                h->radiance[c] = (float)scene_sky(s, dd, c);
         }
     next:
         /* Injection counts calls: single-threaded tests only. */

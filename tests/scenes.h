@@ -12,6 +12,10 @@
 typedef struct tscene {
     /* Sky radiance L(w) = sky_a + sky_b * w.z per channel. */
     float sky_a[3], sky_b[3];
+    /* Optional sky lobe, + lobe_l * max(0, w.lobe_dir)^lobe_k (a soft sun):
+     * a sky that no few SH bands hold exactly. */
+    float lobe_l[3];
+    double lobe_dir[3], lobe_k;
     /* Optional black sphere (reflects nothing). */
     int has_sphere;
     double centre[3], radius;
@@ -40,6 +44,8 @@ enum {
 };
 
 void scene_init(tscene *s);
+/* The sky's radiance along the unit direction d, channel c. */
+double scene_sky(const tscene *s, const double d[3], int c);
 /* The tests' two oracle scenes, under a uniform sky of radiance 1: a black
  * sphere of radius 1 centred at (0, 0, 2) (sphere_plane_e), and a black box
  * [-0.5, 1.1] x [-0.3, 0.7] x [1.0, 1.8] (box_plane_e). */

@@ -20,7 +20,7 @@ TEST(test_config_checks)
 {
     irc_config cfg;
     size_t bytes;
-    struct { const char *what; int want; } cases[20];
+    struct { const char *what; int want; } cases[48];
     int i, n = 0;
     sky_init();
 #define CASE(field_set, code)                                               \
@@ -33,7 +33,19 @@ TEST(test_config_checks)
         n++;                                                                \
     } while (0)
     CASE(cfg.trace = NULL, IRC_ERR_NULL);
-    CASE(cfg.features = IRC_FEATURE_SH, IRC_ERR_UNSUPPORTED);
+    CASE(cfg.features = IRC_FEATURE_SH, IRC_OK);
+    CASE(cfg.features = IRC_FEATURE_SH_GRADIENT, IRC_OK);
+    CASE(cfg.features = IRC_FEATURE_SH | IRC_FEATURE_TRANSLATION, IRC_ERR_CONFIG);
+    CASE(cfg.features = IRC_FEATURE_SH_GRADIENT | IRC_FEATURE_ROTATION, IRC_ERR_CONFIG);
+    CASE((cfg.features = IRC_FEATURE_SH, cfg.sh_bands = 6), IRC_ERR_CONFIG);
+    CASE((cfg.features = IRC_FEATURE_SH, cfg.sh_bands = 5), IRC_OK);
+    CASE((cfg.features = IRC_FEATURE_SH, cfg.sh_channels = 2), IRC_ERR_CONFIG);
+    CASE((cfg.features = IRC_FEATURE_SH, cfg.sh_channels = 1), IRC_OK);
+    CASE((cfg.features = IRC_FEATURE_SH, cfg.sh_power = -1.0f), IRC_ERR_CONFIG);
+    CASE((cfg.features = IRC_FEATURE_SH, cfg.sh_power = NAN), IRC_ERR_CONFIG);
+    CASE((cfg.features = IRC_FEATURE_SH, cfg.sh_power = 17.0f), IRC_ERR_CONFIG);
+    CASE(cfg.sh_bands = 3, IRC_ERR_CONFIG);
+    CASE(cfg.sh_power = 2.0f, IRC_ERR_CONFIG);
     CASE(cfg.features = IRC_FEATURE_VISIBILITY, IRC_OK);
     CASE(cfg.features = 1u << 20, IRC_ERR_CONFIG);
     CASE(cfg.accuracy = -1.0f, IRC_ERR_CONFIG);
@@ -42,7 +54,8 @@ TEST(test_config_checks)
     CASE(cfg.min_radius = -1.0f, IRC_ERR_CONFIG);
     CASE((cfg.min_radius = 2.0f, cfg.max_radius = 1.0f), IRC_ERR_CONFIG);
     CASE(cfg.strata_theta = 2000, IRC_ERR_CONFIG);
-    CASE((cfg.strata_theta = 1024, cfg.strata_phi = 1024), IRC_ERR_CONFIG);
+    CASE((cfg.strata_theta = 1024, cfg.strata_phi = 4097), IRC_ERR_CONFIG);
+    CASE((cfg.strata_theta = 1024, cfg.strata_phi = 4096), IRC_OK);
     CASE(cfg.max_batch = IRC_MAX_BATCH + 1, IRC_ERR_CONFIG);
     CASE(cfg.threads = IRC_MAX_THREADS + 1, IRC_ERR_CONFIG);
     CASE(cfg.evict = 7, IRC_ERR_CONFIG);
