@@ -21,8 +21,11 @@
  *   - Errors: every call returns an int: IRC_OK (0), a positive informational
  *     status (IRC_MISS, IRC_NOT_STORED), or a negative irc_status code.  A
  *     call that returns a negative code has left the cache's block byte for
- *     byte as it was.  A negative value returned by the host's trace callback
- *     is passed through unchanged, so keep host codes below IRC_ERR_LAST.
+ *     byte as it was, but for the port's lock object (a call may take and
+ *     release the lock before it fails; glibc's rwlock keeps phase bits
+ *     that a lock-unlock pair need not restore).  A negative value returned
+ *     by the host's trace callback is passed through unchanged, so keep host
+ *     codes below IRC_ERR_LAST.
  *
  * Quick start (see README.md for a complete host):
  *

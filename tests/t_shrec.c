@@ -179,3 +179,402 @@ TEST(test_sh_emitter_gradient)
         CHECK(eg < 0.01, "D/r %g gradient %.4f", cases[i].dr, eg);
     }
 }
+
+/* A sky with a soft sun, projected by the test's own quadrature (Gauss-
+ * Legendre would do; a fine midpoint grid in (cos theta, phi) is plenty). */
+static void sky_scene(tscene *s)
+{
+    double ld[3] = {0.5, -0.3, 0.81};
+    double len = sqrt(ld[0] * ld[0] + ld[1] * ld[1] + ld[2] * ld[2]);
+    int k;
+    scene_init(s);
+    for (k = 0; k < 3; k++) {
+        s->sky_a[k] = 0.4f + 0.1f * k;
+        s->sky_b[k] = 0.3f;
+        s->lobe_l[k] = 3.0f - k;
+        s->lobe_dir[k] = ld[k] / len;
+    }
+    s->lobe_k = 6.0;
+}
+
+static void sky_project(const tscene *s, int bands, double c[3][NC])
+{
+    const int nz = 1000, np = 1000;
+    double y[NC];
+    int i, j, k, ch;
+    memset(c, 0, sizeof(double) * 3 * NC);
+    for (i = 0; i < nz; i++) {
+        double z = -1.0 + 2.0 * (i + 0.5) / nz, st = sqrt(1.0 - z * z);
+        for (j = 0; j < np; j++) {
+            double ph = 2.0 * TPI * (j + 0.5) / np, w[3] = {st * cos(ph), st * sin(ph), z};
+            irc__sh_eval(bands, w, y, NULL);
+            for (ch = 0; ch < 3; ch++) {
+                double l = scene_sky(s, w, ch) * (4.0 * TPI / ((double)nz * np));
+                for (k = 0; k < bands * bands; k++)
+                    c[ch][k] += l * y[k];
+            }
+        }
+    }
+}
+
+/* Exact irradiance about n by quadrature over the hemisphere. */
+static double sky_irradiance(const tscene *s, const double n[3], int ch)
+{
+    const int nz = 600, np = 600;
+    double t1[3], t2[3], e = 0.0;
+    int i, j, k;
+    irc__frame(n, t1, t2);
+    for (i = 0; i < nz; i++) {
+        double z = (i + 0.5) / nz, st = sqrt(1.0 - z * z);
+        for (j = 0; j < np; j++) {
+            double ph = 2.0 * TPI * (j + 0.5) / np, w[3];
+            for (k = 0; k < 3; k++)
+                w[k] = st * (cos(ph) * t1[k] + sin(ph) * t2[k]) + z * n[k];
+            e += scene_sky(s, w, ch) * z;
+        }
+    }
+    return e * 2.0 * TPI / ((double)nz * np);
+}
+
+/* Irradiance from an L = 3 free-point record equals the clamped-cosine
+ * convolution (A_l = pi, 2 pi/3, pi/4 from Ramamoorthi-Hanrahan, typed
+ * here) of the sky projected to L = 3 by quadrature, within 1e-3, for 200
+ * normals; and the band-limit error against the exact integral is
+ * reported. */
+TEST(test_sh_irradiance_convolution)
+{
+    static const double al[3] = {TPI, 2.0 * TPI / 3.0, TPI / 4.0};
+    double cq[3][NC], worst = 0.0, bl_sum = 0.0, bl_max = 0.0;
+    unsigned long long rs = 7;
+    float p[3] = {0, 0, 0};
+    tscene s;
+    irc_config cfg;
+    irc_cache *c;
+    irc_sh rec;
+    int i, k, ch, count = 0;
+    sky_scene(&s);
+    sky_project(&s, 3, cq);
+    cfg = sh_config(&s, IRC_FEATURE_SH, 128, 512, 3);
+    c = block_cache(&cfg, 4, 0);
+    CHECK(c && irc_sh_compute(c, p, NULL, &rec) == IRC_OK, "compute");
+    for (i = 0; i < 200; i++) {
+        double n[3], y[NC], len;
+        float nf[3], rgb[3];
+        do {
+            for (k = 0; k < 3; k++)
+                n[k] = 2.0 * xrand(&rs) - 1.0;
+            len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        } while (len > 1.0 || len < 0.1);
+        for (k = 0; k < 3; k++)
+            nf[k] = (float)(n[k] /= len);
+        CHECK(irc_sh_irradiance(&rec, nf, rgb) == IRC_OK, "irradiance");
+        irc__sh_eval(3, n, y, NULL);
+        for (ch = 0; ch < 3; ch++) {
+            double want = 0.0, exact;
+            for (k = 0; k < 9; k++)
+                want += al[k < 1 ? 0 : k < 4 ? 1 : 2] * cq[ch][k] * y[k];
+            worst = fmax(worst, fabs(rgb[ch] - want) / want);
+            if (i < 40) { /* the exact integral is slow: 40 normals */
+                exact = sky_irradiance(&s, n, ch);
+                bl_sum += fabs(want - exact) / exact;
+                bl_max = fmax(bl_max, fabs(want - exact) / exact);
+                count++;
+            }
+        }
+    }
+    printf("  L=3 record vs convolution of the quadrature projection: worst %.2e\n", worst);
+    printf("  band-limit error of L=3 irradiance, this sky (lobe cos^6): mean %.2f%%, "
+           "worst %.2f%% over %d normal-channels\n", 100 * bl_sum / count, 100 * bl_max, count);
+    CHECK(worst < 1e-3, "convolution %.3e", worst);
+    block_free(&cfg);
+}
+
+/* irc_sh_glossy on a record holding one basis function y_lm equals
+ * A_l(s) y_lm(r), A_l(s) = 2 pi integral_0^1 z^s P_l(z) dz by Simpson's
+ * rule here (the library uses moments of P_l's coefficients). */
+TEST(test_sh_glossy_zonal)
+{
+    static const float expo[] = {0.0f, 1.0f, 7.5f, 100.0f};
+    irc_sh sh;
+    double worst = 0.0;
+    int e, l, m, i;
+    for (e = 0; e < 4; e++)
+        for (l = 0; l < 5; l++) {
+            const int steps = 20000;
+            double al = 0.0, pl[8];
+            for (i = 0; i <= steps; i++) {
+                double z = (double)i / steps, f;
+                legendre(z, 5, pl);
+                f = pow(z, expo[e]) * pl[l];
+                al += f * (i == 0 || i == steps ? 1.0 : i % 2 ? 4.0 : 2.0);
+            }
+            al *= 2.0 * TPI / (3.0 * steps);
+            for (m = -l; m <= l; m++) {
+                float r[3] = {0.3f, -0.5f, 0.81f}, rgb[3];
+                double rd[3] = {0.3, -0.5, 0.81}, y[NC], len = sqrt(0.09 + 0.25 + 0.6561);
+                memset(&sh, 0, sizeof sh);
+                sh.bands = 5;
+                sh.channels = 1;
+                sh.c[0][l * l + l + m] = 1.0f;
+                for (i = 0; i < 3; i++)
+                    rd[i] /= len;
+                irc__sh_eval(5, rd, y, NULL);
+                CHECK(irc_sh_glossy(&sh, r, expo[e], rgb) == IRC_OK, "glossy");
+                worst = fmax(worst, fabs(rgb[0] - al * y[l * l + l + m]));
+                CHECK(rgb[1] == rgb[0] && rgb[2] == rgb[0], "one channel copied");
+            }
+        }
+    printf("  zonal lobes s = 0, 1, 7.5, 100, bands 0-4: worst %.2e\n", worst);
+    CHECK(worst < 1e-6, "zonal %.3e", worst);
+    memset(&sh, 0, sizeof sh);
+    sh.bands = 3;
+    sh.channels = 3;
+    {
+        float n[3] = {0, 0, 1}, z[3] = {0, 0, 0}, rgb[3];
+        CHECK(irc_sh_glossy(&sh, n, -1.0f, rgb) == IRC_ERR_RANGE, "negative s");
+        CHECK(irc_sh_glossy(&sh, n, NAN, rgb) == IRC_ERR_RANGE, "NaN s");
+        CHECK(irc_sh_irradiance(&sh, z, rgb) == IRC_ERR_NORMAL, "zero normal");
+        CHECK(irc_sh_irradiance(NULL, n, rgb) == IRC_ERR_NULL, "null");
+        sh.bands = 6;
+        CHECK(irc_sh_irradiance(&sh, n, rgb) == IRC_ERR_RANGE, "bands");
+        sh.bands = 3;
+        sh.channels = 2;
+        CHECK(irc_sh_irradiance(&sh, n, rgb) == IRC_ERR_RANGE, "channels");
+        sh.channels = 3;
+        sh.c[2][4] = NAN;
+        CHECK(irc_sh_irradiance(&sh, n, rgb) == IRC_ERR_NONFINITE, "NaN coefficient");
+    }
+}
+
+/* A hemisphere record on a surface sees the emitter above its horizon: the
+ * same closed form, all three gradient components. */
+TEST(test_sh_surface_record)
+{
+    double cc[3] = {1.5, -1.0, 4.0}, c0[NC], g[NC][3], gbig = 0, eg = 0, ec = 0, cbig = 0;
+    float p[3] = {0, 0, 0}, n[3] = {0, 0, 1};
+    tscene s;
+    irc_config cfg;
+    irc_cache *c;
+    irc_sh rec;
+    int i, k;
+    scene_init(&s);
+    s.sky_a[0] = s.sky_a[1] = s.sky_a[2] = 0.0f;
+    s.has_sphere = 1;
+    s.radius = 1.0;
+    s.sphere_l[0] = s.sphere_l[1] = s.sphere_l[2] = 2.0f;
+    memcpy(s.centre, cc, sizeof cc);
+    cfg = sh_config(&s, IRC_FEATURE_SH_GRADIENT, 512, 2048, 3);
+    c = block_cache(&cfg, 4, 0);
+    CHECK(c && irc_sh_compute(c, p, n, &rec) == IRC_OK, "compute");
+    {
+        double o[3] = {0, 0, 0};
+        cap_coeffs(o, cc, 1.0, 3, c0);
+    }
+    for (k = 0; k < 3; k++) {
+        double a[NC], b[NC], q[3] = {0, 0, 0}, h = 1e-4;
+        q[k] = h;
+        cap_coeffs(q, cc, 1.0, 3, a);
+        q[k] = -h;
+        cap_coeffs(q, cc, 1.0, 3, b);
+        for (i = 0; i < 9; i++)
+            g[i][k] = (a[i] - b[i]) / (2.0 * h);
+    }
+    for (i = 0; i < 9; i++) {
+        double e2 = 0.0;
+        cbig = fmax(cbig, 2.0 * fabs(c0[i]));
+        ec = fmax(ec, fabs(rec.c[0][i] - 2.0 * c0[i]));
+        gbig = fmax(gbig, 2.0 * sqrt(g[i][0] * g[i][0] + g[i][1] * g[i][1] + g[i][2] * g[i][2]));
+        for (k = 0; k < 3; k++)
+            e2 += (rec.grad[0][i][k] - 2.0 * g[i][k]) * (rec.grad[0][i][k] - 2.0 * g[i][k]);
+        eg = fmax(eg, sqrt(e2));
+    }
+    printf("  surface record, emitter at D/r %.2f: coefficients %.3f%%, gradient %.3f%%; "
+           "%u rays\n", sqrt(1.5 * 1.5 + 1 + 16), 100 * ec / cbig, 100 * eg / gbig, rec.rays);
+    CHECK(ec < 0.01 * cbig, "coefficients %.4f", ec / cbig);
+    CHECK(eg < 0.01 * gbig, "gradient %.4f", eg / gbig);
+    CHECK(rec.rays == 512u * 2048u && rec.n[2] == 1.0f, "hemisphere only");
+    block_free(&cfg);
+}
+
+static irc_sh hand_record(float x, float y, float z, float r, int free, float base)
+{
+    irc_sh h;
+    int ch, i, k;
+    memset(&h, 0, sizeof h);
+    h.p[0] = x; h.p[1] = y; h.p[2] = z;
+    if (!free)
+        h.n[2] = 1.0f;
+    h.radius = r;
+    h.bands = 2;
+    h.channels = 3;
+    for (ch = 0; ch < 3; ch++)
+        for (i = 0; i < 4; i++) {
+            h.c[ch][i] = base + 0.1f * ch - 0.05f * i;
+            for (k = 0; k < 3; k++)
+                h.grad[ch][i][k] = 0.01f * (float)(k + 1) * (i % 2 ? -1.0f : 1.0f) + 0.002f * ch;
+        }
+    return h;
+}
+
+/* Eq. 14-16 by hand: free-point records weighed (R/d)^b within a R and
+ * extrapolated; surface records by Ward-Heckbert; neither kind seen by the
+ * other's lookups. */
+TEST(test_sh_lookup_by_hand)
+{
+    tscene s;
+    irc_config cfg;
+    irc_cache *c;
+    irc_sh rec[4], out;
+    float q[3] = {0.3f, 0.2f, 0.1f}, n[3] = {0, 0, 1}, w;
+    double sw = 0.0, want[3][4] = {{0}}, worst = 0.0;
+    int j, ch, i, k;
+    scene_init(&s);
+    cfg = sh_config(&s, IRC_FEATURE_SH_GRADIENT, 4, 8, 2);
+    cfg.accuracy = 1.0f;
+    cfg.sh_power = 3.0f;
+    c = block_cache(&cfg, 8, 0);
+    CHECK(c != NULL, "init");
+    rec[0] = hand_record(0, 0, 0, 1.0f, 1, 1.0f);
+    rec[1] = hand_record(1, 0, 0, 2.0f, 1, 2.0f);
+    rec[2] = hand_record(3, 3, 3, 1.0f, 1, 5.0f);  /* out of reach */
+    rec[3] = hand_record(0.2f, 0.1f, 0, 1.0f, 0, 9.0f); /* a surface record */
+    for (j = 0; j < 4; j++)
+        CHECK(irc_sh_insert(c, &rec[j]) == IRC_OK, "insert %d", j);
+    for (j = 0; j < 2; j++) {
+        double d[3], dist, wj;
+        for (k = 0; k < 3; k++)
+            d[k] = (double)q[k] - rec[j].p[k];
+        dist = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+        wj = pow(rec[j].radius / dist, 3.0);
+        sw += wj;
+        for (ch = 0; ch < 3; ch++)
+            for (i = 0; i < 4; i++)
+                want[ch][i] += wj * (rec[j].c[ch][i] + rec[j].grad[ch][i][0] * d[0] +
+                                     rec[j].grad[ch][i][1] * d[1] + rec[j].grad[ch][i][2] * d[2]);
+    }
+    CHECK(irc_sh_lookup(c, q, NULL, &out, &w) == IRC_OK, "free lookup");
+    for (ch = 0; ch < 3; ch++)
+        for (i = 0; i < 4; i++)
+            worst = fmax(worst, fabs(out.c[ch][i] - want[ch][i] / sw));
+    CHECK(worst < 1e-5 && fabs(w - sw) < 1e-4 * sw, "free: %.3e, weight %g vs %g", worst, w, sw);
+    /* The surface lookup sees record 3 only: one record, so its own
+     * extrapolation. */
+    CHECK(irc_sh_lookup(c, q, n, &out, &w) == IRC_OK, "surface lookup");
+    worst = 0.0;
+    for (ch = 0; ch < 3; ch++)
+        for (i = 0; i < 4; i++) {
+            double v = rec[3].c[ch][i];
+            for (k = 0; k < 3; k++)
+                v += rec[3].grad[ch][i][k] * ((double)q[k] - rec[3].p[k]);
+            worst = fmax(worst, fabs(out.c[ch][i] - v));
+        }
+    {
+        double d = sqrt(0.1 * 0.1 + 0.1 * 0.1 + 0.1 * 0.1);
+        CHECK(worst < 1e-5 && fabs(w - 1.0 / d) < 1e-3 / d, "surface: %.3e, weight %g", worst, w);
+    }
+    {
+        float far[3] = {10, 10, 10};
+        CHECK(irc_sh_lookup(c, far, NULL, &out, &w) == IRC_MISS && w == 0.0f && out.c[0][0] == 0.0f,
+              "miss");
+    }
+    block_free(&cfg);
+}
+
+static int block_same(const irc_config *cfg, const unsigned char *copy, const irc_cache *c)
+{
+    const unsigned char *b = (const unsigned char *)cfg->buffer;
+    size_t lo = (size_t)((const unsigned char *)c->lock - b), hi = lo + c->port->lock_size, o;
+    for (o = 0; o < cfg->buffer_size; o++)
+        if ((o < lo || o >= hi) && copy[o] != b[o]) {
+            printf("  first difference at byte %zu\n", o);
+            return 0;
+        }
+    return 1;
+}
+
+/* Bad input gives the documented status and leaves the block as it was. */
+TEST(test_sh_bad_input)
+{
+    tscene s;
+    irc_config cfg, icfg;
+    irc_cache *c, *ic;
+    irc_sh good, bad, out;
+    irc_record r;
+    unsigned char *copy;
+    float p[3] = {0, 0, 0}, n[3] = {0, 0, 1}, rgb[3], nanp[3] = {NAN, 0, 0};
+    scene_init(&s);
+    cfg = sh_config(&s, IRC_FEATURE_SH_GRADIENT, 4, 8, 2);
+    c = block_cache(&cfg, 1, 64);
+    icfg = scene_config(&s, 0, 4, 8);
+    ic = block_cache(&icfg, 4, 0);
+    CHECK(c && ic, "init");
+    good = hand_record(0, 0, 0, 1.0f, 0, 1.0f);
+    CHECK(irc_sh_insert(c, &good) == IRC_OK, "insert");
+    copy = malloc(cfg.buffer_size);
+    memcpy(copy, cfg.buffer, cfg.buffer_size);
+    /* Every byte but the port's lock object (glibc's rwlock keeps phase
+     * bits that a lock-unlock pair need not restore). */
+#define SAME() CHECK(block_same(&cfg, copy, c), "block changed")
+    bad = good; bad.bands = 3;
+    CHECK(irc_sh_insert(c, &bad) == IRC_ERR_RANGE, "bands"); SAME();
+    bad = good; bad.channels = 1;
+    CHECK(irc_sh_insert(c, &bad) == IRC_ERR_RANGE, "channels"); SAME();
+    bad = good; bad.radius = 0.0f;
+    CHECK(irc_sh_insert(c, &bad) == IRC_ERR_RANGE, "radius"); SAME();
+    bad = good; bad.c[2][3] = INFINITY;
+    CHECK(irc_sh_insert(c, &bad) == IRC_ERR_NONFINITE, "coefficient"); SAME();
+    bad = good; bad.grad[1][0][2] = NAN;
+    CHECK(irc_sh_insert(c, &bad) == IRC_ERR_NONFINITE, "gradient"); SAME();
+    bad = good; bad.n[0] = NAN;
+    CHECK(irc_sh_insert(c, &bad) == IRC_ERR_NORMAL, "normal"); SAME();
+    CHECK(irc_sh_insert(c, &good) == IRC_ERR_FULL, "full"); SAME();
+    CHECK(irc_sh_insert(c, NULL) == IRC_ERR_NULL, "null"); SAME();
+    CHECK(irc_sh_lookup(c, nanp, NULL, &out, NULL) == IRC_ERR_NONFINITE, "NaN query"); SAME();
+    CHECK(irc_sh_lookup(c, p, NULL, NULL, NULL) == IRC_ERR_NULL, "null out"); SAME();
+    CHECK(irc_sh_record(c, 1, &out) == IRC_ERR_RANGE, "range"); SAME();
+    CHECK(irc_record_compute(c, p, n, &r) == IRC_ERR_UNSUPPORTED, "irradiance call"); SAME();
+    CHECK(irc_cache_lookup(c, p, n, rgb, NULL) == IRC_ERR_UNSUPPORTED, "irradiance lookup"); SAME();
+    CHECK(irc_cache_insert(c, &r) == IRC_ERR_UNSUPPORTED, "irradiance insert"); SAME();
+    CHECK(irc_cache_record(c, 0, &r) == IRC_ERR_UNSUPPORTED, "irradiance record"); SAME();
+    CHECK(irc_sh_compute(ic, p, n, &out) == IRC_ERR_UNSUPPORTED, "SH call on irradiance cache");
+    CHECK(irc_sh_lookup(ic, p, n, &out, NULL) == IRC_ERR_UNSUPPORTED, "SH lookup");
+    s.fail_every = 1;
+    s.fail_kind = FAIL_RAY;
+    CHECK(irc_sh_compute(c, p, NULL, &out) == IRC_ERR_NOSAMPLES, "no samples"); SAME();
+    s.fail_kind = FAIL_NAN_RADIANCE;
+    CHECK(irc_sh_compute(c, p, n, &out) == IRC_ERR_CALLBACK, "NaN radiance"); SAME();
+    s.fail_kind = FAIL_ZERO_NORMAL;
+    CHECK(irc_sh_compute(c, p, n, &out) == IRC_ERR_CALLBACK, "zero normal"); SAME();
+    s.fail_every = 0;
+    s.return_code = -4242;
+    CHECK(irc_sh_lookup_or_compute(c, n, n, &out, NULL) == -4242, "host code"); SAME();
+    s.return_code = 0;
+    CHECK(irc_sh_lookup_or_compute(c, n, n, &out, NULL) == IRC_NOT_STORED, "not stored");
+    CHECK(block_guard_ok(&cfg, 64), "guard");
+#undef SAME
+    free(copy);
+    block_free(&cfg);
+    block_free(&icfg);
+}
+
+/* Bytes per record: 32 + 4 L^2 channels, + 12 L^2 channels with gradients. */
+TEST(test_sh_footprint)
+{
+    tscene s;
+    uint32_t l, ch, g;
+    scene_init(&s);
+    for (l = 1; l <= 5; l++)
+        for (ch = 1; ch <= 3; ch += 2)
+            for (g = 0; g < 2; g++) {
+                irc_config cfg = sh_config(&s, g ? IRC_FEATURE_SH_GRADIENT : IRC_FEATURE_SH, 4, 8, l);
+                irc_cache *c;
+                irc_stats st;
+                cfg.sh_channels = ch;
+                c = block_cache(&cfg, 4, 0);
+                CHECK(c && irc_cache_stats(c, &st) == IRC_OK, "stats");
+                if (c)
+                    CHECK(st.record_bytes == 32u + 4u * l * l * ch * (g ? 4u : 1u),
+                          "L %u ch %u grad %u: %zu bytes", l, ch, g, st.record_bytes);
+                block_free(&cfg);
+            }
+}
