@@ -60,7 +60,7 @@ test:
 
 # ---------------------------------------------------------------- demo
 # The demo tracer: every demo/*.c but the two stand-alone programs.
-DEMO_LIB_SRC = $(filter-out demo/main.c demo/bench_core.c demo/minimal.c demo/fig15.c,$(wildcard demo/*.c))
+DEMO_LIB_SRC = $(filter-out demo/main.c demo/bench_core.c demo/minimal.c demo/fig15.c demo/shexp.c,$(wildcard demo/*.c))
 DEMO_CFLAGS = -std=c99 $(WARN) -Iinclude -Idemo $(OPT) $(CFLAGS)
 DEMO_OUT = $(BUILD)/demo
 # The Cornell box at the same rays per shading point in both modes (16 x 64
@@ -84,6 +84,13 @@ $(BUILD)/fig15: demo/fig15.c $(DEMO_LIB_SRC) demo/*.h $(LIBA)
 fig15: $(BUILD)/fig15
 	$(BUILD)/fig15 demo/scenes/fig15.scene 200 16384 64 256
 	$(BUILD)/fig15 demo/scenes/fig15-sharp.scene 200 16384 64 256
+
+# The SH-gradient paper's experiments (README: "SH records").
+$(BUILD)/shexp: demo/shexp.c $(DEMO_LIB_SRC) demo/*.h $(LIBA)
+	$(CC) $(DEMO_CFLAGS) demo/shexp.c $(DEMO_LIB_SRC) $(LIBA) -o $@ -lm -lpthread
+
+sh-experiments: $(BUILD)/shexp
+	$(BUILD)/shexp demo/scenes/sh.scene 48 64 256
 
 $(BUILD)/demo_tests: tests/t_demo.c tests/harness.c tests/scenes.c $(DEMO_LIB_SRC) demo/*.h tests/*.h $(LIBA)
 	$(CC) $(TEST_CFLAGS) -Idemo $(OPT) $(CFLAGS) tests/t_demo.c tests/harness.c tests/scenes.c $(DEMO_LIB_SRC) $(LIBA) -o $@ -lm -lpthread
@@ -144,4 +151,4 @@ install: all
 clean:
 	rm -rf build build-*
 
-.PHONY: all test demo fig15 fuzz bench-core install clean
+.PHONY: all test demo fig15 sh-experiments fuzz bench-core install clean

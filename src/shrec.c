@@ -13,7 +13,7 @@
 /* Sums over the samples, in double. */
 typedef struct irc__shsum {
     double c[3][IRC__NC];
-    double g[3][IRC__NC][3];
+    double g[3][3 * IRC__NC]; /* d c_i / dp at [3 i + k] */
     double e[3];
     double inv_d;
     uint32_t used, total;
@@ -65,11 +65,13 @@ static int irc__continuous(const irc__grid *g, uint32_t a, uint32_t b)
     return fabs(da - db) * slant <= 2.0 * IRC_SQRT(dw) * big;
 }
 
-/* The depth of a silhouette just past sample i, seen from i and its
- * neighbour o on the far side: near a smooth silhouette the depth and
- * |n.w| both go as the square root of the angle to it, so the depth is
- * linear in |n.w| and is extrapolated to |n.w| = 0.  Clamped to [d, 2 d];
- * without a usable neighbour, d itself. */
+/* The depth where the surface of sample i ends, past i on the side away
+ * from its neighbour o.  At a smooth silhouette |n.w| falls to 0 there and
+ * both |n.w|^2 and the depth's shortfall from the silhouette's depth go
+ * as the angle to it, so when |n.w|^2, extrapolated from o through i,
+ * reaches 0 within one stratum past i, the depth is extrapolated linearly
+ * in |n.w| to |n.w| = 0.  Otherwise (an edge of the surface itself, a
+ * polygon's outline) the edge's depth is i's. */
 static double irc__silhouette_depth(const irc__grid *g, uint32_t i, int64_t o)
 {
     double d = g->s[i].d, fi, fo, ds;
@@ -77,7 +79,7 @@ static double irc__silhouette_depth(const irc__grid *g, uint32_t i, int64_t o)
         return d;
     fi = irc__facing(g, i);
     fo = irc__facing(g, (uint32_t)o);
-    if (!(fo > fi) || !(g->s[o].d < d))
+    if (!(fo * fo >= 1.25 * fi * fi) || !(g->s[o].d < d))
         return d;
     ds = d + fi * (d - g->s[o].d) / (fo - fi);
     return ds < 2.0 * d ? ds : 2.0 * d;
@@ -113,7 +115,8 @@ static void irc__edge(const irc__grid *g, uint32_t i, int64_t o, int64_t back,
 }
 
 /* Sample index of row j (of rows 0..2M-1 counted from the first
- * hemisphere's pole across the equator), column k; -1 off the grid. */
+ * hemisphere's pole across the equator), column k; -1 off the grid.  Once
+ * per row: it divides. */
 static int64_t irc__at(const irc__grid *g, int64_t j, uint32_t k)
 {
     uint32_t h;
@@ -126,38 +129,44 @@ static int64_t irc__at(const irc__grid *g, int64_t j, uint32_t k)
     return (int64_t)h * g->m * g->n + j * g->n + k;
 }
 
-/* The edge vector of sample (row jj as in irc__at, column k). */
-static void irc__edge_vector(const irc__grid *g, int64_t jj, uint32_t k, double w[3])
+/* A row's geometry (cos theta at its two edges, their sines, its angular
+ * height) and a column's (cos, sin of its left edge, centre, right edge):
+ * the callers advance them by recurrence, so no stratum needs trig. */
+typedef struct irc__cell {
+    double z0, z1, s0, s1, len;
+    double cl, sl, cc, sc, cr, sr;
+    const double *axis;
+    int64_t row, up, dn; /* first sample of the row, of the rows toward the
+                            pole and toward the horizon (-1: none) */
+} irc__cell;
+
+/* The edge vector of the sample in column k of the row q describes. */
+static void irc__edge_vector(const irc__grid *g, uint32_t k, const irc__cell *q, double w[3])
 {
-    const uint32_t h = (uint32_t)(jj / g->m);
-    const uint32_t j = h ? g->m - 1 - (uint32_t)(jj % g->m) : (uint32_t)(jj % g->m);
-    const double *ax = g->axis[h];
-    const uint32_t i = (uint32_t)irc__at(g, jj, k), kl = (k + g->n - 1) % g->n,
-                   kr = (k + 1) % g->n;
-    const double z0 = 1.0 - (double)j / g->m, z1 = 1.0 - (j + 1.0) / g->m;
-    const double dphi = 2.0 * IRC_PI / g->n, pc = dphi * (k + 0.5);
-    const double pl = dphi * k, pr = dphi * (k + 1), len = IRC_ACOS(z1) - IRC_ACOS(z0);
-    const int64_t up = irc__at(g, h ? jj + 1 : jj - 1, k), dn = irc__at(g, h ? jj - 1 : jj + 1, k);
-    double nu[3], s0 = IRC_SQRT(1.0 - z0 * z0), s1 = IRC_SQRT(1.0 - z1 * z1);
+    const double dphi = 2.0 * IRC_PI / g->n;
+    const uint32_t i = (uint32_t)q->row + k, kl = k ? k - 1 : g->n - 1,
+                   kr = k + 1 < g->n ? k + 1 : 0;
+    const int64_t up = q->up < 0 ? -1 : q->up + k, dn = q->dn < 0 ? -1 : q->dn + k;
+    double nu[3];
     int c;
     w[0] = w[1] = w[2] = 0.0;
     /* Left and right: meridian edges, unit normals along -/+ e_phi. */
     for (c = 0; c < 3; c++)
-        nu[c] = IRC_SIN(pl) * g->t1[c] - IRC_COS(pl) * g->t2[c];
+        nu[c] = q->sl * g->t1[c] - q->cl * g->t2[c];
     if (g->n > 1)
-        irc__edge(g, i, irc__at(g, jj, kl), irc__at(g, jj, kr), len, nu, w);
+        irc__edge(g, i, q->row + kl, q->row + kr, q->len, nu, w);
     for (c = 0; c < 3; c++)
-        nu[c] = -IRC_SIN(pr) * g->t1[c] + IRC_COS(pr) * g->t2[c];
+        nu[c] = -q->sr * g->t1[c] + q->cr * g->t2[c];
     if (g->n > 1)
-        irc__edge(g, i, irc__at(g, jj, kr), irc__at(g, jj, kl), len, nu, w);
+        irc__edge(g, i, q->row + kr, q->row + kl, q->len, nu, w);
     /* Toward the pole and toward the horizon (the other hemisphere's
      * equator row for a free point): arcs of constant theta. */
     for (c = 0; c < 3; c++)
-        nu[c] = -(z0 * (IRC_COS(pc) * g->t1[c] + IRC_SIN(pc) * g->t2[c]) - s0 * ax[c]);
-    irc__edge(g, i, up, dn, s0 * dphi, nu, w);
+        nu[c] = -(q->z0 * (q->cc * g->t1[c] + q->sc * g->t2[c]) - q->s0 * q->axis[c]);
+    irc__edge(g, i, up, dn, q->s0 * dphi, nu, w);
     for (c = 0; c < 3; c++)
-        nu[c] = z1 * (IRC_COS(pc) * g->t1[c] + IRC_SIN(pc) * g->t2[c]) - s1 * ax[c];
-    irc__edge(g, i, dn, up, s1 * dphi, nu, w);
+        nu[c] = q->z1 * (q->cc * g->t1[c] + q->sc * g->t2[c]) - q->s1 * q->axis[c];
+    irc__edge(g, i, dn, up, q->s1 * dphi, nu, w);
 }
 
 /* One sample's share of the coefficients and, with gradients, of Eq. 11
@@ -170,7 +179,7 @@ static void irc__sh_add(const irc_cache *c, irc__shsum *a, const irc__sample *x,
 {
     const int nc = (int)c->sh_n, nch = (int)c->sh_ch, bands = (int)c->cfg.sh_bands;
     const int grad = c->off_shg != 0;
-    double y[IRC__NC], gy[IRC__NC][3];
+    double y[IRC__NC], gy[IRC__NC][3], v[3 * IRC__NC];
     int ch, i, k;
     irc__sh_eval(bands, w, y, grad ? gy : NULL);
     for (ch = 0; ch < nch; ch++)
@@ -184,38 +193,63 @@ static void irc__sh_add(const irc_cache *c, irc__shsum *a, const irc__sample *x,
     a->inv_d += 1.0 / x->d;
     if (!grad)
         return;
+    /* One vector per sample, then a plain multiply-add per channel. */
+    for (i = 0; i < nc; i++)
+        for (k = 0; k < 3; k++)
+            v[3 * i + k] = (gy[i][k] - 2.0 * y[i] * w[k]) / x->d + y[i] * e[k];
     for (ch = 0; ch < nch; ch++) {
-        double q = x->l[ch] / x->d;
-        for (i = 0; i < nc; i++)
-            for (k = 0; k < 3; k++)
-                a->g[ch][i][k] -= q * (gy[i][k] - 2.0 * y[i] * w[k]) + x->l[ch] * y[i] * e[k];
+        const double l = x->l[ch];
+        for (i = 0; i < 3 * nc; i++)
+            a->g[ch][i] -= l * v[i];
     }
 }
 
 static void irc__sh_accumulate(const irc_cache *c, const irc__grid *g, const double *n,
                                irc__shsum *a)
 {
-    const double dw = 2.0 * IRC_PI / c->strata;
+    const double dw = 2.0 * IRC_PI / c->strata, dphi = 2.0 * IRC_PI / g->n;
+    const double cd = IRC_COS(dphi), sd = IRC_SIN(dphi), ch = IRC_COS(0.5 * dphi),
+                 sh = IRC_SIN(0.5 * dphi);
     int64_t jj;
     uint32_t k;
     int q;
-    for (jj = 0; jj < (int64_t)(g->halves * g->m); jj++)
+    for (jj = 0; jj < (int64_t)(g->halves * g->m); jj++) {
+        const uint32_t j = jj < g->m ? (uint32_t)jj : g->m - 1 - (uint32_t)(jj - g->m);
+        irc__cell cell;
+        cell.z0 = 1.0 - (double)j / g->m;
+        cell.z1 = 1.0 - (j + 1.0) / g->m;
+        cell.s0 = IRC_SQRT(1.0 - cell.z0 * cell.z0);
+        cell.s1 = IRC_SQRT(1.0 - cell.z1 * cell.z1);
+        cell.len = IRC_ACOS(cell.z1) - IRC_ACOS(cell.z0);
+        cell.cl = 1.0;
+        cell.sl = 0.0;
+        cell.axis = g->axis[jj < g->m ? 0 : 1];
+        cell.row = irc__at(g, jj, 0);
+        cell.up = irc__at(g, jj < g->m ? jj - 1 : jj + 1, 0);
+        cell.dn = irc__at(g, jj < g->m ? jj + 1 : jj - 1, 0);
         for (k = 0; k < g->n; k++) {
-            const uint32_t i = (uint32_t)irc__at(g, jj, k);
+            const uint32_t i = (uint32_t)cell.row + k;
             double w[3], e[3] = {0, 0, 0};
+            cell.cc = cell.cl * ch - cell.sl * sh;
+            cell.sc = cell.sl * ch + cell.cl * sh;
+            cell.cr = cell.cl * cd - cell.sl * sd;
+            cell.sr = cell.sl * cd + cell.cl * sd;
             a->total++;
-            if (g->s[i].d != g->s[i].d)
-                continue;
-            a->used++;
-            for (q = 0; q < 3; q++)
-                w[q] = g->dir[3 * i + q];
-            if (c->off_shg) {
-                irc__edge_vector(g, jj, k, e);
+            if (g->s[i].d == g->s[i].d) {
+                a->used++;
                 for (q = 0; q < 3; q++)
-                    e[q] /= dw;
+                    w[q] = g->dir[3 * i + q];
+                if (c->off_shg) {
+                    irc__edge_vector(g, k, &cell, e);
+                    for (q = 0; q < 3; q++)
+                        e[q] /= dw;
+                }
+                irc__sh_add(c, a, &g->s[i], w, n, e);
             }
-            irc__sh_add(c, a, &g->s[i], w, n, e);
+            cell.cl = cell.cr;
+            cell.sl = cell.sr;
         }
+    }
 }
 
 /* The record from the sums: each usable sample stands for 2 pi/(M N)
@@ -237,11 +271,11 @@ static void irc__sh_finish(const irc_cache *c, const irc__shsum *a, irc_sh *out)
         for (i = 0; i < c->sh_n; i++) {
             out->c[ch][i] = (float)(dw * a->c[ch][i]);
             for (k = 0; k < 3; k++)
-                out->grad[ch][i][k] = (float)(dw * a->g[ch][i][k]);
+                out->grad[ch][i][k] = (float)(dw * a->g[ch][3 * i + k]);
         }
         /* R <= |c_0|/|grad c_0|: where first-order extrapolation would
          * change the mean radiance by 100%. */
-        len = dw * IRC_SQRT(irc__dot3d(a->g[ch][0], a->g[ch][0]));
+        len = dw * IRC_SQRT(irc__dot3d(a->g[ch], a->g[ch]));
         if (len > 0.0 && dw * fabs(a->c[ch][0]) / len < r)
             r = dw * fabs(a->c[ch][0]) / len;
     }
