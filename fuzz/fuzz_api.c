@@ -82,7 +82,7 @@ static void read_config(fuzz_in *in, irc_config *cfg, host *h, uint32_t *cap)
     memset(cfg, 0, sizeof *cfg);
     cfg->trace = trace;
     cfg->context = h;
-    cfg->features = fz_u8(in) & 7u;
+    cfg->features = fz_u8(in) & 31u;
     cfg->accuracy = fz_float(in);
     cfg->min_radius = fz_u8(in) & 1 ? fz_float(in) : 0.0f;
     cfg->max_radius = fz_u8(in) & 1 ? fz_float(in) : 0.0f;
@@ -101,6 +101,57 @@ static void read_config(fuzz_in *in, irc_config *cfg, host *h, uint32_t *cap)
     h->r = fz_float(in);
     h->fail_every = fz_u8(in) % 5;
     h->calls = 0;
+    if (cfg->features & (IRC_FEATURE_SH | IRC_FEATURE_SH_GRADIENT)) {
+        cfg->sh_bands = fz_u8(in) % 7u;
+        cfg->sh_channels = fz_u8(in) % 4u;
+        cfg->sh_power = fz_u8(in) & 1 ? fz_float(in) : 0.0f;
+    }
+}
+
+/* SH calls: a record built, inserted, looked up, read back, shaded. */
+static int call_sh(fuzz_in *in, irc_cache *c, uint32_t cap, uint8_t op, const float p[3],
+                   const float n[3])
+{
+    irc_sh sh;
+    float rgb[3], w = 0.0f;
+    int s, ch, i, k;
+    const float *nn = fz_u8(in) & 1 ? n : NULL;
+    switch (op) {
+    case 8:
+        s = irc_sh_compute(c, p, nn, &sh);
+        break;
+    case 9:
+        memset(&sh, 0, sizeof sh);
+        memcpy(sh.p, p, sizeof sh.p);
+        if (nn)
+            memcpy(sh.n, n, sizeof sh.n);
+        sh.radius = fz_float(in);
+        sh.bands = fz_u8(in) % 7u;
+        sh.channels = fz_u8(in) % 4u;
+        for (k = fz_u8(in) % 8; k > 0; k--) {
+            i = fz_u8(in) % IRC_SH_MAX_COEFFS;
+            sh.c[fz_u8(in) % 3][i] = fz_float(in);
+            read_vec(in, sh.grad[fz_u8(in) % 3][i]);
+        }
+        return irc_sh_insert(c, &sh);
+    case 10:
+        s = fz_u8(in) & 1 ? irc_sh_lookup(c, p, nn, &sh, &w)
+                          : irc_sh_lookup_or_compute(c, p, nn, &sh, &w);
+        if (s >= 0)
+            check(w >= 0.0f && w == w);
+        break;
+    default:
+        s = irc_sh_record(c, fz_u8(in) % (cap + 2u), &sh);
+        break;
+    }
+    if (s == IRC_OK) {
+        for (ch = 0; ch < (int)sh.channels; ch++)
+            for (i = 0; i < (int)(sh.bands * sh.bands); i++)
+                check(sh.c[ch][i] == sh.c[ch][i] && sh.c[ch][i] - sh.c[ch][i] == 0.0f);
+        k = irc_sh_glossy(&sh, n, fz_float(in), rgb);
+        check(k == IRC_OK || k == IRC_ERR_RANGE || k == IRC_ERR_NORMAL || k == IRC_ERR_NONFINITE);
+    }
+    return s;
 }
 
 /* One call; returns its status. */
@@ -111,9 +162,11 @@ static int call(fuzz_in *in, irc_cache *c, uint32_t cap)
     irc_stats st;
     uint32_t ids[8], cnt;
     int s, k;
-    uint8_t op = fz_u8(in) % 8;
+    uint8_t op = fz_u8(in) % 12;
     read_vec(in, p);
     read_vec(in, n);
+    if (op >= 8)
+        return call_sh(in, c, cap, op, p, n);
     switch (op) {
     case 0:
         return irc_record_compute(c, p, n, &rec);

@@ -325,10 +325,10 @@ int irc_occlusion_compute(irc_cache *cache, const float p[3], const float n[3],
                           irc_occlusion *out);
 
 /*
- * Store a record (a copy, packed).  rec->radius must be > 0 (IRC_ERR_RANGE)
- * and every field finite.  Returns IRC_OK; IRC_ERR_FULL when the pool is
- * full and eviction is off (lookups keep working); or a negative error code
- * on failure.
+ * Store a record (a copy, packed).  rec->radius must be > 0 and rec->e >= 0
+ * (IRC_ERR_RANGE) and every field finite.  Returns IRC_OK; IRC_ERR_FULL
+ * when the pool is full and eviction is off (lookups keep working); or a
+ * negative error code on failure.
  */
 int irc_cache_insert(irc_cache *cache, const irc_record *rec);
 
@@ -340,7 +340,8 @@ int irc_cache_insert(irc_cache *cache, const irc_record *rec);
  * averaged with weights w_i (w_i is capped at 1e6).  Records facing away
  * (n.n_i <= 0) never count.  rgb gets the average and *weight (optional) the
  * summed weight.  Returns IRC_OK, IRC_MISS (rgb = 0, weight = 0) when no
- * record counts, or a negative error code on failure.
+ * record counts, IRC_ERR_NONFINITE when the extrapolated value overflows
+ * float (records near FLT_MAX), or a negative error code on failure.
  */
 int irc_cache_lookup(irc_cache *cache, const float p[3], const float n[3],
                      float rgb[3], float *weight);
@@ -432,8 +433,9 @@ int irc_sh_compute(irc_cache *cache, const float p[3], const float n[3],
 
 /*
  * Store an SH record (a copy).  rec->bands and rec->channels must match the
- * cache's config (IRC_ERR_RANGE), rec->radius > 0 (IRC_ERR_RANGE), every
- * used field finite.  Returns IRC_OK, IRC_ERR_FULL, or a negative error code.
+ * cache's config (IRC_ERR_RANGE), rec->radius > 0 and rec->e >= 0
+ * (IRC_ERR_RANGE), every used field finite.  Returns IRC_OK, IRC_ERR_FULL,
+ * or a negative error code.
  */
 int irc_sh_insert(irc_cache *cache, const irc_sh *rec);
 
@@ -442,7 +444,8 @@ int irc_sh_insert(irc_cache *cache, const irc_sh *rec);
  * extrapolated to p with its gradient, averaged with the weights above; n
  * NULL looks up free-point records, n given surface records.  out->c gets
  * the average and *weight (optional) the summed weight.  Returns IRC_OK,
- * IRC_MISS (out->c = 0, weight = 0), or a negative error code.
+ * IRC_MISS (out->c = 0, weight = 0), IRC_ERR_NONFINITE when an
+ * extrapolation overflows float, or a negative error code.
  */
 int irc_sh_lookup(irc_cache *cache, const float p[3], const float n[3],
                   irc_sh *out, float *weight);

@@ -168,6 +168,10 @@ static int irc__lookup(irc_cache *c, const float p[3], const float n[3],
         rgb[ch] = a.w > 0.0 ? (float)(a.sum[ch] / a.w) : 0.0f;
     if (weight)
         *weight = (float)a.w;
+    /* Records with irradiance and gradients near FLT_MAX can extrapolate
+     * past it. */
+    if (!irc__finite3(rgb))
+        return IRC_ERR_NONFINITE;
     return a.w > 0.0 ? IRC_OK : IRC_MISS;
 }
 

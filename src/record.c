@@ -375,7 +375,7 @@ int irc__record_check(const irc_record *r)
     for (ch = 0; ch < 3; ch++)
         if (!irc__finite3(r->grad_t[ch]) || !irc__finite3(r->grad_r[ch]))
             return IRC_ERR_NONFINITE;
-    if (!(r->radius > 0.0f))
+    if (!(r->radius > 0.0f) || r->e[0] < 0.0f || r->e[1] < 0.0f || r->e[2] < 0.0f)
         return IRC_ERR_RANGE;
     return IRC_OK;
 }

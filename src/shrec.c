@@ -303,7 +303,8 @@ static int irc__sh_check(const irc_cache *c, const irc_sh *r, double un[3])
         for (i = 0; i < c->sh_n; i++)
             if (!irc__finite(r->c[ch][i]) || !irc__finite3(r->grad[ch][i]))
                 return IRC_ERR_NONFINITE;
-    return r->radius > 0.0f ? IRC_OK : IRC_ERR_RANGE;
+    return r->radius > 0.0f && r->e[0] >= 0.0f && r->e[1] >= 0.0f && r->e[2] >= 0.0f
+               ? IRC_OK : IRC_ERR_RANGE;
 }
 
 static void irc__sh_pack(const irc_cache *c, const irc_sh *in, const double un[3],
@@ -544,13 +545,17 @@ static int irc__sh_lookup(irc_cache *c, const float p[3], const float n[3],
         return IRC_MISS;
     for (k = 0; k < 3; k++)
         out->e[k] = (float)(a.e[k] / a.w);
+    st = irc__finite3(out->e) ? IRC_OK : IRC_ERR_NONFINITE;
     for (ch = 0; ch < c->sh_ch; ch++)
         for (i = 0; i < c->sh_n; i++) {
             out->c[ch][i] = (float)(a.c_[ch][i] / a.w);
             for (k = 0; k < 3; k++)
                 out->grad[ch][i][k] = (float)(a.g[ch][i][k] / a.w);
+            if (!irc__finite(out->c[ch][i]) || !irc__finite3(out->grad[ch][i]))
+                st = IRC_ERR_NONFINITE;
         }
-    return IRC_OK;
+    /* Huge gradients far from their record can overflow float. */
+    return st;
 }
 
 int irc_sh_lookup(irc_cache *c, const float p[3], const float n[3], irc_sh *out,
