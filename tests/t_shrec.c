@@ -578,3 +578,36 @@ TEST(test_sh_footprint)
                 block_free(&cfg);
             }
 }
+
+/* Found by the fuzzer: a record inserted with negative irradiance came
+ * back from a lookup without gradients unclamped (now IRC_ERR_RANGE at
+ * insert), and records near FLT_MAX can extrapolate past it (now
+ * IRC_ERR_NONFINITE from the lookup, the block untouched). */
+TEST(test_insert_range_overflow)
+{
+    tscene s;
+    irc_config cfg;
+    irc_cache *c;
+    irc_record r;
+    float q[3] = {0.15f, 0, 0}, n[3] = {0, 0, 1}, rgb[3], w;
+    scene_init(&s);
+    cfg = scene_config(&s, 0, 4, 8);
+    c = block_cache(&cfg, 4, 0);
+    memset(&r, 0, sizeof r);
+    r.n[2] = 1.0f;
+    r.radius = 1.0f;
+    r.e[0] = -0.6875f;
+    CHECK(c && irc_cache_insert(c, &r) == IRC_ERR_RANGE, "negative irradiance");
+    CHECK(irc_cache_lookup(c, q, n, rgb, &w) == IRC_MISS, "nothing stored");
+    block_free(&cfg);
+    cfg = scene_config(&s, IRC_FEATURE_TRANSLATION, 4, 8);
+    c = block_cache(&cfg, 4, 0);
+    r.e[0] = 3e38f;
+    r.grad_t[0][0] = 3e38f;
+    r.features = IRC_FEATURE_TRANSLATION;
+    CHECK(c && irc_cache_insert(c, &r) == IRC_OK, "insert");
+    CHECK(irc_cache_lookup(c, q, n, rgb, &w) == IRC_ERR_NONFINITE, "overflow");
+    q[0] = -0.15f;
+    CHECK(irc_cache_lookup(c, q, n, rgb, &w) == IRC_OK && rgb[0] <= 3.4028235e38f, "below");
+    block_free(&cfg);
+}
