@@ -346,8 +346,12 @@ static void irc__grad_pack(float g[3][3], const double t1[3], const double t2[3]
         if (fabs(v[i]) > big)
             big = fabs(v[i]);
     out->scale = (float)(big / 32767.0);
-    for (i = 0; i < 6; i++)
-        out->g[i] = out->scale > 0.0f ? (int16_t)floor(v[i] / out->scale + 0.5) : 0;
+    for (i = 0; i < 6; i++) {
+        /* A denormal scale is rounded coarsely: the quotient may pass
+         * 32767, so it is clamped. */
+        double q = out->scale > 0.0f ? floor(v[i] / out->scale + 0.5) : 0.0;
+        out->g[i] = (int16_t)(q > 32767.0 ? 32767.0 : q < -32767.0 ? -32767.0 : q);
+    }
 }
 
 static void irc__grad_unpack(const irc__grad *in, const double t1[3],
