@@ -5,7 +5,9 @@
  * through a callback; the library samples hemispheres through it, builds
  * records carrying translational and rotational gradients, keeps them in one
  * memory block the host hands over at init, and answers Ward-Heckbert
- * weighted, gradient-extrapolated lookups.
+ * weighted, gradient-extrapolated lookups.  A cache may hold spherical-
+ * harmonic records of incident radiance instead (IRC_FEATURE_SH, "SH
+ * records" below).
  *
  *   - The library NEVER allocates.  Every structure (records, index nodes,
  *     sampling scratch, the lock) lives in the block given to irc_init().
