@@ -15,7 +15,7 @@ OPT ?= -O2 -g
 WARN = -Wall -Wextra -Wpedantic -Werror -Wmissing-prototypes -Wshadow
 CFLAGS_LIB = -std=c99 $(WARN) $(OPT) -fPIC -Iinclude $(CFLAGS)
 
-SRC = src/config.c src/sampler.c src/record.c src/weight.c src/index.c src/cache.c src/visibility.c src/sh.c src/shrec.c
+SRC = src/config.c src/sampler.c src/record.c src/weight.c src/index.c src/cache.c src/visibility.c src/sh.c src/shgrad.c src/shrec.c
 PORT_SRC = port/posix/irc_port.c port/c11/irc_port.c port/none/irc_port.c port/irc_port_default.c
 OBJ = $(SRC:%.c=$(BUILD)/%.o)
 PORT_OBJ = $(PORT_SRC:%.c=$(BUILD)/%.o)

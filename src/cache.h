@@ -103,7 +103,19 @@ int irc__sample_hemisphere(irc_cache *c, unsigned char *slot, const float p[3],
 /* sh.c */
 #define IRC__SH_MAX_BANDS 5
 #define IRC__FREE 0xffffffffu /* irc__rec.n of a free-point SH record */
+#define IRC__NC (IRC__SH_MAX_BANDS * IRC__SH_MAX_BANDS)
 void irc__sh_eval(int bands, const double s[3], double *y, double (*grad)[3]);
+
+/* shgrad.c: an SH record's samples summed, in double. */
+typedef struct irc__shsum {
+    double c[3][IRC__NC];
+    double g[3][3 * IRC__NC]; /* d c_i / dp at [3 i + k] */
+    double e[3];
+    double inv_d;
+    uint32_t used, total;
+} irc__shsum;
+int irc__sh_sample(irc_cache *c, unsigned char *slot, const float p[3], const double *un,
+                   irc__shsum *a);
 
 /* visibility.c */
 int irc__grad_visibility(irc_cache *c, unsigned char *slot, const float p[3],

@@ -1,0 +1,272 @@
+/*
+ * shgrad.c -- the samples of an SH record projected onto the real SH basis,
+ * and the coefficients' translational gradients from the same samples
+ * (SH-gradient paper, Eq. 6-13), with the silhouette singularity of the
+ * surface-integral form taken over the strata grid.
+ */
+#include "cache.h"
+
+/* The stratum grid the samples came from: one hemisphere (a surface
+ * record) or two glued at the equator with the same azimuths (a free
+ * point), rows of equal solid angle, cos(theta_j) = 1 - j/M. */
+typedef struct irc__grid {
+    const irc__sample *s;
+    const float *dir, *nrm;
+    const double *axis[2], *t1, *t2;
+    uint32_t m, n, halves;
+} irc__grid;
+
+static int irc__hit(const irc__sample *x)
+{
+    return x->d == x->d && x->d < HUGE_VALF;
+}
+
+/* |n.w| at sample i: 1 facing the ray, 0 grazing (a silhouette). */
+static double irc__facing(const irc__grid *g, uint32_t i)
+{
+    const float *w = g->dir + 3 * i, *n = g->nrm + 3 * i;
+    return fabs((double)w[0] * n[0] + (double)w[1] * n[1] + (double)w[2] * n[2]);
+}
+
+/* Whether neighbouring samples a and b lie on one continuous surface:
+ * both hits, normals alike and facing the same way, and a depth change no
+ * larger than a surface seen at that slant makes over the angle between
+ * them (twice over). */
+static int irc__continuous(const irc__grid *g, uint32_t a, uint32_t b)
+{
+    const float *wa = g->dir + 3 * a, *wb = g->dir + 3 * b;
+    const float *na = g->nrm + 3 * a, *nb = g->nrm + 3 * b;
+    double sa, sb, dw, da = g->s[a].d, db = g->s[b].d, big, slant;
+    int k;
+    if (!irc__hit(&g->s[a]) || !irc__hit(&g->s[b]))
+        return 0;
+    sa = (double)na[0] * wa[0] + (double)na[1] * wa[1] + (double)na[2] * wa[2];
+    sb = (double)nb[0] * wb[0] + (double)nb[1] * wb[1] + (double)nb[2] * wb[2];
+    if ((sa < 0.0) != (sb < 0.0) ||
+        (double)na[0] * nb[0] + (double)na[1] * nb[1] + (double)na[2] * nb[2] < 0.5)
+        return 0;
+    for (dw = 0.0, k = 0; k < 3; k++)
+        dw += ((double)wa[k] - wb[k]) * ((double)wa[k] - wb[k]);
+    big = da > db ? da : db;
+    slant = fabs(sa) > fabs(sb) ? fabs(sa) : fabs(sb);
+    return fabs(da - db) * slant <= 2.0 * IRC_SQRT(dw) * big;
+}
+
+/* The depth where the surface of sample i ends, past i on the side away
+ * from its neighbour o.  At a smooth silhouette |n.w| falls to 0 there and
+ * both |n.w|^2 and the depth's shortfall from the silhouette's depth go
+ * as the angle to it, so when |n.w|^2, extrapolated from o through i,
+ * reaches 0 within one stratum past i, the depth is extrapolated linearly
+ * in |n.w| to |n.w| = 0.  Otherwise (an edge of the surface itself, a
+ * polygon's outline) the edge's depth is i's. */
+static double irc__silhouette_depth(const irc__grid *g, uint32_t i, int64_t o)
+{
+    double d = g->s[i].d, fi, fo, ds;
+    if (o < 0 || !irc__continuous(g, i, (uint32_t)o))
+        return d;
+    fi = irc__facing(g, i);
+    fo = irc__facing(g, (uint32_t)o);
+    if (!(fo * fo >= 1.25 * fi * fi) || !(g->s[o].d < d))
+        return d;
+    ds = d + fi * (d - g->s[o].d) / (fo - fi);
+    return ds < 2.0 * d ? ds : 2.0 * d;
+}
+
+/* The singular part of Eq. 11: with dA = dw r^2/(n.w) (Eq. 13) the term
+ * y_i grad g / g carries n/(n.w), unbounded at silhouettes (1/sqrt of the
+ * angle to them); sampled, it makes the gradient converge as the fourth
+ * root of the ray count.  Its tangential part is -grad_w(1/r), so the
+ * integral of -L y_i grad_w(1/r) is taken over the grid instead: through
+ * each edge between strata, the difference of 1/r times the edge's length
+ * and unit normal, shared by the two samples (their L y_i is applied by
+ * the caller).  An edge across a silhouette is no difference of one
+ * surface: the nearer side's 1/r runs on to the silhouette's depth
+ * (irc__silhouette_depth), the farther side's surface continues behind.
+ * w_out gets the vector for sample i. */
+static void irc__edge(const irc__grid *g, uint32_t i, int64_t o, int64_t back,
+                      double len, const double nu[3], double w_out[3])
+{
+    double f, k;
+    int c;
+    if (o < 0 || !irc__hit(&g->s[i]) || g->s[o].d != g->s[o].d)
+        return;
+    if (irc__continuous(g, i, (uint32_t)o))
+        f = 0.5 * (1.0 / g->s[o].d - 1.0 / g->s[i].d);
+    else if (!(g->s[o].d > g->s[i].d))
+        return;
+    else
+        f = 1.0 / irc__silhouette_depth(g, i, back) - 1.0 / g->s[i].d;
+    k = f * len;
+    for (c = 0; c < 3; c++)
+        w_out[c] += k * nu[c];
+}
+
+/* Sample index of row j (of rows 0..2M-1 counted from the first
+ * hemisphere's pole across the equator), column k; -1 off the grid.  Once
+ * per row: it divides. */
+static int64_t irc__at(const irc__grid *g, int64_t j, uint32_t k)
+{
+    uint32_t h;
+    if (j < 0 || j >= (int64_t)(g->halves * g->m))
+        return -1;
+    h = (uint32_t)(j / g->m);
+    j %= g->m;
+    if (h)
+        j = g->m - 1 - j;
+    return (int64_t)h * g->m * g->n + j * g->n + k;
+}
+
+/* A row's geometry (cos theta at its two edges, their sines, its angular
+ * height) and a column's (cos, sin of its left edge, centre, right edge):
+ * the callers advance them by recurrence, so no stratum needs trig. */
+typedef struct irc__cell {
+    double z0, z1, s0, s1, len;
+    double cl, sl, cc, sc, cr, sr;
+    const double *axis;
+    int64_t row, up, dn; /* first sample of the row, of the rows toward the
+                            pole and toward the horizon (-1: none) */
+} irc__cell;
+
+/* The edge vector of the sample in column k of the row q describes. */
+static void irc__edge_vector(const irc__grid *g, uint32_t k, const irc__cell *q, double w[3])
+{
+    const double dphi = 2.0 * IRC_PI / g->n;
+    const uint32_t i = (uint32_t)q->row + k, kl = k ? k - 1 : g->n - 1,
+                   kr = k + 1 < g->n ? k + 1 : 0;
+    const int64_t up = q->up < 0 ? -1 : q->up + k, dn = q->dn < 0 ? -1 : q->dn + k;
+    double nu[3];
+    int c;
+    w[0] = w[1] = w[2] = 0.0;
+    /* Left and right: meridian edges, unit normals along -/+ e_phi. */
+    for (c = 0; c < 3; c++)
+        nu[c] = q->sl * g->t1[c] - q->cl * g->t2[c];
+    if (g->n > 1)
+        irc__edge(g, i, q->row + kl, q->row + kr, q->len, nu, w);
+    for (c = 0; c < 3; c++)
+        nu[c] = -q->sr * g->t1[c] + q->cr * g->t2[c];
+    if (g->n > 1)
+        irc__edge(g, i, q->row + kr, q->row + kl, q->len, nu, w);
+    /* Toward the pole and toward the horizon (the other hemisphere's
+     * equator row for a free point): arcs of constant theta. */
+    for (c = 0; c < 3; c++)
+        nu[c] = -(q->z0 * (q->cc * g->t1[c] + q->sc * g->t2[c]) - q->s0 * q->axis[c]);
+    irc__edge(g, i, up, dn, q->s0 * dphi, nu, w);
+    for (c = 0; c < 3; c++)
+        nu[c] = q->z1 * (q->cc * g->t1[c] + q->sc * g->t2[c]) - q->s1 * q->axis[c];
+    irc__edge(g, i, dn, up, q->s1 * dphi, nu, w);
+}
+
+/* One sample's share of the coefficients and, with gradients, of Eq. 11
+ * over the surface it hit, rewritten over solid angle with dA = dw r^2 /
+ * (n.w) (Eq. 13): the regular part -dw L/r [grad_w y_i - 2 y_i w] here,
+ * the singular part through the edge vector e (irc__edge), -L y_i e.  w
+ * is the stratum's direction, dw = 1 (the caller scales). */
+static void irc__sh_add(const irc_cache *c, irc__shsum *a, const irc__sample *x,
+                        const double w[3], const double *n, const double e[3])
+{
+    const int nc = (int)c->sh_n, nch = (int)c->sh_ch, bands = (int)c->cfg.sh_bands;
+    const int grad = c->off_shg != 0;
+    double y[IRC__NC], gy[IRC__NC][3], v[3 * IRC__NC];
+    int ch, i, k;
+    irc__sh_eval(bands, w, y, grad ? gy : NULL);
+    for (ch = 0; ch < nch; ch++)
+        for (i = 0; i < nc; i++)
+            a->c[ch][i] += x->l[ch] * y[i];
+    if (n)
+        for (ch = 0; ch < 3; ch++)
+            a->e[ch] += x->l[ch] * irc__dot3d(w, n);
+    if (!irc__hit(x))
+        return;
+    a->inv_d += 1.0 / x->d;
+    if (!grad)
+        return;
+    /* One vector per sample, then a plain multiply-add per channel. */
+    for (i = 0; i < nc; i++)
+        for (k = 0; k < 3; k++)
+            v[3 * i + k] = (gy[i][k] - 2.0 * y[i] * w[k]) / x->d + y[i] * e[k];
+    for (ch = 0; ch < nch; ch++) {
+        const double l = x->l[ch];
+        for (i = 0; i < 3 * nc; i++)
+            a->g[ch][i] -= l * v[i];
+    }
+}
+
+static void irc__sh_accumulate(const irc_cache *c, const irc__grid *g, const double *n,
+                               irc__shsum *a)
+{
+    const double dw = 2.0 * IRC_PI / c->strata, dphi = 2.0 * IRC_PI / g->n;
+    const double cd = IRC_COS(dphi), sd = IRC_SIN(dphi), ch = IRC_COS(0.5 * dphi),
+                 sh = IRC_SIN(0.5 * dphi);
+    int64_t jj;
+    uint32_t k;
+    int q;
+    for (jj = 0; jj < (int64_t)(g->halves * g->m); jj++) {
+        const uint32_t j = jj < g->m ? (uint32_t)jj : g->m - 1 - (uint32_t)(jj - g->m);
+        irc__cell cell;
+        cell.z0 = 1.0 - (double)j / g->m;
+        cell.z1 = 1.0 - (j + 1.0) / g->m;
+        cell.s0 = IRC_SQRT(1.0 - cell.z0 * cell.z0);
+        cell.s1 = IRC_SQRT(1.0 - cell.z1 * cell.z1);
+        cell.len = IRC_ACOS(cell.z1) - IRC_ACOS(cell.z0);
+        cell.cl = 1.0;
+        cell.sl = 0.0;
+        cell.axis = g->axis[jj < g->m ? 0 : 1];
+        cell.row = irc__at(g, jj, 0);
+        cell.up = irc__at(g, jj < g->m ? jj - 1 : jj + 1, 0);
+        cell.dn = irc__at(g, jj < g->m ? jj + 1 : jj - 1, 0);
+        for (k = 0; k < g->n; k++) {
+            const uint32_t i = (uint32_t)cell.row + k;
+            double w[3], e[3] = {0, 0, 0};
+            cell.cc = cell.cl * ch - cell.sl * sh;
+            cell.sc = cell.sl * ch + cell.cl * sh;
+            cell.cr = cell.cl * cd - cell.sl * sd;
+            cell.sr = cell.sl * cd + cell.cl * sd;
+            a->total++;
+            if (g->s[i].d == g->s[i].d) {
+                a->used++;
+                for (q = 0; q < 3; q++)
+                    w[q] = g->dir[3 * i + q];
+                if (c->off_shg) {
+                    irc__edge_vector(g, k, &cell, e);
+                    for (q = 0; q < 3; q++)
+                        e[q] /= dw;
+                }
+                irc__sh_add(c, a, &g->s[i], w, n, e);
+            }
+            cell.cl = cell.cr;
+            cell.sl = cell.sr;
+        }
+    }
+}
+
+/* Samples one hemisphere (n given) or the sphere as two (n NULL: around
+ * the world z axis, the lower one's frame the upper's with the axis
+ * flipped, so columns meet at the equator) into a claimed slot and sums
+ * them into *a. */
+int irc__sh_sample(irc_cache *c, unsigned char *slot, const float p[3],
+                          const double *un, irc__shsum *a)
+{
+    static const double up[3] = {0, 0, 1}, down[3] = {0, 0, -1};
+    double t1[3], t2[3];
+    irc__grid g;
+    uint32_t used, h;
+    int st;
+    g.s = (const irc__sample *)(const void *)slot;
+    g.dir = irc__slot_dirs(c, g.s);
+    g.nrm = irc__slot_normals(c, g.s);
+    g.axis[0] = un ? un : up;
+    g.axis[1] = down;
+    g.t1 = t1;
+    g.t2 = t2;
+    g.m = c->cfg.strata_theta;
+    g.n = c->cfg.strata_phi;
+    g.halves = un ? 1u : 2u;
+    irc__frame(g.axis[0], t1, t2);
+    for (h = 0; h < g.halves; h++) {
+        st = irc__sample_hemisphere(c, slot, p, g.axis[h], t1, t2, h * c->strata, &used);
+        if (st < 0)
+            return st;
+    }
+    irc__sh_accumulate(c, &g, un, a);
+    return IRC_OK;
+}
