@@ -60,7 +60,7 @@ test:
 
 # ---------------------------------------------------------------- demo
 # The demo tracer: every demo/*.c but the two stand-alone programs.
-DEMO_LIB_SRC = $(filter-out demo/main.c demo/bench_core.c demo/minimal.c demo/fig15.c demo/shexp.c,$(wildcard demo/*.c))
+DEMO_LIB_SRC = $(filter-out demo/main.c demo/bench_core.c demo/minimal.c demo/fig15.c demo/shexp.c demo/bench.c,$(wildcard demo/*.c))
 DEMO_CFLAGS = -std=c99 $(WARN) -Iinclude -Idemo $(OPT) $(CFLAGS)
 DEMO_OUT = $(BUILD)/demo
 # The Cornell box at the same rays per shading point in both modes (16 x 64
@@ -143,6 +143,14 @@ $(BUILD)/minimal: demo/minimal.c $(LIBA)
 bench-core: $(BUILD)/bench_core
 	$(BUILD)/bench_core
 
+# Speed against error on every shipped scene (README: "Speed against
+# error").  BENCH_QUICK=1: small images, fewer runs, under two minutes.
+$(BUILD)/bench_run: demo/bench.c $(DEMO_LIB_SRC) demo/*.h $(LIBA)
+	$(CC) $(DEMO_CFLAGS) demo/bench.c $(DEMO_LIB_SRC) $(LIBA) -o $@ -lm -lpthread
+
+bench: $(BUILD)/bench_run
+	sh demo/bench.sh $(BUILD)/bench_run
+
 install: all
 	install -d $(PREFIX)/include $(PREFIX)/lib
 	install -m 644 include/irrcache.h $(PREFIX)/include/
@@ -151,4 +159,4 @@ install: all
 clean:
 	rm -rf build build-*
 
-.PHONY: all test demo fig15 sh-experiments fuzz bench-core install clean
+.PHONY: all test demo fig15 sh-experiments fuzz bench-core bench install clean

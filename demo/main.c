@@ -17,7 +17,8 @@ static const char usage[] =
     "  --cache                 irradiance from the cache (the default)\n"
     "  --reference N           brute force: N hemisphere rays per shading point\n"
     "  --features LIST         cache gradients: none, trans, rot, trans,rot (default),\n"
-    "                          vis, vis,rot (vis: translational from visibility)\n"
+    "                          vis, vis,rot (vis: translational from visibility),\n"
+    "                          sh, sh,grad (SH records, L = 3, E by convolution)\n"
     "  --accuracy A            cache accuracy a (default 0.2)\n"
     "  --strata MxN            cache hemisphere strata (default 16x64)\n"
     "  --records N             cache capacity (default 200000; CLOCK eviction)\n"
@@ -69,6 +70,8 @@ static int parse_features(const char *s, uint32_t *f)
     else if (!strcmp(s, "vis")) *f = IRC_FEATURE_VISIBILITY | IRC_FEATURE_TRANSLATION;
     else if (!strcmp(s, "vis,rot") || !strcmp(s, "rot,vis"))
         *f = IRC_FEATURE_VISIBILITY | IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION;
+    else if (!strcmp(s, "sh")) *f = IRC_FEATURE_SH;
+    else if (!strcmp(s, "sh,grad")) *f = IRC_FEATURE_SH | IRC_FEATURE_SH_GRADIENT;
     else return 0;
     return 1;
 }
@@ -167,7 +170,8 @@ static void report(FILE *f, const cli *c, const renderer *r, const render_stats 
     fprintf(f, "%s: %s", c->scene, c->o.mode == MODE_CACHE ? "cache" : "reference");
     if (c->o.mode == MODE_CACHE)
         fprintf(f, " (%s, a = %g, %ux%u strata, max radius %g)",
-                (c->o.features & IRC_FEATURE_VISIBILITY) ? (c->o.features & 2 ? "vis+rot" : "vis")
+                (c->o.features & IRC_FEATURE_SH) ? (c->o.features & IRC_FEATURE_SH_GRADIENT ? "SH+gradient" : "SH")
+                : (c->o.features & IRC_FEATURE_VISIBILITY) ? (c->o.features & 2 ? "vis+rot" : "vis")
                 : c->o.features == 3 ? "trans+rot" : c->o.features == 1 ? "trans"
                 : c->o.features == 2 ? "rot" : "no gradients",
                 c->o.accuracy, c->o.strata_m, c->o.strata_n, r->o.max_radius);

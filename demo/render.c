@@ -20,6 +20,10 @@ typedef struct tstate {
     uint64_t rays;
 } tstate;
 
+typedef struct cam_frame {
+    float eye[3], f[3], right[3], up[3], tx, ty;
+} cam_frame;
+
 static pthread_key_t tkey;
 static pthread_once_t tonce = PTHREAD_ONCE_INIT;
 static void make_key(void) { pthread_key_create(&tkey, NULL); }
@@ -93,6 +97,44 @@ static int host_trace(const irc_trace_args *a)
     return 0;
 }
 
+static void camera_frame(const camera *c, cam_frame *cf);
+static void camera_ray(const cam_frame *cf, const camera *c, int x, int y, float d[3]);
+
+/* The default maximum radius: 0.1 x the diagonal of what the camera sees
+ * (the box around the first hits of a 32 x 32 grid of camera rays), as
+ * Radiance bounds radii by the scene's size; open scenes otherwise get
+ * records as wide as the sky's harmonic mean distance.  The visible part,
+ * not the whole scene: a huge ground object must not widen every record. */
+static float visible_size(const renderer *r)
+{
+    const camera *c = &r->s->cam;
+    camera sub = *c;
+    cam_frame cf;
+    float lo[3] = {FLT_MAX, FLT_MAX, FLT_MAX}, hi[3] = {-FLT_MAX, -FLT_MAX, -FLT_MAX}, d2 = 0.0f;
+    int x, y, k, hits = 0;
+    sub.width = sub.height = 32;
+    camera_frame(&sub, &cf);
+    for (y = 0; y < 32; y++)
+        for (x = 0; x < 32; x++) {
+            float d[3];
+            bvh_hit bh;
+            camera_ray(&cf, &sub, x, y, d);
+            if (!bvh_intersect(&r->b, cf.eye, d, 0.0f, FLT_MAX, &bh))
+                continue;
+            for (k = 0; k < 3; k++) {
+                float p = cf.eye[k] + bh.t * d[k];
+                lo[k] = p < lo[k] ? p : lo[k];
+                hi[k] = p > hi[k] ? p : hi[k];
+            }
+            hits++;
+        }
+    for (k = 0; k < 3; k++) {
+        float e = hits ? hi[k] - lo[k] : (r->b.nprims ? r->b.nodes[0].hi[k] - r->b.nodes[0].lo[k] : 0.0f);
+        d2 += e * e;
+    }
+    return 0.1f * sqrtf(d2);
+}
+
 int renderer_init(renderer *r, const scene *s, const render_opts *o, char *err, size_t n)
 {
     memset(r, 0, sizeof *r);
@@ -106,28 +148,20 @@ int renderer_init(renderer *r, const scene *s, const render_opts *o, char *err, 
     if (o->mode == MODE_CACHE) {
         irc_config cfg;
         size_t bytes;
-        int st, k;
+        int st;
         memset(&cfg, 0, sizeof cfg);
         cfg.trace = host_trace;
         cfg.context = r;
         cfg.max_batch = 64;
         cfg.features = o->features;
+        cfg.sh_bands = (o->features & IRC_FEATURE_SH) ? o->sh_bands : 0;
         cfg.accuracy = o->accuracy;
         cfg.strata_theta = o->strata_m;
         cfg.strata_phi = o->strata_n;
         cfg.min_radius = o->min_radius;
         cfg.max_radius = o->max_radius;
-        if (o->max_radius < 0.0f) {
-            /* Scene-relative default (as Radiance bounds its radii by the
-             * scene's size): open scenes otherwise get records as wide as
-             * the sky's harmonic mean distance. */
-            float d2 = 0.0f;
-            for (k = 0; k < 3 && r->b.nprims > 0; k++) {
-                float e = r->b.nodes[0].hi[k] - r->b.nodes[0].lo[k];
-                d2 += e * e;
-            }
-            cfg.max_radius = r->o.max_radius = 0.1f * sqrtf(d2);
-        }
+        if (o->max_radius < 0.0f)
+            cfg.max_radius = r->o.max_radius = visible_size(r);
         cfg.threads = (uint32_t)o->threads;
         cfg.seed = o->seed;
         cfg.evict = IRC_EVICT_CLOCK;
@@ -205,17 +239,21 @@ static int irradiance(renderer *r, const float p[3], const float n[3], uint64_t 
 {
     if (r->o.mode == MODE_CACHE) {
         double t0 = now(), tr0 = ts->trace_s;
-        int st = irc_cache_lookup_or_compute(r->cache, p, n, e, NULL);
+        int st;
+        if (r->o.features & IRC_FEATURE_SH) {
+            irc_sh sh;
+            st = irc_sh_lookup_or_compute(r->cache, p, n, &sh, NULL);
+            if (st >= 0)
+                st = irc_sh_irradiance(&sh, n, e);
+        } else {
+            st = irc_cache_lookup_or_compute(r->cache, p, n, e, NULL);
+        }
         ts->cache_s += (now() - t0) - (ts->trace_s - tr0);
         return st < 0 ? st : 0;
     }
     reference_e(r, p, n, key, e, ts);
     return 0;
 }
-
-typedef struct cam_frame {
-    float eye[3], f[3], right[3], up[3], tx, ty;
-} cam_frame;
 
 static void camera_frame(const camera *c, cam_frame *cf)
 {
@@ -340,9 +378,10 @@ static void *worker(void *arg)
     pthread_setspecific(tkey, ts);
     for (;;) {
         int y = __atomic_fetch_add(&j->next_row, 1, __ATOMIC_RELAXED), x, done;
+        const int step = j->r->o.stride > 1 ? j->r->o.stride : 1;
         if (y >= c->height || __atomic_load_n(&j->error, __ATOMIC_RELAXED))
             break;
-        for (x = 0; x < c->width; x++) {
+        for (x = 0; x < c->width && y % step == 0; x += step) {
             int st = shade_pixel(j->r, &j->cf, x, y, &j->rgb[((size_t)y * c->width + x) * 3], ts);
             if (st < 0) {
                 __atomic_store_n(&j->error, st, __ATOMIC_RELAXED);

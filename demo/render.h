@@ -20,7 +20,9 @@ enum { SHOW_FULL, SHOW_INDIRECT };
 typedef struct render_opts {
     int mode;
     int ref_rays;         /* reference: hemisphere rays per shading point */
-    uint32_t features;    /* cache: IRC_FEATURE_* */
+    uint32_t features;    /* cache: IRC_FEATURE_* (with IRC_FEATURE_SH, E is
+                             the SH record's clamped-cosine irradiance) */
+    uint32_t sh_bands;    /* cache with SH: L (0: the library's default) */
     float accuracy;       /* cache: a */
     uint32_t strata_m, strata_n;
     uint32_t max_records;
@@ -30,6 +32,9 @@ typedef struct render_opts {
     int light_samples;    /* at the camera ray's hit; 1 at secondary hits */
     uint64_t seed;
     int progress;         /* draw a progress bar on stderr after a second */
+    int stride;           /* > 1: shade only pixels whose x and y are
+                             multiples of it (the rest stay 0), as for a
+                             reference on a lattice */
 } render_opts;
 
 typedef struct render_stats {

@@ -1,0 +1,485 @@
+/*
+ * bench.c -- speed against error (make bench).  For every shipped scene it
+ * renders the one-bounce indirect term kd/pi E with every method:
+ *   brute force at several rays per shading point;
+ *   the cache without gradients, with translational + rotational
+ *   gradients, with visibility gradients, and with SH records (on the
+ *   scenes that are glossy or lit by near sources), each over a sweep of
+ *   the accuracy a; and the translational + rotational cache over a sweep
+ *   of strata;
+ * and measures each run against a brute-force reference: relative RMSE
+ * (sqrt(sum (a-b)^2 / sum b^2) over pixels and channels) and the 99th
+ * percentile of the per-pixel relative error |A - B| / (B + 0.05 mean B)
+ * (A, B the channel sums; the floor keeps black pixels from dividing by 0).
+ *
+ * The reference is brute force with REF rays at every STRIDE-th pixel in x
+ * and y (errors are measured on that lattice), rendered twice with other
+ * seeds and averaged; its own noise, the RMSE between the two over 2, is
+ * reported.  References are cached in build/bench/ and reused.
+ *
+ * Writes build/bench/bench.csv, build/bench/table.md (the README's table),
+ * one data file per scene and method and build/bench/plot.gp for gnuplot.
+ *   bench [quick]
+ */
+#define _POSIX_C_SOURCE 200809L
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "image.h"
+#include "render.h"
+
+#define OUT "build/bench"
+#define MAX_RUNS 64
+
+typedef struct bscene {
+    const char *name, *path;
+    int w, h, qw, qh; /* full and quick sizes */
+    int sh;           /* glossy or near lights: SH records too */
+} bscene;
+
+static const bscene scenes[] = {
+    {"cornell", "demo/scenes/cornell.scene", 512, 512, 128, 128, 0},
+    {"fig5", "demo/scenes/fig5.scene", 256, 192, 128, 96, 1},
+    {"fig15", "demo/scenes/fig15.scene", 256, 256, 96, 96, 0},
+    {"sh", "demo/scenes/sh.scene", 256, 256, 96, 96, 1},
+};
+
+typedef struct run {
+    char method[32];
+    double param;          /* rays per point, a, or strata rows */
+    render_stats st;
+    double rmse, p99;
+} run;
+
+typedef struct ctx {
+    int quick, threads, stride, ref_rays, w, h;
+    scene s;
+    float *ref;            /* the averaged reference (lattice pixels) */
+    double ref_noise;
+    run runs[MAX_RUNS];
+    int nruns;
+} ctx;
+
+static double elapsed(const struct timespec *t0)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)(t.tv_sec - t0->tv_sec) + 1e-9 * (double)(t.tv_nsec - t0->tv_nsec);
+}
+
+static int on_lattice(const ctx *c, int i)
+{
+    return (i % c->w) % c->stride == 0 && (i / c->w) % c->stride == 0;
+}
+
+/* Relative RMSE and the 99th percentile of the per-pixel relative error
+ * over the lattice. */
+static void measure(const ctx *c, const float *img, const float *ref, double *rmse, double *p99)
+{
+    const int n = c->w * c->h;
+    double se = 0.0, sr = 0.0, mean = 0.0;
+    double *rel = malloc(sizeof(double) * (size_t)n);
+    int i, k, m = 0;
+    for (i = 0; i < n; i++)
+        if (on_lattice(c, i)) {
+            mean += ref[3 * i] + ref[3 * i + 1] + ref[3 * i + 2];
+            m++;
+        }
+    mean /= m;
+    for (i = 0, m = 0; i < n; i++) {
+        double a = 0.0, b = 0.0;
+        if (!on_lattice(c, i))
+            continue;
+        for (k = 0; k < 3; k++) {
+            se += (img[3 * i + k] - ref[3 * i + k]) * (double)(img[3 * i + k] - ref[3 * i + k]);
+            sr += ref[3 * i + k] * (double)ref[3 * i + k];
+            a += img[3 * i + k];
+            b += ref[3 * i + k];
+        }
+        rel[m++] = fabs(a - b) / (b + 0.05 * mean);
+    }
+    { /* Shell sort: enough for a lattice of some 16k pixels */
+        int gap, j;
+        for (gap = m / 2; gap > 0; gap /= 2)
+            for (i = gap; i < m; i++) {
+                double v = rel[i];
+                for (j = i; j >= gap && rel[j - gap] > v; j -= gap)
+                    rel[j] = rel[j - gap];
+                rel[j] = v;
+            }
+    }
+    *rmse = sr > 0.0 ? sqrt(se / sr) : 0.0;
+    *p99 = rel[(int)(0.99 * (m - 1))];
+    free(rel);
+}
+
+static int render(ctx *c, const render_opts *o, float *img, render_stats *st)
+{
+    renderer r;
+    char err[256];
+    int e;
+    if (renderer_init(&r, &c->s, o, err, sizeof err) < 0) {
+        fprintf(stderr, "bench: %s\n", err);
+        return -1;
+    }
+    memset(img, 0, sizeof(float) * 3 * (size_t)c->w * c->h);
+    e = render_image(&r, img, st);
+    renderer_free(&r);
+    if (e < 0)
+        fprintf(stderr, "bench: render failed: %s\n", irc_strerror(e));
+    return e < 0 ? -1 : 0;
+}
+
+static render_opts base_opts(const ctx *c)
+{
+    render_opts o;
+    memset(&o, 0, sizeof o);
+    o.threads = c->threads;
+    o.show = SHOW_INDIRECT;
+    o.light_samples = 1;
+    o.seed = 7;
+    o.accuracy = 0.2f;
+    o.strata_m = 16;
+    o.strata_n = 64;
+    o.max_records = 400000;
+    o.max_radius = -1.0f;
+    return o;
+}
+
+/* The two references (cached by scene, size, lattice, rays and seed), and
+ * their average. */
+static int reference(ctx *c, const bscene *b)
+{
+    float *one[2];
+    int k, i, n = c->w * c->h;
+    for (k = 0; k < 2; k++) {
+        char path[256], err[256];
+        int rw, rh;
+        snprintf(path, sizeof path, OUT "/ref-%s-%dx%d-s%d-r%d-seed%d.exr", b->name, c->w, c->h,
+                 c->stride, c->ref_rays, k + 1);
+        if (exr_read(path, &rw, &rh, &one[k], err, sizeof err) == 0 && rw == c->w && rh == c->h) {
+            printf("  reference %d: %s (cached)\n", k + 1, path);
+            continue;
+        }
+        {
+            render_opts o = base_opts(c);
+            render_stats st;
+            o.mode = MODE_REFERENCE;
+            o.ref_rays = c->ref_rays;
+            o.stride = c->stride;
+            o.seed = (uint64_t)k + 1001;
+            one[k] = malloc(sizeof(float) * 3 * (size_t)n);
+            if (render(c, &o, one[k], &st) < 0 ||
+                exr_write(path, c->w, c->h, one[k], 0, err, sizeof err) < 0)
+                return -1;
+            printf("  reference %d: %d rays at every %dth pixel, %.1f s\n", k + 1, c->ref_rays,
+                   c->stride, st.wall);
+        }
+    }
+    c->ref = malloc(sizeof(float) * 3 * (size_t)n);
+    for (i = 0; i < 3 * n; i++)
+        c->ref[i] = 0.5f * (one[0][i] + one[1][i]);
+    {
+        double p;
+        measure(c, one[0], one[1], &c->ref_noise, &p);
+        c->ref_noise *= 0.5; /* of the average of two */
+    }
+    free(one[0]);
+    free(one[1]);
+    return 0;
+}
+
+static int add_run(ctx *c, const char *method, double param, const render_opts *o,
+                   const bscene *b, FILE *csv)
+{
+    run *r = &c->runs[c->nruns];
+    float *img = malloc(sizeof(float) * 3 * (size_t)c->w * c->h);
+    if (!img || c->nruns == MAX_RUNS || render(c, o, img, &r->st) < 0)
+        return -1;
+    snprintf(r->method, sizeof r->method, "%s", method);
+    r->param = param;
+    measure(c, img, c->ref, &r->rmse, &r->p99);
+    free(img);
+    c->nruns++;
+    fprintf(csv, "%s,%s,%g,%.4f,%.4f,%.4f,%llu,%llu,%zu,%.5f,%.5f,%.5f\n", b->name, method, param,
+            r->st.wall, r->st.trace_s, r->st.cache_s, (unsigned long long)r->st.rays,
+            (unsigned long long)r->st.records, r->st.cache_bytes, r->rmse, r->p99, c->ref_noise);
+    fflush(csv);
+    printf("  %-12s %7g: %7.2f s, rel RMSE %.4f, p99 %.4f, records %llu, cache %.1f%% of thread time\n",
+           method, param, r->st.wall, r->rmse, r->p99, (unsigned long long)r->st.records,
+           100.0 * r->st.cache_s / (c->threads * r->st.wall));
+    return 0;
+}
+
+/* Time at which a method's runs (in order of time) first reach relative
+ * RMSE `target`, interpolated log-log between the runs either side; -1 if
+ * none does; 0 if the fastest already does (no bracket). */
+static double time_to(const ctx *c, const char *method, double target)
+{
+    int idx[MAX_RUNS], n = 0, i, j;
+    for (i = 0; i < c->nruns; i++)
+        if (!strcmp(c->runs[i].method, method))
+            idx[n++] = i;
+    for (i = 1; i < n; i++)
+        for (j = i; j > 0 && c->runs[idx[j]].st.wall < c->runs[idx[j - 1]].st.wall; j--) {
+            int t = idx[j];
+            idx[j] = idx[j - 1];
+            idx[j - 1] = t;
+        }
+    if (n == 0)
+        return -1.0;
+    if (c->runs[idx[0]].rmse <= target)
+        return 0.0;
+    for (i = 1; i < n; i++) {
+        const run *a = &c->runs[idx[i - 1]], *b = &c->runs[idx[i]];
+        if (b->rmse <= target && a->rmse > target) {
+            double u = (log(target) - log(a->rmse)) / (log(b->rmse) - log(a->rmse));
+            return exp(log(a->st.wall) + u * (log(b->st.wall) - log(a->st.wall)));
+        }
+    }
+    return -1.0;
+}
+
+/* A method's relative RMSE at `records` records, interpolated log-log
+ * along its accuracy sweep; -1 outside it. */
+static double rmse_at(const ctx *c, const char *method, double records)
+{
+    int i, j;
+    for (i = 0; i < c->nruns; i++)
+        for (j = 0; j < c->nruns; j++) {
+            const run *a = &c->runs[i], *b = &c->runs[j];
+            double ra = (double)a->st.records, rb = (double)b->st.records, u;
+            if (strcmp(a->method, method) || strcmp(b->method, method) || !(ra <= records) ||
+                !(rb >= records) || ra <= 0.0 || rb <= 0.0)
+                continue;
+            if (ra == rb)
+                return a->rmse;
+            /* the nearest bracket: no run of this method between them */
+            {
+                int k, inside = 0;
+                for (k = 0; k < c->nruns; k++)
+                    if (!strcmp(c->runs[k].method, method) && c->runs[k].st.records > ra &&
+                        c->runs[k].st.records < rb)
+                        inside = 1;
+                if (inside)
+                    continue;
+            }
+            u = (log(records) - log(ra)) / (log(rb) - log(ra));
+            return exp(log(a->rmse) + u * (log(b->rmse) - log(a->rmse)));
+        }
+    return -1.0;
+}
+
+static void cell_time(FILE *f, double t, double brute)
+{
+    if (t < 0.0)
+        fprintf(f, " not reached |");
+    else if (t == 0.0)
+        fprintf(f, " at the fastest run |");
+    else if (brute > 0.0)
+        fprintf(f, " %.2f s (%.1fx) |", t, brute / t);
+    else
+        fprintf(f, " %.2f s |", t);
+}
+
+static const char *const methods[] = {"brute", "none", "trans+rot", "vis", "sh", "strata"};
+static const char *const method_names[] = {
+    "brute force (rays per point)", "cache, no gradients (a)",
+    "cache, translational + rotational (a)", "cache, visibility gradients (a)",
+    "cache, SH records L = 3 + gradients (a)", "cache, trans+rot, strata rows (a = 0.2)"};
+
+static void table(ctx *c, const bscene *b, FILE *md)
+{
+    const double t5 = time_to(c, "brute", 0.05), t2 = time_to(c, "brute", 0.02);
+    int m, i;
+    fprintf(md, "\n**%s** (%dx%d; reference %d rays at every %dth pixel, noise %.4f)\n\n",
+            b->name, c->w, c->h, c->ref_rays, c->stride, c->ref_noise);
+    fprintf(md, "| method | runs | best rel. RMSE | its p99 | time to 5%% (speedup) | "
+                "time to 2%% (speedup) | records at a = 0.2 | cache share at a = 0.2 |\n"
+                "|---|---|---|---|---|---|---|---|\n");
+    for (m = 0; m < 6; m++) {
+        const run *best = NULL, *mid = NULL;
+        int n = 0;
+        for (i = 0; i < c->nruns; i++) {
+            const run *r = &c->runs[i];
+            if (strcmp(r->method, methods[m]))
+                continue;
+            n++;
+            if (!best || r->rmse < best->rmse)
+                best = r;
+            if (m > 0 && m < 5 && fabs(r->param - 0.2) < 1e-6)
+                mid = r;
+        }
+        if (!n)
+            continue;
+        fprintf(md, "| %s | %d | %.4f | %.4f |", method_names[m], n, best->rmse, best->p99);
+        cell_time(md, time_to(c, methods[m], 0.05), m ? t5 : -1.0);
+        cell_time(md, time_to(c, methods[m], 0.02), m ? t2 : -1.0);
+        if (mid)
+            fprintf(md, " %llu (%.1f MB) | %.1f%% |\n", (unsigned long long)mid->st.records,
+                    mid->st.cache_bytes / 1048576.0,
+                    100.0 * mid->st.cache_s / (c->threads * mid->st.wall));
+        else
+            fprintf(md, " | |\n");
+    }
+    for (i = 0; i < c->nruns; i++)
+        if (!strcmp(c->runs[i].method, "trans+rot") && fabs(c->runs[i].param - 0.2) < 1e-6) {
+            double rec = (double)c->runs[i].st.records, e0 = rmse_at(c, "none", rec),
+                   e1 = c->runs[i].rmse, e2 = rmse_at(c, "vis", rec);
+            fprintf(md, "\nAt %llu records (trans+rot, a = 0.2): relative RMSE no gradients %.4f, "
+                        "translational + rotational %.4f, visibility %.4f",
+                    (unsigned long long)rec, e0, e1, e2);
+            if (e0 > 0.0 && e2 > 0.0)
+                fprintf(md, " (none / trans+rot = %.2f, trans+rot / visibility = %.2f)", e0 / e1,
+                        e1 / e2);
+            fprintf(md, "; -1: the record count is outside that method's sweep.\n");
+        }
+}
+
+/* One data file per method for gnuplot: time, RMSE. */
+static void data_files(const ctx *c, const bscene *b, FILE *gp)
+{
+    int m, i, first = 1;
+    fprintf(gp, "set output '" OUT "/%s.png'\nset title '%s: relative RMSE against time "
+                "(reference noise %.4f)'\nplot ", b->name, b->name, c->ref_noise);
+    for (m = 0; m < 6; m++) {
+        char path[256];
+        FILE *f = NULL;
+        for (i = 0; i < c->nruns; i++)
+            if (!strcmp(c->runs[i].method, methods[m])) {
+                if (!f) {
+                    snprintf(path, sizeof path, OUT "/%s-%s.dat", b->name, methods[m]);
+                    f = fopen(path, "w");
+                    if (!f)
+                        return;
+                }
+                fprintf(f, "%g %g\n", c->runs[i].st.wall, c->runs[i].rmse);
+            }
+        if (f) {
+            fclose(f);
+            fprintf(gp, "%s'%s' using 1:2 with linespoints title '%s'", first ? "" : ", ", path,
+                    method_names[m]);
+            first = 0;
+        }
+    }
+    fprintf(gp, "\n");
+}
+
+static int sweep(ctx *c, const bscene *b, FILE *csv)
+{
+    static const int brute_full[] = {16, 64, 256, 1024}, brute_quick[] = {16, 64, 256};
+    static const double a_full[] = {0.4, 0.3, 0.2, 0.15, 0.1}, a_quick[] = {0.4, 0.2, 0.1};
+    static const uint32_t strata[][2] = {{8, 32}, {16, 64}, {32, 128}};
+    const int nb = c->quick ? 3 : 4, na = c->quick ? 3 : 5;
+    const double *as = c->quick ? a_quick : a_full;
+    int i, m;
+    for (i = 0; i < nb; i++) {
+        render_opts o = base_opts(c);
+        o.mode = MODE_REFERENCE;
+        o.ref_rays = c->quick ? brute_quick[i] : brute_full[i];
+        if (add_run(c, "brute", o.ref_rays, &o, b, csv) < 0)
+            return -1;
+    }
+    for (m = 1; m < 5; m++) {
+        static const uint32_t feats[5] = {0, 0, IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION,
+                                          IRC_FEATURE_VISIBILITY | IRC_FEATURE_TRANSLATION |
+                                              IRC_FEATURE_ROTATION,
+                                          IRC_FEATURE_SH | IRC_FEATURE_SH_GRADIENT};
+        if (m == 4 && !b->sh)
+            continue;
+        for (i = 0; i < na; i++) {
+            render_opts o = base_opts(c);
+            o.mode = MODE_CACHE;
+            o.features = feats[m];
+            o.accuracy = (float)as[i];
+            if (add_run(c, methods[m], as[i], &o, b, csv) < 0)
+                return -1;
+        }
+    }
+    for (i = 0; i < 3 && !c->quick; i++) {
+        render_opts o = base_opts(c);
+        o.mode = MODE_CACHE;
+        o.features = IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION;
+        o.strata_m = strata[i][0];
+        o.strata_n = strata[i][1];
+        if (add_run(c, "strata", strata[i][0], &o, b, csv) < 0)
+            return -1;
+    }
+    return 0;
+}
+
+int main(int argc, char **argv)
+{
+    ctx c;
+    FILE *csv, *md, *gp;
+    char host[256] = "unknown machine", line[512], date[64];
+    struct timespec t0;
+    time_t now = time(NULL);
+    size_t k;
+    memset(&c, 0, sizeof c);
+    c.quick = argc > 1 && !strcmp(argv[1], "quick");
+    c.threads = (int)sysconf(_SC_NPROCESSORS_ONLN);
+    c.stride = 4;
+    c.ref_rays = c.quick ? 4096 : 16384;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
+    mkdir("build", 0777);
+    mkdir(OUT, 0777);
+    {
+        FILE *f = fopen("/proc/cpuinfo", "r");
+        while (f && fgets(line, sizeof line, f))
+            if (!strncmp(line, "model name", 10) && strchr(line, ':')) {
+                snprintf(host, sizeof host, "%s", strchr(line, ':') + 2);
+                host[strcspn(host, "\n")] = 0;
+                break;
+            }
+        if (f)
+            fclose(f);
+    }
+    strftime(date, sizeof date, "%Y-%m-%d", gmtime(&now));
+    csv = fopen(OUT "/bench.csv", "w");
+    md = fopen(OUT "/table.md", "w");
+    gp = fopen(OUT "/plot.gp", "w");
+    if (!csv || !md || !gp) {
+        fprintf(stderr, "bench: cannot write in " OUT "\n");
+        return 1;
+    }
+    fprintf(csv, "scene,method,param,wall_s,trace_thread_s,cache_thread_s,rays,records,"
+                 "cache_bytes,rel_rmse,p99_rel_err,ref_noise\n");
+    fprintf(md, "`make bench%s` on %s (%d threads), %s. One-bounce indirect light kd/pi E "
+                "only. Speedups are brute force's time to the same error over the method's, "
+                "interpolated along each curve (log-log); plots in `" OUT "/SCENE.png`.\n",
+            c.quick ? " BENCH_QUICK=1" : "", host, c.threads, date);
+    fprintf(gp, "set terminal pngcairo size 900,600\nset logscale xy\nset xlabel 'wall "
+                "seconds'\nset ylabel 'relative RMSE'\nset key outside right\n");
+    for (k = 0; k < sizeof scenes / sizeof scenes[0]; k++) {
+        const bscene *b = &scenes[k];
+        char err[512];
+        if (scene_load(b->path, &c.s, err, sizeof err) < 0) {
+            fprintf(stderr, "%s\n", err);
+            return 1;
+        }
+        c.w = c.quick ? b->qw : b->w;
+        c.h = c.quick ? b->qh : b->h;
+        c.s.cam.width = c.w;
+        c.s.cam.height = c.h;
+        c.nruns = 0;
+        printf("%s at %dx%d\n", b->name, c.w, c.h);
+        if (reference(&c, b) < 0 || sweep(&c, b, csv) < 0)
+            return 1;
+        table(&c, b, md);
+        data_files(&c, b, gp);
+        free(c.ref);
+        scene_free(&c.s);
+    }
+    fprintf(md, "\nTotal bench time %.0f s.\n", elapsed(&t0));
+    fclose(csv);
+    fclose(md);
+    fclose(gp);
+    printf("wrote " OUT "/bench.csv, " OUT "/table.md, " OUT "/plot.gp (%.0f s)\n", elapsed(&t0));
+    return 0;
+}

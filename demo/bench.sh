@@ -1,0 +1,29 @@
+#!/bin/sh
+# bench.sh DRIVER -- what make bench runs: the driver (build/bench_run), then
+# the plots with gnuplot (installed from Debian's packages when we are root
+# with apt, as make test installs its tools; without it, CSV and table
+# only), then the table into README.md between its two marker lines (full
+# runs only: quick figures are not for the README).
+set -e
+driver=$1
+if [ "${BENCH_QUICK:-0}" = 1 ]; then "$driver" quick; else "$driver"; fi
+if ! command -v gnuplot >/dev/null 2>&1 && [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then
+    echo "installing: gnuplot-nox"
+    { apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq gnuplot-nox >/dev/null; } ||
+        echo "could not install gnuplot-nox"
+fi
+if command -v gnuplot >/dev/null 2>&1; then
+    gnuplot build/bench/plot.gp && echo "wrote build/bench/*.png"
+else
+    echo "gnuplot not found (apt-get install gnuplot-nox): CSV and table only"
+fi
+cat build/bench/table.md
+if [ "${BENCH_QUICK:-0}" != 1 ]; then
+    awk -v table=build/bench/table.md '
+        /<!-- bench:begin -->/ { print; while ((getline l < table) > 0) print l; skip = 1; next }
+        /<!-- bench:end -->/ { skip = 0 }
+        !skip { print }' README.md > build/bench/README.md.new
+    if grep -q "<!-- bench:end -->" build/bench/README.md.new; then
+        mv build/bench/README.md.new README.md && echo "README.md: table updated"
+    fi
+fi
