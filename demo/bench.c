@@ -206,9 +206,10 @@ static int add_run(ctx *c, const char *method, double param, const render_opts *
     measure(c, img, c->ref, &r->rmse, &r->p99);
     free(img);
     c->nruns++;
-    fprintf(csv, "%s,%s,%g,%.4f,%.4f,%.4f,%llu,%llu,%zu,%.5f,%.5f,%.5f\n", b->name, method, param,
-            r->st.wall, r->st.trace_s, r->st.cache_s, (unsigned long long)r->st.rays,
-            (unsigned long long)r->st.records, r->st.cache_bytes, r->rmse, r->p99, c->ref_noise);
+    fprintf(csv, "%s,%s,%g,%.4f,%.4f,%.4f,%llu,%llu,%zu,%zu,%.5f,%.5f,%.5f\n", b->name, method,
+            param, r->st.wall, r->st.trace_s, r->st.cache_s, (unsigned long long)r->st.rays,
+            (unsigned long long)r->st.records, (size_t)r->st.records * r->st.record_bytes,
+            r->st.cache_bytes, r->rmse, r->p99, c->ref_noise);
     fflush(csv);
     printf("  %-12s %7g: %7.2f s, rel RMSE %.4f, p99 %.4f, records %llu, cache %.1f%% of thread time\n",
            method, param, r->st.wall, r->rmse, r->p99, (unsigned long long)r->st.records,
@@ -300,7 +301,7 @@ static void table(ctx *c, const bscene *b, FILE *md)
     fprintf(md, "\n**%s** (%dx%d; reference %d rays at every %dth pixel, noise %.4f)\n\n",
             b->name, c->w, c->h, c->ref_rays, c->stride, c->ref_noise);
     fprintf(md, "| method | runs | best rel. RMSE | its p99 | time to 5%% (speedup) | "
-                "time to 2%% (speedup) | records at a = 0.2 | cache share at a = 0.2 |\n"
+                "time to 2%% (speedup) | records at a = 0.2 (their bytes) | cache share at a = 0.2 |\n"
                 "|---|---|---|---|---|---|---|---|\n");
     for (m = 0; m < 6; m++) {
         const run *best = NULL, *mid = NULL;
@@ -321,8 +322,8 @@ static void table(ctx *c, const bscene *b, FILE *md)
         cell_time(md, time_to(c, methods[m], 0.05), m ? t5 : -1.0);
         cell_time(md, time_to(c, methods[m], 0.02), m ? t2 : -1.0);
         if (mid)
-            fprintf(md, " %llu (%.1f MB) | %.1f%% |\n", (unsigned long long)mid->st.records,
-                    mid->st.cache_bytes / 1048576.0,
+            fprintf(md, " %llu (%.2f MB) | %.1f%% |\n", (unsigned long long)mid->st.records,
+                    (double)mid->st.records * mid->st.record_bytes / 1048576.0,
                     100.0 * mid->st.cache_s / (c->threads * mid->st.wall));
         else
             fprintf(md, " | |\n");
@@ -449,7 +450,7 @@ int main(int argc, char **argv)
         return 1;
     }
     fprintf(csv, "scene,method,param,wall_s,trace_thread_s,cache_thread_s,rays,records,"
-                 "cache_bytes,rel_rmse,p99_rel_err,ref_noise\n");
+                 "record_bytes_used,block_bytes,rel_rmse,p99_rel_err,ref_noise\n");
     fprintf(md, "`make bench%s` on %s (%d threads), %s. One-bounce indirect light kd/pi E "
                 "only. Speedups are brute force's time to the same error over the method's, "
                 "interpolated along each curve (log-log); plots in `" OUT "/SCENE.png`.\n",

@@ -412,6 +412,7 @@ static void collect(renderer *r, const tstate *ts, int n, double wall, render_st
         st->lookups = cs.lookups;
         st->hits = cs.hits;
         st->cache_bytes = cs.bytes_total;
+        st->record_bytes = cs.record_bytes;
     }
 }
 

@@ -26,7 +26,8 @@ typedef struct render_opts {
     float accuracy;       /* cache: a */
     uint32_t strata_m, strata_n;
     uint32_t max_records;
-    float min_radius, max_radius; /* max < 0: 0.1 x the scene's diagonal */
+    float min_radius, max_radius; /* max < 0: 0.1 x the diagonal of what
+                                     the camera sees */
     int threads;
     int show;             /* SHOW_FULL or SHOW_INDIRECT (kd/pi E only) */
     int light_samples;    /* at the camera ray's hit; 1 at secondary hits */
@@ -47,6 +48,7 @@ typedef struct render_stats {
     uint64_t records;
     uint64_t lookups, hits;
     size_t cache_bytes;   /* the cache's block */
+    size_t record_bytes;  /* bytes of one stored record */
 } render_stats;
 
 typedef struct renderer {
