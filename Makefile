@@ -47,7 +47,7 @@ $(LIBSO): $(OBJ) $(PORT_OBJ)
 	$(CC) -shared -o $@ $^ -lm -lpthread
 
 # ---------------------------------------------------------------- tests
-TEST_SRC = tests/main.c tests/harness.c tests/scenes.c tests/t_record.c tests/t_lookup.c tests/t_index.c tests/t_api.c tests/t_threads.c tests/t_visibility.c tests/t_sh.c tests/t_shrec.c
+TEST_SRC = tests/main.c tests/harness.c tests/scenes.c tests/t_record.c tests/t_lookup.c tests/t_index.c tests/t_api.c tests/t_threads.c tests/t_visibility.c tests/t_sh.c tests/t_shrec.c tests/t_hard.c
 
 TEST_CFLAGS = -std=c99 $(WARN) -Wno-missing-prototypes -Iinclude -Isrc -Itests \
               -D_POSIX_C_SOURCE=200809L
