@@ -58,6 +58,11 @@ $(BUILD)/irc_tests: $(TEST_SRC) tests/test.h tests/scenes.h $(LIBA)
 test:
 	sh tests/run.sh
 
+# Line and branch coverage of src/ (gcov): the core suite and the fuzz
+# corpora.  make test prints it too.
+coverage:
+	sh tests/coverage.sh
+
 # ---------------------------------------------------------------- demo
 # The demo tracer: every demo/*.c but the two stand-alone programs.
 DEMO_LIB_SRC = $(filter-out demo/main.c demo/bench_core.c demo/minimal.c demo/fig15.c demo/shexp.c demo/bench.c,$(wildcard demo/*.c))
@@ -116,17 +121,30 @@ $(BUILD)/t_exr: tests/t_exr.c $(IMAGE_SRC) demo/image.h
 # seconds, then merges what it found worth keeping into fuzz/corpus/NAME.
 # make test replays the committed corpora without libFuzzer.
 FUZZ_SECONDS ?= 60
-FUZZ_TARGETS = api
+FUZZ_TARGETS = api callback scene
 FUZZ_SAN = -O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=all
+# Sources each harness needs besides the library: the scene harness drives
+# the demo's parsers.
+FUZZ_EXTRA_api =
+FUZZ_EXTRA_callback =
+FUZZ_EXTRA_scene = demo/loader.c demo/obj.c demo/bvh.c
+FUZZ_CORPORA = fuzz/corpus/api fuzz/corpus/callback fuzz/corpus/scene
 
-$(BUILD)/replay_api: fuzz/fuzz_api.c fuzz/replay.c fuzz/fuzz_input.h $(LIBA)
-	$(CC) -std=c99 $(WARN) -Iinclude -Ifuzz $(OPT) $(CFLAGS) fuzz/fuzz_api.c fuzz/replay.c $(LIBA) -o $@ -lm -lpthread
+$(BUILD)/replay_%: fuzz/fuzz_%.c fuzz/replay.c fuzz/fuzz_input.h demo/*.h $(LIBA)
+	$(CC) -std=c99 $(WARN) -Iinclude -Ifuzz -Idemo $(OPT) $(CFLAGS) fuzz/fuzz_$*.c fuzz/replay.c \
+	    $(FUZZ_EXTRA_$*) $(LIBA) -o $@ -lm -lpthread
+
+# Every corpus through every harness: what one harness found may trouble
+# another.
+replay: $(foreach t,$(FUZZ_TARGETS),$(BUILD)/replay_$(t))
+	for t in $(FUZZ_TARGETS); do $(BUILD)/replay_$$t $(FUZZ_CORPORA) || exit 1; done
 
 fuzz:
 	$(MAKE) -s CC=clang BUILD=build-fuzz OPT="$(FUZZ_SAN) -fsanitize=fuzzer-no-link" build-fuzz/libirrcache.a
 	for t in $(FUZZ_TARGETS); do \
-	    clang -std=c99 $(FUZZ_SAN) -fsanitize=fuzzer -Iinclude -Ifuzz fuzz/fuzz_$$t.c \
-	        build-fuzz/libirrcache.a -o build-fuzz/fuzz_$$t -lm -lpthread && \
+	    extra=""; [ $$t = scene ] && extra="$(FUZZ_EXTRA_scene)"; \
+	    clang -std=c99 $(FUZZ_SAN) -fsanitize=fuzzer -Iinclude -Ifuzz -Idemo fuzz/fuzz_$$t.c \
+	        $$extra build-fuzz/libirrcache.a -o build-fuzz/fuzz_$$t -lm -lpthread && \
 	    mkdir -p build-fuzz/new-$$t fuzz/corpus/$$t && \
 	    build-fuzz/fuzz_$$t -max_total_time=$(FUZZ_SECONDS) -print_final_stats=1 \
 	        build-fuzz/new-$$t fuzz/corpus/$$t && \
@@ -159,4 +177,4 @@ install: all
 clean:
 	rm -rf build build-*
 
-.PHONY: all test demo fig15 sh-experiments fuzz bench-core bench install clean
+.PHONY: all test coverage demo fig15 sh-experiments fuzz replay bench-core bench install clean

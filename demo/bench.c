@@ -34,7 +34,7 @@
 #include "render.h"
 
 #define OUT "build/bench"
-#define MAX_RUNS 64
+#define MAX_RUNS 96
 
 typedef struct bscene {
     const char *name, *path;
@@ -51,7 +51,8 @@ static const bscene scenes[] = {
 
 typedef struct run {
     char method[32];
-    double param;          /* rays per point, a, or strata rows */
+    double param;          /* rays per point, or a */
+    uint32_t m, n;         /* strata (cache runs) */
     render_stats st;
     double rmse, p99;
 } run;
@@ -198,6 +199,8 @@ static int add_run(ctx *c, const char *method, double param, const render_opts *
                    const bscene *b, FILE *csv)
 {
     run *r = &c->runs[c->nruns];
+    r->m = o->mode == MODE_CACHE ? o->strata_m : 0;
+    r->n = o->mode == MODE_CACHE ? o->strata_n : 0;
     float *img = malloc(sizeof(float) * 3 * (size_t)c->w * c->h);
     if (!img || c->nruns == MAX_RUNS || render(c, o, img, &r->st) < 0)
         return -1;
@@ -206,23 +209,25 @@ static int add_run(ctx *c, const char *method, double param, const render_opts *
     measure(c, img, c->ref, &r->rmse, &r->p99);
     free(img);
     c->nruns++;
-    fprintf(csv, "%s,%s,%g,%.4f,%.4f,%.4f,%llu,%llu,%zu,%zu,%.5f,%.5f,%.5f\n", b->name, method,
-            param, r->st.wall, r->st.trace_s, r->st.cache_s, (unsigned long long)r->st.rays,
+    fprintf(csv, "%s,%s,%g,%ux%u,%.4f,%.4f,%.4f,%llu,%llu,%zu,%zu,%.5f,%.5f,%.5f\n", b->name,
+            method, param, r->m, r->n, r->st.wall, r->st.trace_s, r->st.cache_s, (unsigned long long)r->st.rays,
             (unsigned long long)r->st.records, (size_t)r->st.records * r->st.record_bytes,
             r->st.cache_bytes, r->rmse, r->p99, c->ref_noise);
     fflush(csv);
-    printf("  %-12s %7g: %7.2f s, rel RMSE %.4f, p99 %.4f, records %llu, cache %.1f%% of thread time\n",
-           method, param, r->st.wall, r->rmse, r->p99, (unsigned long long)r->st.records,
+    printf("  %-10s %5g %4ux%-4u %7.2f s, rel RMSE %.4f, p99 %.4f, records %llu, cache %.1f%% of thread time\n",
+           method, param, r->m, r->n, r->st.wall, r->rmse, r->p99, (unsigned long long)r->st.records,
            100.0 * r->st.cache_s / (c->threads * r->st.wall));
     return 0;
 }
 
-/* Time at which a method's runs (in order of time) first reach relative
- * RMSE `target`, interpolated log-log between the runs either side; -1 if
- * none does; 0 if the fastest already does (no bracket). */
-static double time_to(const ctx *c, const char *method, double target)
+/* Time at which a method first reaches relative RMSE `target`: along its
+ * lower envelope (runs in order of time, each kept only if more accurate
+ * than every faster one), interpolated log-log between the runs either
+ * side; -1 if no run does.  When the fastest run already does, its time
+ * (an upper bound) with *bound = 1. */
+static double time_to(const ctx *c, const char *method, double target, int *bound)
 {
-    int idx[MAX_RUNS], n = 0, i, j;
+    int idx[MAX_RUNS], n = 0, i, j, k = 0;
     for (i = 0; i < c->nruns; i++)
         if (!strcmp(c->runs[i].method, method))
             idx[n++] = i;
@@ -232,13 +237,19 @@ static double time_to(const ctx *c, const char *method, double target)
             idx[j] = idx[j - 1];
             idx[j - 1] = t;
         }
-    if (n == 0)
+    for (i = 0; i < n; i++) /* the envelope, in place */
+        if (k == 0 || c->runs[idx[i]].rmse < c->runs[idx[k - 1]].rmse)
+            idx[k++] = idx[i];
+    *bound = 0;
+    if (k == 0)
         return -1.0;
-    if (c->runs[idx[0]].rmse <= target)
-        return 0.0;
-    for (i = 1; i < n; i++) {
+    if (c->runs[idx[0]].rmse <= target) {
+        *bound = 1;
+        return c->runs[idx[0]].st.wall;
+    }
+    for (i = 1; i < k; i++) {
         const run *a = &c->runs[idx[i - 1]], *b = &c->runs[idx[i]];
-        if (b->rmse <= target && a->rmse > target) {
+        if (b->rmse <= target) {
             double u = (log(target) - log(a->rmse)) / (log(b->rmse) - log(a->rmse));
             return exp(log(a->st.wall) + u * (log(b->st.wall) - log(a->st.wall)));
         }
@@ -256,7 +267,7 @@ static double rmse_at(const ctx *c, const char *method, double records)
             const run *a = &c->runs[i], *b = &c->runs[j];
             double ra = (double)a->st.records, rb = (double)b->st.records, u;
             if (strcmp(a->method, method) || strcmp(b->method, method) || !(ra <= records) ||
-                !(rb >= records) || ra <= 0.0 || rb <= 0.0)
+                !(rb >= records) || ra <= 0.0 || rb <= 0.0 || a->m != 16 || b->m != 16)
                 continue;
             if (ra == rb)
                 return a->rmse;
@@ -264,8 +275,8 @@ static double rmse_at(const ctx *c, const char *method, double records)
             {
                 int k, inside = 0;
                 for (k = 0; k < c->nruns; k++)
-                    if (!strcmp(c->runs[k].method, method) && c->runs[k].st.records > ra &&
-                        c->runs[k].st.records < rb)
+                    if (!strcmp(c->runs[k].method, method) && c->runs[k].m == 16 &&
+                        c->runs[k].st.records > ra && c->runs[k].st.records < rb)
                         inside = 1;
                 if (inside)
                     continue;
@@ -276,34 +287,35 @@ static double rmse_at(const ctx *c, const char *method, double records)
     return -1.0;
 }
 
-static void cell_time(FILE *f, double t, double brute)
+static void cell_time(FILE *f, const ctx *c, const char *method, double target, int is_brute)
 {
+    int bt, bm;
+    const double tb = time_to(c, "brute", target, &bt), t = time_to(c, method, target, &bm);
     if (t < 0.0)
         fprintf(f, " not reached |");
-    else if (t == 0.0)
-        fprintf(f, " at the fastest run |");
-    else if (brute > 0.0)
-        fprintf(f, " %.2f s (%.1fx) |", t, brute / t);
+    else if (is_brute || tb < 0.0)
+        fprintf(f, " %s%.2f s |", bm ? "<= " : "", t);
+    else if (bm && bt)
+        fprintf(f, " <= %.2f s |", t);
     else
-        fprintf(f, " %.2f s |", t);
+        fprintf(f, " %s%.2f s (%s%.1fx) |", bm ? "<= " : "", t, bm ? ">= " : "", tb / t);
 }
 
-static const char *const methods[] = {"brute", "none", "trans+rot", "vis", "sh", "strata"};
-static const char *const method_names[] = {
-    "brute force (rays per point)", "cache, no gradients (a)",
-    "cache, translational + rotational (a)", "cache, visibility gradients (a)",
-    "cache, SH records L = 3 + gradients (a)", "cache, trans+rot, strata rows (a = 0.2)"};
+#define NMETHODS 5
+static const char *const methods[NMETHODS] = {"brute", "none", "trans+rot", "vis", "sh"};
+static const char *const method_names[NMETHODS] = {
+    "brute force", "cache, no gradients", "cache, translational + rotational",
+    "cache, visibility gradients", "cache, SH records L = 3 + gradients"};
 
 static void table(ctx *c, const bscene *b, FILE *md)
 {
-    const double t5 = time_to(c, "brute", 0.05), t2 = time_to(c, "brute", 0.02);
     int m, i;
     fprintf(md, "\n**%s** (%dx%d; reference %d rays at every %dth pixel, noise %.4f)\n\n",
             b->name, c->w, c->h, c->ref_rays, c->stride, c->ref_noise);
     fprintf(md, "| method | runs | best rel. RMSE | its p99 | time to 5%% (speedup) | "
-                "time to 2%% (speedup) | records at a = 0.2 (their bytes) | cache share at a = 0.2 |\n"
+                "time to 2%% (speedup) | records at a = 0.2, 16x64 (their bytes) | cache share there |\n"
                 "|---|---|---|---|---|---|---|---|\n");
-    for (m = 0; m < 6; m++) {
+    for (m = 0; m < NMETHODS; m++) {
         const run *best = NULL, *mid = NULL;
         int n = 0;
         for (i = 0; i < c->nruns; i++) {
@@ -313,14 +325,14 @@ static void table(ctx *c, const bscene *b, FILE *md)
             n++;
             if (!best || r->rmse < best->rmse)
                 best = r;
-            if (m > 0 && m < 5 && fabs(r->param - 0.2) < 1e-6)
+            if (m > 0 && fabs(r->param - 0.2) < 1e-6 && r->m == 16)
                 mid = r;
         }
         if (!n)
             continue;
         fprintf(md, "| %s | %d | %.4f | %.4f |", method_names[m], n, best->rmse, best->p99);
-        cell_time(md, time_to(c, methods[m], 0.05), m ? t5 : -1.0);
-        cell_time(md, time_to(c, methods[m], 0.02), m ? t2 : -1.0);
+        cell_time(md, c, methods[m], 0.05, m == 0);
+        cell_time(md, c, methods[m], 0.02, m == 0);
         if (mid)
             fprintf(md, " %llu (%.2f MB) | %.1f%% |\n", (unsigned long long)mid->st.records,
                     (double)mid->st.records * mid->st.record_bytes / 1048576.0,
@@ -329,10 +341,12 @@ static void table(ctx *c, const bscene *b, FILE *md)
             fprintf(md, " | |\n");
     }
     for (i = 0; i < c->nruns; i++)
-        if (!strcmp(c->runs[i].method, "trans+rot") && fabs(c->runs[i].param - 0.2) < 1e-6) {
+        if (!strcmp(c->runs[i].method, "trans+rot") && fabs(c->runs[i].param - 0.2) < 1e-6 &&
+            c->runs[i].m == 16) {
             double rec = (double)c->runs[i].st.records, e0 = rmse_at(c, "none", rec),
                    e1 = c->runs[i].rmse, e2 = rmse_at(c, "vis", rec);
-            fprintf(md, "\nAt %llu records (trans+rot, a = 0.2): relative RMSE no gradients %.4f, "
+            fprintf(md, "\nAt %llu records (trans+rot, a = 0.2, 16x64), along the 16x64 sweeps: "
+                        "relative RMSE no gradients %.4f, "
                         "translational + rotational %.4f, visibility %.4f",
                     (unsigned long long)rec, e0, e1, e2);
             if (e0 > 0.0 && e2 > 0.0)
@@ -348,7 +362,7 @@ static void data_files(const ctx *c, const bscene *b, FILE *gp)
     int m, i, first = 1;
     fprintf(gp, "set output '" OUT "/%s.png'\nset title '%s: relative RMSE against time "
                 "(reference noise %.4f)'\nplot ", b->name, b->name, c->ref_noise);
-    for (m = 0; m < 6; m++) {
+    for (m = 0; m < NMETHODS; m++) {
         char path[256];
         FILE *f = NULL;
         for (i = 0; i < c->nruns; i++)
@@ -371,46 +385,38 @@ static void data_files(const ctx *c, const bscene *b, FILE *gp)
     fprintf(gp, "\n");
 }
 
+/* Brute force at 16 .. 4096 rays per point; each cache method at five a
+ * and two strata grids (quick: 16 .. 256 rays, three a, one grid). */
 static int sweep(ctx *c, const bscene *b, FILE *csv)
 {
-    static const int brute_full[] = {16, 64, 256, 1024}, brute_quick[] = {16, 64, 256};
+    static const int brute[] = {16, 64, 256, 1024, 4096};
     static const double a_full[] = {0.4, 0.3, 0.2, 0.15, 0.1}, a_quick[] = {0.4, 0.2, 0.1};
-    static const uint32_t strata[][2] = {{8, 32}, {16, 64}, {32, 128}};
-    const int nb = c->quick ? 3 : 4, na = c->quick ? 3 : 5;
+    static const uint32_t feats[NMETHODS] = {
+        0, 0, IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION,
+        IRC_FEATURE_VISIBILITY | IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION,
+        IRC_FEATURE_SH | IRC_FEATURE_SH_GRADIENT};
+    const int nb = c->quick ? 3 : 5, na = c->quick ? 3 : 5, ng = c->quick ? 1 : 2;
     const double *as = c->quick ? a_quick : a_full;
-    int i, m;
+    int i, m, g;
     for (i = 0; i < nb; i++) {
         render_opts o = base_opts(c);
         o.mode = MODE_REFERENCE;
-        o.ref_rays = c->quick ? brute_quick[i] : brute_full[i];
+        o.ref_rays = brute[i];
         if (add_run(c, "brute", o.ref_rays, &o, b, csv) < 0)
             return -1;
     }
-    for (m = 1; m < 5; m++) {
-        static const uint32_t feats[5] = {0, 0, IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION,
-                                          IRC_FEATURE_VISIBILITY | IRC_FEATURE_TRANSLATION |
-                                              IRC_FEATURE_ROTATION,
-                                          IRC_FEATURE_SH | IRC_FEATURE_SH_GRADIENT};
-        if (m == 4 && !b->sh)
-            continue;
-        for (i = 0; i < na; i++) {
-            render_opts o = base_opts(c);
-            o.mode = MODE_CACHE;
-            o.features = feats[m];
-            o.accuracy = (float)as[i];
-            if (add_run(c, methods[m], as[i], &o, b, csv) < 0)
-                return -1;
-        }
-    }
-    for (i = 0; i < 3 && !c->quick; i++) {
-        render_opts o = base_opts(c);
-        o.mode = MODE_CACHE;
-        o.features = IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION;
-        o.strata_m = strata[i][0];
-        o.strata_n = strata[i][1];
-        if (add_run(c, "strata", strata[i][0], &o, b, csv) < 0)
-            return -1;
-    }
+    for (m = 1; m < NMETHODS; m++)
+        for (g = 0; g < ng && (m < 4 || b->sh); g++)
+            for (i = 0; i < na; i++) {
+                render_opts o = base_opts(c);
+                o.mode = MODE_CACHE;
+                o.features = feats[m];
+                o.accuracy = (float)as[i];
+                o.strata_m = 16u << g;
+                o.strata_n = 64u << g;
+                if (add_run(c, methods[m], as[i], &o, b, csv) < 0)
+                    return -1;
+            }
     return 0;
 }
 
@@ -449,7 +455,7 @@ int main(int argc, char **argv)
         fprintf(stderr, "bench: cannot write in " OUT "\n");
         return 1;
     }
-    fprintf(csv, "scene,method,param,wall_s,trace_thread_s,cache_thread_s,rays,records,"
+    fprintf(csv, "scene,method,param,strata,wall_s,trace_thread_s,cache_thread_s,rays,records,"
                  "record_bytes_used,block_bytes,rel_rmse,p99_rel_err,ref_noise\n");
     fprintf(md, "`make bench%s` on %s (%d threads), %s. One-bounce indirect light kd/pi E "
                 "only. Speedups are brute force's time to the same error over the method's, "

@@ -11,6 +11,8 @@
 #            OpenEXR, malformed scenes
 #   stage 5  the header alone as C99 and as C++; no allocator symbol in
 #            libirrcache.a; no thread or I/O header in src/
+#   stage 6  line and branch coverage of src/ (gcov), printed; at least
+#            90% of lines and 80% of branches
 set -u
 cd "$(dirname "$0")/.."
 P=0
@@ -110,9 +112,14 @@ check build-asan-demo $MAKE -s CC="$SAN_CC" BUILD=build-asan OPT="$SAN" build-as
 for t in demo_tests t_loader t_image; do
     suite "asan-$t" IRC_TEST_QUICK=1 ASAN_OPTIONS=detect_leaks=1 ./build-asan/$t
 done
-# The fuzz corpora, replayed without libFuzzer (make fuzz grows them).
-check build-asan-replay $MAKE -s CC="$SAN_CC" BUILD=build-asan OPT="$SAN" build-asan/replay_api
-suite fuzz-replay-api ASAN_OPTIONS=detect_leaks=1 ./build-asan/replay_api fuzz/corpus/api
+# The fuzz corpora, replayed without libFuzzer (make fuzz grows them):
+# every corpus through every harness.
+check build-asan-replay $MAKE -s CC="$SAN_CC" BUILD=build-asan OPT="$SAN" \
+    build-asan/replay_api build-asan/replay_callback build-asan/replay_scene
+for t in api callback scene; do
+    suite "fuzz-replay-$t" ASAN_OPTIONS=detect_leaks=1 ./build-asan/replay_$t \
+        fuzz/corpus/api fuzz/corpus/callback fuzz/corpus/scene
+done
 
 echo "== stage 4: threads under TSan"
 check build-tsan $MAKE -s CC="$SAN_CC" BUILD=build-tsan OPT="-O1 -g -fsanitize=thread" build-tsan/irc_tests
@@ -136,6 +143,14 @@ src_headers() {
     [ -z "$bad" ] || { echo "src/ includes: $bad"; return 1; }
 }
 check src-headers src_headers
+
+echo "== stage 6: coverage of src/"
+MAKE=$MAKE sh tests/coverage.sh > "$LOG/coverage-report.log" 2>&1
+sed 's/^/[coverage] /' "$LOG/coverage-report.log" | tail -16
+coverage_target() {
+    tail -1 "$LOG/coverage-report.log" | awk '$1 == "total" { l = $2 + 0; b = $3 + 0; ok = l >= 90 && b >= 80 } END { exit !ok }'
+}
+check coverage coverage_target
 
 echo "$P passed, $F failed"
 [ "$F" -eq 0 ]
