@@ -360,8 +360,9 @@ static void table(ctx *c, const bscene *b, FILE *md)
 static void data_files(const ctx *c, const bscene *b, FILE *gp)
 {
     int m, i, first = 1;
-    fprintf(gp, "set output '" OUT "/%s.png'\nset title '%s: relative RMSE against time "
-                "(reference noise %.4f)'\nplot ", b->name, b->name, c->ref_noise);
+    fprintf(gp, "set output '" OUT "/%s.png'\nset title '%s: relative RMSE against time; "
+                "cache runs: a = 0.4 .. 0.1 at 16x64, then at 32x128 strata (reference noise "
+                "%.4f)'\nplot ", b->name, b->name, c->ref_noise);
     for (m = 0; m < NMETHODS; m++) {
         char path[256];
         FILE *f = NULL;
@@ -373,6 +374,10 @@ static void data_files(const ctx *c, const bscene *b, FILE *gp)
                     if (!f)
                         return;
                 }
+                /* a blank line between strata grids: separate lines */
+                if (i > 0 && !strcmp(c->runs[i - 1].method, methods[m]) &&
+                    c->runs[i - 1].m != c->runs[i].m)
+                    fprintf(f, "\n");
                 fprintf(f, "%g %g\n", c->runs[i].st.wall, c->runs[i].rmse);
             }
         if (f) {
@@ -462,7 +467,7 @@ int main(int argc, char **argv)
                 "interpolated along each curve (log-log); plots in `" OUT "/SCENE.png`.\n",
             c.quick ? " BENCH_QUICK=1" : "", host, c.threads, date);
     fprintf(gp, "set terminal pngcairo size 900,600\nset logscale xy\nset xlabel 'wall "
-                "seconds'\nset ylabel 'relative RMSE'\nset key outside right\n");
+                "seconds'\nset ylabel 'relative RMSE'\nset key top right\n");
     for (k = 0; k < sizeof scenes / sizeof scenes[0]; k++) {
         const bscene *b = &scenes[k];
         char err[512];

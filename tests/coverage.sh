@@ -17,7 +17,7 @@ total_l=0; hit_l=0; total_b=0; hit_b=0
 printf '%-16s %8s %8s\n' file lines branches
 for f in ../../src/*.c; do
     base=$(basename "$f" .c)
-    out=$(gcov -b -c -o . "$f" 2>/dev/null | sed -n "/File '..\/..\/src\/$base.c'/,/^\$/p")
+    out=$(gcov -b -c -o . "$f" 2>/dev/null | sed -n "/File 'src\/$base.c'/,/^\$/p")
     l=$(echo "$out" | sed -n 's/Lines executed:\([0-9.]*\)% of \([0-9]*\)/\1 \2/p')
     b=$(echo "$out" | sed -n 's/Taken at least once:\([0-9.]*\)% of \([0-9]*\)/\1 \2/p')
     set -- $l; lp=$1; ln=$2
