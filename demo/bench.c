@@ -360,9 +360,8 @@ static void table(ctx *c, const bscene *b, FILE *md)
 static void data_files(const ctx *c, const bscene *b, FILE *gp)
 {
     int m, i, first = 1;
-    fprintf(gp, "set output '" OUT "/%s.png'\nset title '%s: relative RMSE against time; "
-                "cache runs: a = 0.4 .. 0.1 at 16x64, then at 32x128 strata (reference noise "
-                "%.4f)'\nplot ", b->name, b->name, c->ref_noise);
+    fprintf(gp, "set output '" OUT "/%s.png'\nset title '%s (reference noise %.4f); cache: "
+                "a = 0.4 .. 0.1 at 16x64, then 32x128'\nplot ", b->name, b->name, c->ref_noise);
     for (m = 0; m < NMETHODS; m++) {
         char path[256];
         FILE *f = NULL;
