@@ -28,8 +28,8 @@ static int finite_record(const irc_record *r)
 /* The sphere-over-plane scene scaled by s about the origin, queried at the
  * origin (so the query's random numbers do not change with s): E is the
  * same and the gradients scale as 1/s, within 1e-4 relative, from s =
- * 1e-4 to 1e4 (hit distances 1e-4 to 3e4), for every feature set; the
- * tiniest scene puts hit distances at 1e-6. */
+ * 1e-6 to 3e5 (hit distances from 1e-6 to 1e6), with translational and
+ * with visibility gradients. */
 static int scaled_record(uint32_t features, double scale, irc_record *r)
 {
     const float p[3] = {0, 0, 0}, n[3] = {0, 0, 1};
@@ -53,7 +53,7 @@ TEST(test_hard_scale_invariance)
 {
     static const uint32_t feats[] = {IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION,
                                      IRC_FEATURE_VISIBILITY | IRC_FEATURE_ROTATION};
-    static const double scales[] = {1e-6, 1e-4, 1e-2, 1e2, 1e4};
+    static const double scales[] = {1e-6, 1e-4, 1e-2, 1e2, 1e4, 3e5};
     double worst = 0.0;
     int f, i, c, k;
     for (f = 0; f < 2; f++) {
@@ -63,7 +63,7 @@ TEST(test_hard_scale_invariance)
         for (c = 0; c < 3; c++)
             for (k = 0; k < 3; k++)
                 gb = fmax(gb, fabs(base.grad_t[c][k]));
-        for (i = 0; i < 5; i++) {
+        for (i = 0; i < 6; i++) {
             CHECK(scaled_record(feats[f], scales[i], &r) == IRC_OK && finite_record(&r),
                   "s = %g", scales[i]);
             for (c = 0; c < 3; c++) {
@@ -76,7 +76,7 @@ TEST(test_hard_scale_invariance)
             worst = fmax(worst, fabs(r.radius / scales[i] - base.radius) / base.radius);
         }
     }
-    printf("  scales 1e-6 .. 1e4, trans+rot and vis+rot: worst relative difference %.2e\n", worst);
+    printf("  scales 1e-6 .. 3e5, trans+rot and vis+rot: worst relative difference %.2e\n", worst);
     CHECK(worst < 1e-4, "scale invariance %.3e", worst);
 }
 
@@ -222,6 +222,24 @@ TEST(test_hard_lookups)
     st = irc_cache_lookup(c, p, r.n, rgb, &w);
     CHECK(st == IRC_OK && isfinite(rgb[0]) && fabs(rgb[0] - 1.0f) < 1e-3 && isfinite(w),
           "on the records: %g (weight %g)", rgb[0], w);
+    { /* a record of denormals everywhere: stored, and lookups stay finite */
+        irc_record d;
+        const float q[3] = {3.0f, 3.0f, 0.0f};
+        memset(&d, 0, sizeof d);
+        d.p[0] = 3.0f;
+        d.p[1] = 3.0f;
+        d.p[2] = 1e-42f;
+        d.n[0] = 1e-42f;
+        d.n[2] = 1e-40f;
+        d.radius = 1e-40f;
+        d.e[0] = d.e[1] = d.e[2] = 1e-41f;
+        d.grad_t[0][0] = 1e-44f;
+        d.grad_r[2][1] = -1e-43f;
+        CHECK(irc_cache_insert(c, &d) == IRC_OK, "denormal record");
+        st = irc_cache_lookup(c, q, r.n, rgb, &w);
+        CHECK((st == IRC_OK || st == IRC_MISS) && isfinite(rgb[0]) && rgb[0] >= 0.0f && isfinite(w),
+              "near the denormal record: %d %g %g", st, rgb[0], w);
+    }
     {
         const float graze[3] = {1.0f, 0.0f, 1e-7f}, opposed[3] = {1e-7f, 0.0f, -1.0f};
         const float near_graze[3] = {1.0f, 0.0f, 0.02f};
