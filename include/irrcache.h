@@ -69,7 +69,8 @@ typedef enum irc_status {
     IRC_ERR_CONFIG = -2,      /* a config field is out of its documented range */
     IRC_ERR_NONFINITE = -3,   /* a NaN or infinite coordinate or value (also a
                                  record whose irradiance or gradients overflow
-                                 float, from radiances near FLT_MAX) */
+                                 float, from radiances near FLT_MAX, and a
+                                 lookup whose extrapolation overflows) */
     IRC_ERR_NORMAL = -4,      /* a normal is zero (or not finite) */
     IRC_ERR_NOMEM = -5,       /* the block is smaller than irc_footprint() asks */
     IRC_ERR_FULL = -6,        /* insert: the record pool is full, eviction is off */
