@@ -158,7 +158,8 @@ int irc_sh_compute(irc_cache *c, const float p[3], const float n[3], irc_sh *out
 
 int irc_sh_insert(irc_cache *c, const irc_sh *rec)
 {
-    unsigned char packed[32 + IRC__NC * 3 * 4 * 4];
+    /* The largest record (32 + 25 x 3 x 4 x 4 bytes), aligned as a record. */
+    union { irc__rec head; float f[8 + IRC__NC * 3 * 4]; } packed;
     double un[3];
     int st;
     if ((st = irc__check_sh(c)) < 0)
@@ -167,8 +168,8 @@ int irc_sh_insert(irc_cache *c, const irc_sh *rec)
         return IRC_ERR_NULL;
     if ((st = irc__sh_check(c, rec, un)) < 0)
         return st;
-    irc__sh_pack(c, rec, un, packed);
-    return irc__store(c, packed);
+    irc__sh_pack(c, rec, un, (unsigned char *)&packed);
+    return irc__store(c, &packed);
 }
 
 typedef struct irc__shacc {
