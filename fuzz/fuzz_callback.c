@@ -18,7 +18,6 @@
 #include "fuzz_input.h"
 #include "irrcache.h"
 
-#define GUARD 64
 #define ANSWERS 64
 #define HOST_CODE (-7777)
 
@@ -53,15 +52,6 @@ static int trace(const irc_trace_args *args)
     }
     return 0;
 }
-
-#define check(ok)                                                              \
-    do {                                                                       \
-        if (!(ok)) {                                                           \
-            fprintf(stderr, "fuzz_callback.c:%d: invariant broken: %s\n",      \
-                    __LINE__, #ok);                                            \
-            abort();                                                           \
-        }                                                                      \
-    } while (0)
 
 static int fin(float x)
 {
@@ -117,8 +107,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     irc_config cfg;
     irc_cache *c;
     host h;
-    size_t bytes, i;
-    unsigned char *block, *copy;
+    size_t bytes;
+    fz_block b;
     uint8_t s;
     int ops, st;
     memset(&cfg, 0, sizeof cfg);
@@ -133,12 +123,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     cfg.port = &irc_port_none;
     cfg.seed = fz_u8(&in);
     read_host(&in, &h);
-    if (irc_footprint(&cfg, 8, &bytes) < 0)
+    if (irc_footprint(&cfg, 8, &bytes) < 0 || fz_block_new(&b, bytes) < 0)
         return 0;
-    block = malloc(bytes + GUARD);
-    copy = malloc(bytes);
-    memset(block + bytes, 0xA5, GUARD);
-    cfg.buffer = block;
+    cfg.buffer = b.block;
     cfg.buffer_size = bytes;
     check(irc_init(&cfg, 8, &c) == IRC_OK);
     for (ops = 0; ops < 16 && in.n > 0; ops++) {
@@ -152,7 +139,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         n[0] = fz_float(&in);
         n[1] = fz_float(&in);
         n[2] = 1.0f;
-        memcpy(copy, block, bytes);
+        memcpy(b.copy, b.block, bytes);
         if (cfg.features & 8) {
             const float *nn = op & 2 ? n : NULL;
             st = op & 1 ? irc_sh_compute(c, p, nn, &sh) : irc_sh_lookup_or_compute(c, p, nn, &sh, &w);
@@ -169,12 +156,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         }
         check(st == HOST_CODE || (st >= IRC_ERR_LAST && st <= IRC_NOT_STORED));
         if (st < 0)
-            check(memcmp(copy, block, bytes) == 0);
+            check(memcmp(b.copy, b.block, bytes) == 0);
     }
-    for (i = 0; i < GUARD; i++)
-        check(block[bytes + i] == 0xA5);
     irc_fini(c);
-    free(copy);
-    free(block);
+    fz_block_free(&b);
     return 0;
 }

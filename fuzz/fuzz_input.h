@@ -10,7 +10,52 @@
 #include <math.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
+
+/* An invariant a harness checks; a violation aborts (which libFuzzer and
+ * the replay driver report), naming the file and line. */
+#define check(ok)                                                              \
+    do {                                                                       \
+        if (!(ok)) {                                                           \
+            fprintf(stderr, "%s:%d: invariant broken: %s\n", __FILE__, __LINE__, #ok); \
+            abort();                                                           \
+        }                                                                      \
+    } while (0)
+
+/* A cache's block with FZ_GUARD canary bytes after it, and room for a copy
+ * to compare with after a failed call. */
+#define FZ_GUARD 64
+typedef struct fz_block {
+    unsigned char *block, *copy;
+    size_t bytes;
+} fz_block;
+
+/* 0, or -1 when memory is short (the input is skipped). */
+static inline int fz_block_new(fz_block *b, size_t bytes)
+{
+    b->bytes = bytes;
+    b->block = (unsigned char *)malloc(bytes + FZ_GUARD);
+    b->copy = (unsigned char *)malloc(bytes);
+    if (!b->block || !b->copy) {
+        free(b->block);
+        free(b->copy);
+        return -1;
+    }
+    memset(b->block + bytes, 0xA5, FZ_GUARD);
+    return 0;
+}
+
+/* Checks the canary and frees both. */
+static inline void fz_block_free(fz_block *b)
+{
+    size_t i;
+    for (i = 0; i < FZ_GUARD; i++)
+        check(b->block[b->bytes + i] == 0xA5);
+    free(b->copy);
+    free(b->block);
+}
 
 typedef struct fuzz_in {
     const uint8_t *p;

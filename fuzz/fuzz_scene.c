@@ -19,16 +19,8 @@
 #include <unistd.h>
 
 #include "bvh.h"
+#include "fuzz_input.h"
 #include "scene.h"
-
-#define check(ok)                                                              \
-    do {                                                                       \
-        if (!(ok)) {                                                           \
-            fprintf(stderr, "fuzz_scene.c:%d: invariant broken: %s\n",         \
-                    __LINE__, #ok);                                            \
-            abort();                                                           \
-        }                                                                      \
-    } while (0)
 
 static int fin(float x)
 {

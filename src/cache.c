@@ -175,10 +175,10 @@ static int irc__lookup(irc_cache *c, const float p[3], const float n[3],
     return a.w > 0.0 ? IRC_OK : IRC_MISS;
 }
 
-int irc_cache_lookup(irc_cache *c, const float p[3], const float n[3],
-                     float rgb[3], float *weight)
+/* Counts a lookup that returned st (and a hit when it answered): what the
+ * irradiance and SH lookups share.  Errors count nothing. */
+int irc__count_lookup(irc_cache *c, int st)
 {
-    int st = irc__lookup(c, p, n, rgb, weight);
     if (st < 0)
         return st;
     irc__count(c, IRC__C_LOOKUPS, 1);
@@ -187,30 +187,45 @@ int irc_cache_lookup(irc_cache *c, const float p[3], const float n[3],
     return st;
 }
 
+/* The end of a lookup-or-compute whose miss was computed and offered to
+ * the pool with status ins: a full pool is IRC_NOT_STORED, not an error. */
+int irc__count_miss(irc_cache *c, int ins)
+{
+    if (ins < 0 && ins != IRC_ERR_FULL)
+        return ins;
+    irc__count(c, IRC__C_LOOKUPS, 1);
+    return ins == IRC_ERR_FULL ? IRC_NOT_STORED : IRC_OK;
+}
+
+void irc__count_compute(irc_cache *c, uint64_t rays)
+{
+    irc__count(c, IRC__C_COMPUTES, 1);
+    irc__count(c, IRC__C_RAYS, rays);
+}
+
+int irc_cache_lookup(irc_cache *c, const float p[3], const float n[3],
+                     float rgb[3], float *weight)
+{
+    return irc__count_lookup(c, irc__lookup(c, p, n, rgb, weight));
+}
+
 int irc_cache_lookup_or_compute(irc_cache *c, const float p[3],
                                 const float n[3], float rgb[3], float *weight)
 {
     irc_record rec;
-    int st = irc__lookup(c, p, n, rgb, weight), ins;
-    if (st < 0)
-        return st;
-    if (st == IRC_OK) {
-        irc__count(c, IRC__C_LOOKUPS, 1);
-        irc__count(c, IRC__C_HITS, 1);
-        return IRC_OK;
-    }
+    int st = irc__lookup(c, p, n, rgb, weight);
+    if (st != IRC_MISS)
+        return irc__count_lookup(c, st);
     if ((st = irc_record_compute(c, p, n, &rec)) < 0)
         return st;
-    ins = irc_cache_insert(c, &rec);
-    if (ins < 0 && ins != IRC_ERR_FULL)
-        return ins;
-    irc__count(c, IRC__C_LOOKUPS, 1);
+    if ((st = irc__count_miss(c, irc_cache_insert(c, &rec))) < 0)
+        return st;
     rgb[0] = rec.e[0];
     rgb[1] = rec.e[1];
     rgb[2] = rec.e[2];
     if (weight)
         *weight = 0.0f;
-    return ins == IRC_ERR_FULL ? IRC_NOT_STORED : IRC_OK;
+    return st;
 }
 
 int irc_cache_neighbours(irc_cache *c, const float p[3], const float n[3],

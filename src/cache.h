@@ -145,6 +145,9 @@ void irc__extrapolate(const irc_cache *c, const irc__rec *r, const float ni[3],
 int irc__check_cache(const irc_cache *c);
 int irc__store(irc_cache *c, const void *packed);
 void irc__mark_used(irc_cache *c, uint32_t id);
+int irc__count_lookup(irc_cache *c, int st);
+int irc__count_miss(irc_cache *c, int ins);
+void irc__count_compute(irc_cache *c, uint64_t rays);
 
 /* index.c */
 /* Called with the first record of each visited node's list. */

@@ -281,8 +281,7 @@ int irc_record_compute(irc_cache *c, const float p[3], const float n[3],
     irc__slot_release(c, t);
     if (st < 0)
         return st;
-    c->port->fetch_add(&c->ctr[IRC__C_COMPUTES], 1);
-    c->port->fetch_add(&c->ctr[IRC__C_RAYS], c->strata + (uint64_t)extra);
+    irc__count_compute(c, c->strata + (uint64_t)extra);
     return IRC_OK;
 }
 

@@ -120,6 +120,21 @@ static int irc__check_sh(const irc_cache *c)
     return c->sh_n ? IRC_OK : IRC_ERR_UNSUPPORTED;
 }
 
+/* What compute and lookup check first: an SH cache, an output, a finite
+ * point, and a usable normal when one is given (unit in un). */
+static int irc__sh_query(const irc_cache *c, const float p[3], const float *n, const void *out,
+                         double un[3])
+{
+    int st;
+    if ((st = irc__check_sh(c)) < 0)
+        return st;
+    if (!out)
+        return IRC_ERR_NULL;
+    if ((st = irc__check_vec(p)) < 0 || (n && (st = irc__check_normal(n, un)) < 0))
+        return st;
+    return IRC_OK;
+}
+
 
 int irc_sh_compute(irc_cache *c, const float p[3], const float n[3], irc_sh *out)
 {
@@ -128,11 +143,7 @@ int irc_sh_compute(irc_cache *c, const float p[3], const float n[3], irc_sh *out
     double un[3];
     uint32_t t;
     int st, k;
-    if ((st = irc__check_sh(c)) < 0)
-        return st;
-    if (!out)
-        return IRC_ERR_NULL;
-    if ((st = irc__check_vec(p)) < 0 || (n && (st = irc__check_normal(n, un)) < 0))
+    if ((st = irc__sh_query(c, p, n, out, un)) < 0)
         return st;
     if ((st = irc__slot_claim(c, &t)) < 0)
         return st;
@@ -151,8 +162,7 @@ int irc_sh_compute(irc_cache *c, const float p[3], const float n[3], irc_sh *out
     if ((st = irc__sh_check(c, &rec, un)) < 0)
         return st;
     *out = rec;
-    c->port->fetch_add(&c->ctr[IRC__C_COMPUTES], 1);
-    c->port->fetch_add(&c->ctr[IRC__C_RAYS], a.total);
+    irc__count_compute(c, a.total);
     return IRC_OK;
 }
 
@@ -242,11 +252,7 @@ static int irc__sh_lookup(irc_cache *c, const float p[3], const float n[3],
     float nf[3];
     uint32_t ch, i, k;
     int st;
-    if ((st = irc__check_sh(c)) < 0)
-        return st;
-    if (!out)
-        return IRC_ERR_NULL;
-    if ((st = irc__check_vec(p)) < 0 || (n && (st = irc__check_normal(n, un)) < 0))
+    if ((st = irc__sh_query(c, p, n, out, un)) < 0)
         return st;
     IRC_MEMSET(&a, 0, sizeof a);
     for (k = 0; k < 3; k++)
@@ -287,37 +293,24 @@ static int irc__sh_lookup(irc_cache *c, const float p[3], const float n[3],
 int irc_sh_lookup(irc_cache *c, const float p[3], const float n[3], irc_sh *out,
                   float *weight)
 {
-    int st = irc__sh_lookup(c, p, n, out, weight);
-    if (st < 0)
-        return st;
-    c->port->fetch_add(&c->ctr[IRC__C_LOOKUPS], 1);
-    if (st == IRC_OK)
-        c->port->fetch_add(&c->ctr[IRC__C_HITS], 1);
-    return st;
+    return irc__count_lookup(c, irc__sh_lookup(c, p, n, out, weight));
 }
 
 int irc_sh_lookup_or_compute(irc_cache *c, const float p[3], const float n[3],
                              irc_sh *out, float *weight)
 {
     irc_sh rec;
-    int st = irc__sh_lookup(c, p, n, out, weight), ins;
-    if (st < 0)
-        return st;
-    if (st == IRC_OK) {
-        c->port->fetch_add(&c->ctr[IRC__C_LOOKUPS], 1);
-        c->port->fetch_add(&c->ctr[IRC__C_HITS], 1);
-        return IRC_OK;
-    }
+    int st = irc__sh_lookup(c, p, n, out, weight);
+    if (st != IRC_MISS)
+        return irc__count_lookup(c, st);
     if ((st = irc_sh_compute(c, p, n, &rec)) < 0)
         return st;
-    ins = irc_sh_insert(c, &rec);
-    if (ins < 0 && ins != IRC_ERR_FULL)
-        return ins;
-    c->port->fetch_add(&c->ctr[IRC__C_LOOKUPS], 1);
+    if ((st = irc__count_miss(c, irc_sh_insert(c, &rec))) < 0)
+        return st;
     *out = rec;
     if (weight)
         *weight = 0.0f;
-    return ins == IRC_ERR_FULL ? IRC_NOT_STORED : IRC_OK;
+    return st;
 }
 
 int irc_sh_record(irc_cache *c, uint32_t id, irc_sh *out)

@@ -72,6 +72,24 @@ static void cap_quadrature(const double u[3], double alpha, int bands, double *c
     }
 }
 
+/* The unit emitter's L = 3 coefficients at the origin and their gradient
+ * by central differences of step h. */
+static void cap_at_origin(const double cc[3], double h, double c0[NC], double g[NC][3])
+{
+    double o[3] = {0, 0, 0};
+    int i, k;
+    cap_coeffs(o, cc, 1.0, 3, c0);
+    for (k = 0; k < 3; k++) {
+        double a[NC], b[NC], q[3] = {0, 0, 0};
+        q[k] = h;
+        cap_coeffs(q, cc, 1.0, 3, a);
+        q[k] = -h;
+        cap_coeffs(q, cc, 1.0, 3, b);
+        for (i = 0; i < 9; i++)
+            g[i][k] = (a[i] - b[i]) / (2.0 * h);
+    }
+}
+
 TEST(test_sh_cap_closed_form)
 {
     double u[3] = {0.6, 0.48, 0.64}, p[3] = {0, 0, 0}, cc[3], a[NC], b[NC], worst = 0.0;
@@ -132,19 +150,7 @@ static void emitter_errors(double dr, uint32_t m, uint32_t n, int seeds, double 
         }
     }
     block_free(&cfg);
-    {
-        double o[3] = {0, 0, 0};
-        cap_coeffs(o, cc, 1.0, 3, c0);
-    }
-    for (k = 0; k < 3; k++) {
-        double a[NC], b[NC], q[3] = {0, 0, 0}, h = 1e-4 * dr;
-        q[k] = h;
-        cap_coeffs(q, cc, 1.0, 3, a);
-        q[k] = -h;
-        cap_coeffs(q, cc, 1.0, 3, b);
-        for (i = 0; i < 9; i++)
-            g[i][k] = (a[i] - b[i]) / (2.0 * h);
-    }
+    cap_at_origin(cc, 1e-4 * dr, c0, g);
     *ec = *eg = 0.0;
     for (i = 0; i < 9; i++) {
         double e2 = 0.0;
@@ -366,19 +372,7 @@ TEST(test_sh_surface_record)
     cfg = sh_config(&s, IRC_FEATURE_SH_GRADIENT, 512, 2048, 3);
     c = block_cache(&cfg, 4, 0);
     CHECK(c && irc_sh_compute(c, p, n, &rec) == IRC_OK, "compute");
-    {
-        double o[3] = {0, 0, 0};
-        cap_coeffs(o, cc, 1.0, 3, c0);
-    }
-    for (k = 0; k < 3; k++) {
-        double a[NC], b[NC], q[3] = {0, 0, 0}, h = 1e-4;
-        q[k] = h;
-        cap_coeffs(q, cc, 1.0, 3, a);
-        q[k] = -h;
-        cap_coeffs(q, cc, 1.0, 3, b);
-        for (i = 0; i < 9; i++)
-            g[i][k] = (a[i] - b[i]) / (2.0 * h);
-    }
+    cap_at_origin(cc, 1e-4, c0, g);
     for (i = 0; i < 9; i++) {
         double e2 = 0.0;
         cbig = fmax(cbig, 2.0 * fabs(c0[i]));
