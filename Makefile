@@ -1,5 +1,8 @@
 # irrcache -- the only build entry.
-#   make            libirrcache.a and libirrcache.so (CC=clang works too)
+#   make            libirrcache.a and libirrcache.so (CC=clang works too);
+#                   PORT=posix|c11|none picks the port compiled in (default
+#                   posix); `make PORT=none CC=arm-none-eabi-gcc lib` needs
+#                   neither pthreads nor C11 threads
 #   make demo       build the demo tracer and render the Cornell box
 #   make test       every test; ends with "N passed, N failed"
 #   make bench-core the core benchmark (CSV on stdout)
@@ -13,20 +16,33 @@ PREFIX ?= /usr/local
 BUILD ?= build
 OPT ?= -O2 -g
 WARN = -Wall -Wextra -Wpedantic -Werror -Wmissing-prototypes -Wshadow
-CFLAGS_LIB = -std=c99 $(WARN) $(OPT) -fPIC -Iinclude $(CFLAGS)
+PORT ?= posix
+# Only the library's documented API leaves the shared library.
+CFLAGS_LIB = -std=c99 $(WARN) $(OPT) $(PIC) -fvisibility=hidden -Iinclude $(CFLAGS)
+PIC = $(if $(filter none,$(PORT)),,-fPIC)
 
-SRC = src/config.c src/sampler.c src/record.c src/weight.c src/index.c src/cache.c src/visibility.c src/sh.c src/shgrad.c src/shrec.c
-PORT_SRC = port/posix/irc_port.c port/c11/irc_port.c port/none/irc_port.c port/irc_port_default.c
+SRC = src/status.c src/check.c src/config.c src/layout.c src/store.c src/kind_irr.c \
+      src/kind_sh.c src/sampler.c src/irradiance.c src/octa.c src/weight.c src/index.c \
+      src/visibility.c src/sh.c src/shgrad.c
+# The chosen port, and the single-threaded one (it needs nothing).
+PORT_SRC = $(sort port/$(PORT)/irc_port.c port/none/irc_port.c) port/irc_port_default.c
 OBJ = $(SRC:%.c=$(BUILD)/%.o)
 PORT_OBJ = $(PORT_SRC:%.c=$(BUILD)/%.o)
 LIBA = $(BUILD)/libirrcache.a
 LIBSO = $(BUILD)/libirrcache.so
+THREAD_LIBS = $(if $(filter posix,$(PORT)),-lpthread,)
 
-all: $(LIBA) $(LIBSO)
+all: $(LIBA) $(if $(filter none,$(PORT)),,$(LIBSO))
+lib: $(LIBA)
 
 $(BUILD)/src/%.o: src/%.c src/cache.h src/util.h include/irrcache.h
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_LIB) -c $< -o $@
+
+# The default port is the chosen one; the object remembers which.
+$(BUILD)/port/irc_port_default.o: port/irc_port_default.c include/irrcache.h Makefile
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_LIB) -DIRC_PORT_DEFAULT=irc_port_$(PORT) -c $< -o $@
 
 # Each port is compiled with the standard its platform needs.
 $(BUILD)/port/posix/%.o: port/posix/%.c include/irrcache.h
@@ -44,16 +60,28 @@ $(LIBA): $(OBJ) $(PORT_OBJ)
 	$(AR) rcs $@ $^
 
 $(LIBSO): $(OBJ) $(PORT_OBJ)
-	$(CC) -shared -o $@ $^ -lm -lpthread
+	$(CC) -shared -o $@ $^ -lm $(THREAD_LIBS)
 
 # ---------------------------------------------------------------- tests
-TEST_SRC = tests/main.c tests/harness.c tests/scenes.c tests/t_record.c tests/t_lookup.c tests/t_index.c tests/t_api.c tests/t_threads.c tests/t_visibility.c tests/t_sh.c tests/t_shrec.c tests/t_hard.c
+TEST_SRC = tests/main.c tests/harness.c tests/scenes.c tests/t_record.c tests/t_lookup.c \
+           tests/t_index.c tests/t_api.c tests/t_threads.c tests/t_visibility.c tests/t_sh.c \
+           tests/t_shrec.c tests/t_hard.c tests/t_store.c tests/t_embed.c
+# The tests exercise every threaded port; the library holds one of them.
+TEST_PORTS = $(filter-out $(PORT),posix c11)
+TEST_PORT_OBJ = $(TEST_PORTS:%=$(BUILD)/tests/port_%.o)
 
 TEST_CFLAGS = -std=c99 $(WARN) -Wno-missing-prototypes -Iinclude -Isrc -Itests \
               -D_POSIX_C_SOURCE=200809L
 
-$(BUILD)/irc_tests: $(TEST_SRC) tests/test.h tests/scenes.h $(LIBA)
-	$(CC) $(TEST_CFLAGS) $(OPT) $(CFLAGS) $(TEST_SRC) $(LIBA) -o $@ -lm -lpthread
+$(BUILD)/tests/port_posix.o: port/posix/irc_port.c include/irrcache.h
+	@mkdir -p $(dir $@)
+	$(CC) $(subst -fvisibility=hidden,,$(CFLAGS_LIB)) -D_POSIX_C_SOURCE=200809L -c $< -o $@
+$(BUILD)/tests/port_c11.o: port/c11/irc_port.c include/irrcache.h
+	@mkdir -p $(dir $@)
+	$(CC) $(subst -std=c99,-std=c11,$(CFLAGS_LIB)) -c $< -o $@
+
+$(BUILD)/irc_tests: $(TEST_SRC) tests/test.h tests/scenes.h $(LIBA) $(TEST_PORT_OBJ)
+	$(CC) $(TEST_CFLAGS) $(OPT) $(CFLAGS) $(TEST_SRC) $(TEST_PORT_OBJ) $(LIBA) -o $@ -lm -lpthread
 
 test:
 	sh tests/run.sh
@@ -65,7 +93,7 @@ coverage:
 
 # ---------------------------------------------------------------- demo
 # The demo tracer: every demo/*.c but the two stand-alone programs.
-DEMO_LIB_SRC = $(filter-out demo/main.c demo/bench_core.c demo/minimal.c demo/fig15.c demo/shexp.c demo/bench.c,$(wildcard demo/*.c))
+DEMO_LIB_SRC = $(filter-out demo/main.c,$(wildcard demo/*.c))
 DEMO_CFLAGS = -std=c99 $(WARN) -Iinclude -Idemo $(OPT) $(CFLAGS)
 DEMO_OUT = $(BUILD)/demo
 # The Cornell box at the same rays per shading point in both modes (16 x 64
@@ -83,16 +111,16 @@ demo: $(BUILD)/irc_demo
 	$(BUILD)/irc_demo demo/scenes/cornell.scene $(DEMO_ARGS) --cache --compare $(DEMO_OUT)/cornell-reference.exr --out $(DEMO_OUT)/cornell-cache
 
 # The first-order paper's Fig. 15 experiment (README: "Visibility gradients").
-$(BUILD)/fig15: demo/fig15.c $(DEMO_LIB_SRC) demo/*.h $(LIBA)
-	$(CC) $(DEMO_CFLAGS) demo/fig15.c $(DEMO_LIB_SRC) $(LIBA) -o $@ -lm -lpthread
+$(BUILD)/fig15: experiments/fig15.c $(DEMO_LIB_SRC) demo/*.h $(LIBA)
+	$(CC) $(DEMO_CFLAGS) experiments/fig15.c $(DEMO_LIB_SRC) $(LIBA) -o $@ -lm -lpthread
 
 fig15: $(BUILD)/fig15
 	$(BUILD)/fig15 demo/scenes/fig15.scene 200 16384 64 256
 	$(BUILD)/fig15 demo/scenes/fig15-sharp.scene 200 16384 64 256
 
 # The SH-gradient paper's experiments (README: "SH records").
-$(BUILD)/shexp: demo/shexp.c $(DEMO_LIB_SRC) demo/*.h $(LIBA)
-	$(CC) $(DEMO_CFLAGS) demo/shexp.c $(DEMO_LIB_SRC) $(LIBA) -o $@ -lm -lpthread
+$(BUILD)/shexp: experiments/shexp.c $(DEMO_LIB_SRC) demo/*.h $(LIBA)
+	$(CC) $(DEMO_CFLAGS) experiments/shexp.c $(DEMO_LIB_SRC) $(LIBA) -o $@ -lm -lpthread
 
 sh-experiments: $(BUILD)/shexp
 	$(BUILD)/shexp demo/scenes/sh.scene 48 64 256
@@ -152,22 +180,26 @@ fuzz:
 	done
 
 # ---------------------------------------------------------------- bench
-$(BUILD)/bench_core: demo/bench_core.c tests/scenes.c tests/scenes.h $(LIBA)
-	$(CC) $(TEST_CFLAGS) -O2 -g $(CFLAGS) demo/bench_core.c tests/scenes.c $(LIBA) -o $@ -lm -lpthread
+$(BUILD)/bench_core: bench/bench_core.c tests/scenes.c tests/scenes.h $(LIBA)
+	$(CC) $(TEST_CFLAGS) -O2 -g $(CFLAGS) bench/bench_core.c tests/scenes.c $(LIBA) -o $@ -lm -lpthread
 
-$(BUILD)/minimal: demo/minimal.c $(LIBA)
-	$(CC) -std=c99 $(WARN) -Wno-missing-prototypes -Iinclude $(OPT) demo/minimal.c $(LIBA) -o $@ -lm -lpthread
+# ---------------------------------------------------------------- examples
+$(BUILD)/minimal: examples/minimal.c $(LIBA)
+	$(CC) -std=c99 $(WARN) -Iinclude $(OPT) examples/minimal.c $(LIBA) -o $@ -lm $(THREAD_LIBS)
+$(BUILD)/threads: examples/threads.c $(LIBA)
+	$(CC) -std=c99 $(WARN) -D_POSIX_C_SOURCE=200809L -Iinclude $(OPT) examples/threads.c $(LIBA) -o $@ -lm -lpthread
+examples: $(BUILD)/minimal $(BUILD)/threads
 
 bench-core: $(BUILD)/bench_core
 	$(BUILD)/bench_core
 
 # Speed against error on every shipped scene (README: "Speed against
 # error").  BENCH_QUICK=1: small images, fewer runs, under two minutes.
-$(BUILD)/bench_run: demo/bench.c $(DEMO_LIB_SRC) demo/*.h $(LIBA)
-	$(CC) $(DEMO_CFLAGS) demo/bench.c $(DEMO_LIB_SRC) $(LIBA) -o $@ -lm -lpthread
+$(BUILD)/bench_run: bench/bench.c $(DEMO_LIB_SRC) demo/*.h $(LIBA)
+	$(CC) $(DEMO_CFLAGS) bench/bench.c $(DEMO_LIB_SRC) $(LIBA) -o $@ -lm -lpthread
 
 bench: $(BUILD)/bench_run
-	sh demo/bench.sh $(BUILD)/bench_run
+	sh bench/bench.sh $(BUILD)/bench_run
 
 install: all
 	install -d $(PREFIX)/include $(PREFIX)/lib
@@ -177,4 +209,4 @@ install: all
 clean:
 	rm -rf build build-*
 
-.PHONY: all test coverage demo fig15 sh-experiments fuzz replay bench-core bench install clean
+.PHONY: all lib examples test coverage demo fig15 sh-experiments fuzz replay bench-core bench install clean

@@ -24,9 +24,6 @@ typedef struct cam_frame {
     float eye[3], f[3], right[3], up[3], tx, ty;
 } cam_frame;
 
-static pthread_key_t tkey;
-static pthread_once_t tonce = PTHREAD_ONCE_INIT;
-static void make_key(void) { pthread_key_create(&tkey, NULL); }
 
 static double now(void)
 {
@@ -93,7 +90,8 @@ static void cast(const renderer *r, const irc_ray *rays, irc_hit *hits, uint32_t
 static int host_trace(const irc_trace_args *a)
 {
     const renderer *r = (const renderer *)a->context;
-    cast(r, a->rays, a->hits, a->count, (tstate *)pthread_getspecific(tkey));
+    /* The thread's counters come as the call's host pointer. */
+    cast(r, a->rays, a->hits, a->count, (tstate *)a->host);
     return 0;
 }
 
@@ -140,7 +138,6 @@ int renderer_init(renderer *r, const scene *s, const render_opts *o, char *err, 
     memset(r, 0, sizeof *r);
     r->s = s;
     r->o = *o;
-    pthread_once(&tonce, make_key);
     if (bvh_build(&r->b, s) < 0 || lights_build(&r->l, s) < 0) {
         snprintf(err, n, "out of memory");
         return -1;
@@ -242,11 +239,11 @@ static int irradiance(renderer *r, const float p[3], const float n[3], uint64_t 
         int st;
         if (r->o.features & IRC_FEATURE_SH) {
             irc_sh sh;
-            st = irc_sh_lookup_or_compute(r->cache, p, n, &sh, NULL);
+            st = irc_sh_lookup_or_compute(r->cache, p, n, &sh, NULL, ts);
             if (st >= 0)
                 st = irc_sh_irradiance(&sh, n, e);
         } else {
-            st = irc_cache_lookup_or_compute(r->cache, p, n, e, NULL);
+            st = irc_cache_lookup_or_compute(r->cache, p, n, e, NULL, ts);
         }
         ts->cache_s += (now() - t0) - (ts->trace_s - tr0);
         return st < 0 ? st : 0;
@@ -375,7 +372,6 @@ static void *worker(void *arg)
     int id = ((warg *)arg)->id;
     tstate *ts = &j->ts[id];
     const camera *c = &j->r->s->cam;
-    pthread_setspecific(tkey, ts);
     for (;;) {
         int y = __atomic_fetch_add(&j->next_row, 1, __ATOMIC_RELAXED), x, done;
         const int step = j->r->o.stride > 1 ? j->r->o.stride : 1;
@@ -449,7 +445,6 @@ int render_points(renderer *r, const float *pn, int n, float *rgb, render_stats 
     double t0 = now();
     int i, e;
     memset(&ts, 0, sizeof ts);
-    pthread_setspecific(tkey, &ts);
     for (i = 0; i < n; i++) {
         const float *p = &pn[6 * i], *nn = &pn[6 * i + 3];
         uint64_t key = hash64(r->o.seed ^ (uint64_t)i);
@@ -467,9 +462,7 @@ int render_record(renderer *r, const float p[3], const float n[3], irc_record *o
     if (!r->cache)
         return IRC_ERR_CONFIG;
     int st;
-    pthread_setspecific(tkey, &ts);
-    st = irc_record_compute(r->cache, p, n, out);
-    pthread_setspecific(tkey, NULL); /* ts dies with this frame */
+    st = irc_record_compute(r->cache, p, n, out, &ts);
     return st;
 }
 

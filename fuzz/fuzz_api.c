@@ -107,7 +107,7 @@ static int call_sh(fuzz_in *in, irc_cache *c, uint32_t cap, uint8_t op, const fl
     const float *nn = fz_u8(in) & 1 ? n : NULL;
     switch (op) {
     case 8:
-        s = irc_sh_compute(c, p, nn, &sh);
+        s = irc_sh_compute(c, p, nn, &sh, NULL);
         break;
     case 9:
         memset(&sh, 0, sizeof sh);
@@ -125,7 +125,7 @@ static int call_sh(fuzz_in *in, irc_cache *c, uint32_t cap, uint8_t op, const fl
         return irc_sh_insert(c, &sh);
     case 10:
         s = fz_u8(in) & 1 ? irc_sh_lookup(c, p, nn, &sh, &w)
-                          : irc_sh_lookup_or_compute(c, p, nn, &sh, &w);
+                          : irc_sh_lookup_or_compute(c, p, nn, &sh, &w, NULL);
         if (s >= 0)
             check(w >= 0.0f && w == w);
         break;
@@ -158,7 +158,7 @@ static int call(fuzz_in *in, irc_cache *c, uint32_t cap)
         return call_sh(in, c, cap, op, p, n);
     switch (op) {
     case 0:
-        return irc_record_compute(c, p, n, &rec);
+        return irc_record_compute(c, p, n, &rec, NULL);
     case 1:
         memset(&rec, 0, sizeof rec);
         memcpy(rec.p, p, sizeof p);
@@ -170,7 +170,7 @@ static int call(fuzz_in *in, irc_cache *c, uint32_t cap)
         return irc_cache_insert(c, &rec);
     case 2:
     case 3:
-        s = op == 2 ? irc_cache_lookup(c, p, n, rgb, &w) : irc_cache_lookup_or_compute(c, p, n, rgb, &w);
+        s = op == 2 ? irc_cache_lookup(c, p, n, rgb, &w) : irc_cache_lookup_or_compute(c, p, n, rgb, &w, NULL);
         if (s >= 0)
             for (k = 0; k < 3; k++)
                 check(rgb[k] >= 0.0f && rgb[k] <= 3.4028235e38f);

@@ -142,15 +142,15 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         memcpy(b.copy, b.block, bytes);
         if (cfg.features & 8) {
             const float *nn = op & 2 ? n : NULL;
-            st = op & 1 ? irc_sh_compute(c, p, nn, &sh) : irc_sh_lookup_or_compute(c, p, nn, &sh, &w);
+            st = op & 1 ? irc_sh_compute(c, p, nn, &sh, NULL) : irc_sh_lookup_or_compute(c, p, nn, &sh, &w, NULL);
             if (st >= 0)
                 check_sh(&sh);
         } else if (op & 1) {
-            st = irc_record_compute(c, p, n, &r);
+            st = irc_record_compute(c, p, n, &r, NULL);
             if (st >= 0)
                 check_record(&r);
         } else {
-            st = irc_cache_lookup_or_compute(c, p, n, rgb, &w);
+            st = irc_cache_lookup_or_compute(c, p, n, rgb, &w, NULL);
             if (st >= 0)
                 check(fin(rgb[0]) && fin(rgb[1]) && fin(rgb[2]) && rgb[0] >= 0.0f);
         }

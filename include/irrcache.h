@@ -1,5 +1,5 @@
 /*
- * irrcache.h -- an embeddable irradiance cache.
+ * irrcache.h -- an embeddable irradiance cache.  This header is the manual.
  *
  * irrcache caches irradiance for a host ray tracer.  The host casts rays
  * through a callback; the library samples hemispheres through it, builds
@@ -13,13 +13,20 @@
  *     sampling scratch, the lock) lives in the block given to irc_init().
  *     There is no free function for memory: the caller owns the block.
  *   - No global mutable state.  Any number of caches may coexist.
- *   - Thread safety: with a locking port (the default port of this build is
- *     POSIX threads), lookups, inserts, computes and stats may be called
- *     concurrently from any threads on one cache.  irc_init, irc_cache_clear
- *     and irc_fini must not run concurrently with anything else on that cache.
+ *   - The block holds offsets, not pointers: copied byte for byte to another
+ *     address, or mapped by another process, it is a working cache again
+ *     after irc_attach() (same build of the library, same ABI).
+ *   - Thread safety: with a locking port (the default of this build is
+ *     POSIX threads), every call below may run concurrently from any
+ *     threads on one cache, except irc_init, irc_attach, irc_cache_clear and
+ *     irc_fini, which must not run concurrently with anything else on that
+ *     cache.  Lookups take the port's read lock; inserts (and the insert of
+ *     lookup_or_compute) its write lock; the trace callback runs with no
+ *     lock held.  With irc_port_none, one thread at a time.
  *   - Determinism: a record is a pure function of (p, n, config, seed).  Its
  *     random numbers come from a hash of the query, so the same query gives
- *     the same record, bit for bit, in any thread and at any time.
+ *     the same record, bit for bit, in any thread and at any time.  Which
+ *     records a multi-threaded fill stores still depends on timing.
  *   - Errors: every call returns an int: IRC_OK (0), a positive informational
  *     status (IRC_MISS, IRC_NOT_STORED), or a negative irc_status code.  A
  *     call that returns a negative code has left the cache's block byte for
@@ -27,9 +34,11 @@
  *     release the lock before it fails; glibc's rwlock keeps phase bits
  *     that a lock-unlock pair need not restore).  A negative value returned
  *     by the host's trace callback is passed through unchanged, so keep host
- *     codes below IRC_ERR_LAST.
+ *     codes below IRC_ERR_LAST.  Positive statuses are not failures: a host
+ *     that tests `st < 0` must still look at IRC_NOT_STORED (or at
+ *     irc_stats.not_stored) to learn that its pool is full.
  *
- * Quick start (see README.md for a complete host):
+ * Quick start (examples/minimal.c is a complete host):
  *
  *   irc_config cfg = {0};
  *   cfg.trace = my_trace; cfg.context = my_scene;
@@ -37,11 +46,22 @@
  *   size_t bytes; irc_footprint(&cfg, 100000, &bytes);
  *   cfg.buffer = my_block; cfg.buffer_size = bytes;
  *   irc_cache *c; irc_init(&cfg, 100000, &c);
- *   ... irc_cache_lookup_or_compute(c, p, n, rgb, NULL); ...
+ *   ... irc_cache_lookup_or_compute(c, p, n, rgb, NULL, my_thread_state); ...
  *   irc_fini(c);
  *
  * All vectors are float[3] in the host's world space.  Units of length are
  * the host's; nothing in the library depends on the scene's scale.
+ * Irradiance E is radiance times steradians (the integral of L cos over the
+ * hemisphere: E = pi L under a uniform sky of radiance L), in the host's
+ * radiance units per channel.
+ *
+ * Record kinds.  An irradiance cache (the default) and an SH cache
+ * (IRC_FEATURE_SH) keep different records behind one store; each kind has
+ * its own typed calls (irc_cache_* / irc_record_* for irradiance, irc_sh_*
+ * for SH), thin wrappers over the same insert, lookup and eviction.  Typed
+ * calls were kept over one call taking `void *` so that the compiler, not a
+ * runtime check, catches an irc_sh passed where an irc_record belongs; a
+ * call of the other kind returns IRC_ERR_UNSUPPORTED.
  */
 #ifndef IRRCACHE_H
 #define IRRCACHE_H
@@ -54,19 +74,40 @@ extern "C" {
 #endif
 
 #define IRC_VERSION_MAJOR 0
-#define IRC_VERSION_MINOR 1
+#define IRC_VERSION_MINOR 2
 #define IRC_VERSION_PATCH 0
+
+/* Every declaration of this header, and nothing else of the library, is
+ * visible from the shared library (the library builds with
+ * -fvisibility=hidden).  Define IRC_API yourself to decorate it otherwise
+ * (e.g. __declspec(dllexport)). */
+#ifndef IRC_API
+#if defined(__GNUC__) || defined(__clang__)
+#define IRC_API __attribute__((visibility("default")))
+#else
+#define IRC_API
+#endif
+#endif
 
 /* ------------------------------------------------------------------------ */
 /* Status codes.  Values are stable; new codes are only ever appended.      */
 
 typedef enum irc_status {
     IRC_OK = 0,
-    IRC_MISS = 1,             /* lookup: no record is close enough (not an error) */
-    IRC_NOT_STORED = 2,       /* lookup_or_compute: value computed but the pool is
-                                 full and eviction is off, so it was not stored */
-    IRC_ERR_NULL = -1,        /* a required pointer argument is NULL */
-    IRC_ERR_CONFIG = -2,      /* a config field is out of its documented range */
+    IRC_MISS = 1,             /* lookup: no record is close enough; a record
+                                 read: the slot is empty (not an error) */
+    IRC_NOT_STORED = 2,       /* lookup_or_compute: the value was computed and
+                                 returned, but the pool is full and eviction
+                                 is off, so it was not stored: every later
+                                 miss nearby computes again (counted in
+                                 irc_stats.not_stored) */
+    IRC_ERR_NULL = -1,        /* a required pointer argument is NULL, or
+                                 cfg.trace is */
+    IRC_ERR_CONFIG = -2,      /* a config field is out of its documented range;
+                                 also a handle that is not a live cache (never
+                                 initialised, after irc_fini, or a block not
+                                 re-attached), and a block irc_attach cannot
+                                 take (another ABI or layout version) */
     IRC_ERR_NONFINITE = -3,   /* a NaN or infinite coordinate or value (also a
                                  record whose irradiance or gradients overflow
                                  float, from radiances near FLT_MAX, and a
@@ -80,27 +121,35 @@ typedef enum irc_status {
                                  unknown ray status */
     IRC_ERR_NOSAMPLES = -8,   /* fewer than half of the hemisphere's rays were
                                  usable (the host reported them as failed) */
-    IRC_ERR_BUSY = -9,        /* more concurrent record computations than
-                                 cfg.threads scratch slots */
-    IRC_ERR_UNSUPPORTED = -10,/* a call the cache's features do not serve (an
-                                 irradiance call on an SH cache, an SH call on
-                                 an irradiance cache, occlusion without
-                                 VISIBILITY) */
-    IRC_ERR_PORT = -11,       /* the port failed to initialise its lock */
-    IRC_ERR_RANGE = -12,      /* an index argument is past the end */
+    IRC_ERR_BUSY = -9,        /* every scratch slot was in use and the cache
+                                 does not wait (cfg.no_wait, or a port that
+                                 cannot yield) */
+    IRC_ERR_UNSUPPORTED = -10,/* a call the cache's kind or features do not
+                                 serve (an irradiance call on an SH cache, an
+                                 SH call on an irradiance cache, occlusion
+                                 without VISIBILITY) */
+    IRC_ERR_PORT = -11,       /* the port failed to initialise or take its
+                                 lock */
+    IRC_ERR_RANGE = -12,      /* a value out of its range: a record id past
+                                 the capacity, a record with radius <= 0 or
+                                 negative irradiance, SH bands or channels
+                                 that do not match the cache, a lobe exponent
+                                 out of [0, 1e4] */
     IRC_ERR_LAST = -12        /* the most negative code the library returns */
 } irc_status;
 
-/* A one-line English description of any status code (never NULL). */
-const char *irc_strerror(int status);
+/* A one-line English description of any status code (never NULL).  Thread
+ * safe. */
+IRC_API const char *irc_strerror(int status);
 
 /* ------------------------------------------------------------------------ */
 /* Host callback: the library asks the host to cast rays.                   */
 
 typedef struct irc_ray {
     float org[3];   /* the record's position p, exactly: offset it yourself
-                       to avoid self-intersection, as your tracer usually does */
-    float dir[3];   /* unit direction in the hemisphere around the record's n */
+                       (args->n is the record's normal) */
+    float dir[3];   /* unit direction in the hemisphere around the record's n
+                       (any direction for a free-point SH record) */
 } irc_ray;
 
 /* Per-ray outcome, written by the host into irc_hit.status. */
@@ -124,6 +173,12 @@ typedef struct irc_hit {
 
 typedef struct irc_trace_args {
     void *context;          /* cfg.context, unchanged */
+    void *host;             /* the per-call pointer the host passed to the
+                               call that is computing (NULL if it passed
+                               none): its thread's sampler, ray packet, ... */
+    float p[3];             /* the record's position (= every ray's org) */
+    float n[3];             /* the record's unit normal; 0, 0, 0 for a
+                               free-point SH record */
     const irc_ray *rays;    /* count rays to cast (read only) */
     irc_hit *hits;          /* count results to write, same order */
     uint32_t count;         /* 1 <= count <= cfg.max_batch */
@@ -132,25 +187,43 @@ typedef struct irc_trace_args {
 /*
  * Cast args->count rays and fill args->hits.  The callback may touch only
  * args->hits[0 .. count-1] and its own state; it must not call back into the
- * same cache.  It runs on the thread that called into the library, possibly
- * on several threads at once.  Return 0 on success or a negative code of the
- * host's own to abort the record (the library returns it unchanged).
+ * same cache.  It runs on the thread that called into the library, with no
+ * lock of the cache held, possibly on several threads at once.  Return 0 on
+ * success or a negative code of the host's own to abort the record (the
+ * library returns it unchanged and keeps nothing of the record).
  */
 typedef int (*irc_trace_fn)(const irc_trace_args *args);
 
 /* ------------------------------------------------------------------------ */
 /* Port: locks and atomics.  Implementations live in port/, not in the core. */
 
+/*
+ * The library's only contact with threads.  The lock object lives in the
+ * cache's block at a 64-byte boundary, lock_size bytes (0: no lock object).
+ * It is a reader/writer lock: any number of readers or one writer.
+ *   - lock_init: make a fresh lock in that memory; 0, or negative on
+ *     failure (irc_init and irc_attach then return IRC_ERR_PORT).
+ *   - lock_destroy: release what lock_init took (irc_fini).
+ *   - read_lock / write_lock: block until the lock is held shared /
+ *     exclusive; 0, or negative if it cannot be taken (the call returns
+ *     IRC_ERR_PORT and has changed nothing).  The library never takes a
+ *     lock it already holds and never upgrades one.
+ *   - read_unlock / write_unlock: release a lock this thread holds; cannot
+ *     fail.
+ *   - yield: let other threads run while this one waits for a scratch slot;
+ *     NULL if the port cannot wait (single-threaded).
+ * The atomics act on naturally aligned 64-bit words inside the block.
+ */
 typedef struct irc_port {
     const char *name;
-    size_t lock_size;                     /* bytes of one lock object */
-    int (*lock_init)(void *lock);         /* 0 or negative */
+    size_t lock_size;                     /* bytes of one lock object, <= 4096 */
+    int (*lock_init)(void *lock);
     void (*lock_destroy)(void *lock);
-    void (*read_lock)(void *lock);
+    int (*read_lock)(void *lock);
     void (*read_unlock)(void *lock);
-    void (*write_lock)(void *lock);
+    int (*write_lock)(void *lock);
     void (*write_unlock)(void *lock);
-    /* Atomics on 64-bit words that live in the cache's block. */
+    void (*yield)(void);
     uint64_t (*load)(const uint64_t *obj);                 /* acquire */
     void (*store)(uint64_t *obj, uint64_t v);              /* release */
     uint64_t (*fetch_add)(uint64_t *obj, uint64_t v);      /* relaxed */
@@ -159,10 +232,13 @@ typedef struct irc_port {
                                                          1 if swapped */
 } irc_port;
 
-extern const irc_port irc_port_posix;  /* pthread rwlock + GCC/Clang atomics */
-extern const irc_port irc_port_c11;    /* C11 <stdatomic.h>, spinning rwlock */
-extern const irc_port irc_port_none;   /* single-threaded: no locks at all */
-extern const irc_port *const irc_port_default; /* what cfg.port = NULL means */
+/* The ports.  A build compiles the one chosen by `make PORT=posix|c11|none`
+ * (default posix) and irc_port_none; only those two are defined. */
+IRC_API extern const irc_port irc_port_posix;  /* pthread rwlock + GCC/Clang atomics */
+IRC_API extern const irc_port irc_port_c11;    /* C11 <stdatomic.h>, spinning rwlock */
+IRC_API extern const irc_port irc_port_none;   /* single-threaded: no locks at all */
+IRC_API extern const irc_port *const irc_port_default; /* the chosen one: what
+                                                          cfg.port = NULL means */
 
 /* ------------------------------------------------------------------------ */
 /* Configuration.  Zero in any field means its default.                    */
@@ -180,7 +256,7 @@ enum irc_feature {
                                           (first-order paper, Sec. 6-7): implies
                                           TRANSLATION; costs extra rays (14 per
                                           silhouette crossing of the strata
-                                          grid, + 1) and ~200 scratch bytes a
+                                          grid, + 1) and ~300 scratch bytes a
                                           stratum */
     IRC_FEATURE_SH = 1u << 3,          /* records hold spherical-harmonic
                                           coefficients of incident radiance
@@ -213,14 +289,26 @@ typedef struct irc_config {
     float accuracy;          /* Ward's a: a record counts at p when
                                 |p-p_i|/R_i + sqrt(1-n.n_i) < a; (0, 10]
                                 (default 0.2) */
-    float min_radius;        /* R_i >= min_radius, >= 0 (default 0) */
-    float max_radius;        /* R_i <= max_radius, > min_radius (default 0:
-                                no limit but IRC_RADIUS_CAP) */
+    float min_radius;        /* R_i >= min_radius; finite, in
+                                [0, IRC_RADIUS_CAP) (default 0) */
+    float max_radius;        /* R_i <= max_radius; finite, in
+                                (min_radius, IRC_RADIUS_CAP] (default 0:
+                                IRC_RADIUS_CAP, no limit) */
     uint32_t strata_theta;   /* M rows in theta, 1..1024 (default 16) */
     uint32_t strata_phi;     /* N columns in phi, 1..4096 (default 64);
                                 M * N <= IRC_MAX_STRATA */
-    uint32_t threads;        /* how many record computations may run at once,
-                                1..64 (default 1); each has its own scratch */
+    uint32_t threads;        /* scratch slots: how many record computations
+                                may run at once, 1..64 (default 1).  Each
+                                costs irc_stats.bytes_scratch / threads.  A
+                                compute that finds every slot taken waits
+                                for one (see no_wait), so any number of host
+                                threads may share a cache; give it as many
+                                slots as host threads that compute at once
+                                (your worker count) to never wait. */
+    uint32_t no_wait;        /* 1: a compute that finds every slot taken
+                                returns IRC_ERR_BUSY at once instead of
+                                waiting (default 0: wait through the port's
+                                yield) */
     uint32_t evict;          /* an irc_evict (default IRC_EVICT_NONE) */
     uint32_t sh_bands;       /* SH records: L, bands 0..L-1, L*L coefficients
                                 per channel; 1..IRC_SH_MAX_BANDS (default 3) */
@@ -244,57 +332,100 @@ typedef struct irc_config {
 #define IRC_SH_MAX_BANDS 5u
 #define IRC_SH_MAX_COEFFS 25u /* IRC_SH_MAX_BANDS squared */
 
-/* A conservative compile-time bound on irc_footprint(), for static blocks
- * of irradiance caches (not SH caches: ask irc_footprint()): records with
- * every gradient, the largest index, scratch for t threads of
- * s strata each and batches of b rays. */
-#define IRC_FOOTPRINT_BOUND(records, s, t, b) \
-    (4096u + (size_t)(t) * (64u + (size_t)(s) * 16u + (size_t)(b) * 56u + 16384u) + \
-     (size_t)(records) * (64u + 4u + 8u + 1u) + ((size_t)(records) / 16u + 16u) * 128u)
+/*
+ * Compile-time bounds on irc_footprint(), for static blocks: never less
+ * than what irc_footprint() asks for the same numbers (make test checks a
+ * grid of configs).  features: the irradiance cache's IRC_FEATURE_* bits;
+ * records: max_records; s: strata M * N; t: cfg.threads; b: cfg.max_batch;
+ * for SH caches, bands L and channels ch.
+ */
+#define IRC_FOOTPRINT_BOUND(features, records, s, t, b)                          \
+    (8192u +                                                                     \
+     (size_t)(t) * (128u + (size_t)(s) * (((features) & IRC_FEATURE_VISIBILITY) \
+                                             ? 320u : 32u) + (size_t)(b) * 56u) + \
+     (size_t)(records) * (64u + 4u + 1u) + ((size_t)(records) / 8u + 16u) * 128u)
+#define IRC_SH_FOOTPRINT_BOUND(records, bands, ch, s, t, b)                      \
+    (8192u + (size_t)(t) * (128u + (size_t)(s) * 112u + (size_t)(b) * 56u) +     \
+     (size_t)(records) * (32u + 16u * (size_t)(bands) * (bands) * (ch) + 4u + 1u) + \
+     ((size_t)(records) / 8u + 16u) * 128u)
 
 /* ------------------------------------------------------------------------ */
-/* Size, init, fini.                                                         */
+/* Size, init, attach, fini.                                                 */
 
 typedef struct irc_cache irc_cache; /* lives inside cfg.buffer; opaque */
 
 /*
  * Bytes of block a cache of max_records records needs with this config
- * (cfg->buffer and cfg->buffer_size are ignored).  max_records >= 1.
- * Returns IRC_OK and writes *bytes, or a negative error code on failure.
+ * (cfg->buffer and cfg->buffer_size are ignored).  1 <= max_records <=
+ * IRC_MAX_RECORDS.  A config whose block would not fit a size_t is
+ * IRC_ERR_CONFIG.  Thread safe.  Returns IRC_OK and writes *bytes, or a
+ * negative error code on failure.
+ *
+ * Sizing max_records: a fill at accuracy a makes roughly area / (pi (a
+ * R)^2) records per surface, R the records' typical radius; the README's
+ * figures give record counts of real scenes (the Cornell box at a = 0.2,
+ * 256 x 256 pixels: about 6,000).  When the pool fills, inserts fail
+ * (IRC_ERR_FULL), lookup_or_compute returns IRC_NOT_STORED and recomputes
+ * every later miss, and irc_stats.not_stored counts those: size the pool
+ * so that stays 0, or turn on IRC_EVICT_CLOCK.
  */
-int irc_footprint(const irc_config *cfg, uint32_t max_records, size_t *bytes);
+IRC_API int irc_footprint(const irc_config *cfg, uint32_t max_records, size_t *bytes);
 
 /*
  * Build an empty cache in cfg->buffer.  The config is copied; the cache
  * handle points into the block.  Returns IRC_OK and writes *cache, or a
  * negative error code on failure (IRC_ERR_NOMEM when the block is too small).
  */
-int irc_init(const irc_config *cfg, uint32_t max_records, irc_cache **cache);
+IRC_API int irc_init(const irc_config *cfg, uint32_t max_records, irc_cache **cache);
+
+/*
+ * Re-attach a block that holds a cache made by irc_init (and filled) at
+ * another address: a copy of it, a file read back, another process's
+ * mapping.  cfg->buffer and cfg->buffer_size name the block (its first
+ * buffer_size bytes, as copied); cfg->trace, cfg->context and cfg->port
+ * are taken anew (the old process's pointers mean nothing here); every
+ * other config field is the block's own and ignored here.  When the new
+ * address differs from the old one modulo 64, the contents move within the
+ * block to the new 64-byte boundary, so a block shared live between
+ * processes should sit at addresses equal modulo 64 (pages are).  The lock
+ * is initialised afresh: no other thread or process may use the cache
+ * during the call.  The block must come from the same build of the library
+ * on the same ABI (pointer and size_t widths, byte order): for anything
+ * else use snapshots.  Returns IRC_OK and writes *cache; IRC_ERR_CONFIG when
+ * the block holds no cache or one of another ABI or layout version;
+ * IRC_ERR_NOMEM when buffer_size is smaller than the cache; or a negative
+ * error code (the block is then unchanged).
+ */
+IRC_API int irc_attach(const irc_config *cfg, irc_cache **cache);
 
 /*
  * Release what the port holds (the lock).  The block is the caller's again
  * afterwards.  Returns IRC_OK, or a negative error code on failure.
  */
-int irc_fini(irc_cache *cache);
+IRC_API int irc_fini(irc_cache *cache);
 
 /* ------------------------------------------------------------------------ */
-/* Records.                                                                   */
+/* Irradiance records.                                                       */
 
-/* A record as the host sees it (the cache stores a packed form: positions and
- * irradiance exactly, the normal to about 5e-5 rad, gradients to 1/32767 of
- * their largest component). */
+/* A record as the host sees it.  The cache stores a packed form: position,
+ * radius and irradiance exactly; the normal to about 5e-5 rad; each
+ * gradient channel to 2^-14 of its own largest component.  Read back
+ * (irc_cache_record), a record has mean_dist NaN, rays and rays_used 0,
+ * features = the cache's, and the gradients it does not carry zero. */
 typedef struct irc_record {
     float p[3];          /* position */
     float n[3];          /* unit normal */
-    float e[3];          /* RGB irradiance: integral of L cos over the hemisphere */
+    float e[3];          /* RGB irradiance (see the units above) */
     float radius;        /* R_i: harmonic mean hit distance, clamped by
                             [min_radius, max_radius] and by E/|grad E| */
     float mean_dist;     /* the harmonic mean hit distance before clamping
-                            (+inf if every ray escaped; NaN when read back
-                            from the cache, which does not store it) */
-    float grad_t[3][3];  /* grad_t[c]: dE_c/dp (zero unless TRANSLATION) */
-    float grad_r[3][3];  /* grad_r[c]: E_c(n') ~ e[c] + (n x n').grad_r[c]
-                            (zero unless ROTATION) */
+                            (+inf if every ray escaped) */
+    float grad_t[3][3];  /* grad_t[c] = dE_c/dp: irradiance per unit of the
+                            host's length, along the surface (zero unless
+                            TRANSLATION) */
+    float grad_r[3][3];  /* grad_r[c]: E_c(n') ~ e[c] + (n x n').grad_r[c],
+                            irradiance per radian of normal rotation (zero
+                            unless ROTATION) */
     uint32_t features;   /* which gradients are valid */
     uint32_t rays;       /* rays cast, and how many were usable: */
     uint32_t rays_used;
@@ -302,19 +433,21 @@ typedef struct irc_record {
 
 /*
  * Sample the hemisphere around (p, n) through the trace callback and build a
- * record.  n need not be unit length.  Nothing is stored.  Returns IRC_OK, or
- * a negative error code on failure (the host's own code if trace returned
- * one).
+ * record.  n need not be unit length.  host reaches the callback as
+ * args->host.  Nothing is stored.  Waits for a scratch slot when all are in
+ * use (see cfg.threads).  Returns IRC_OK, or a negative error code on
+ * failure (the host's own code if trace returned one).
  */
-int irc_record_compute(irc_cache *cache, const float p[3], const float n[3],
-                       irc_record *out);
+IRC_API int irc_record_compute(irc_cache *cache, const float p[3], const float n[3],
+                               irc_record *out, void *host);
 
 /* Net visibility for hosts that cache occlusion rather than irradiance. */
 typedef struct irc_occlusion {
     float visible;   /* the fraction of the hemisphere's solid angle whose rays
                         escape (first-order paper, Eq. 47, over 2 pi); every
                         hit blocks */
-    float grad[3];   /* its gradient along the surface (Eq. 48) */
+    float grad[3];   /* its gradient along the surface (Eq. 48), per unit of
+                        length */
     uint32_t rays;   /* rays cast */
 } irc_occlusion;
 
@@ -322,10 +455,11 @@ typedef struct irc_occlusion {
  * Sample the hemisphere around (p, n) and return its net visibility and
  * that visibility's exact gradient from the silhouettes.  Needs
  * IRC_FEATURE_VISIBILITY in the config (IRC_ERR_UNSUPPORTED otherwise).
- * Nothing is stored.  Returns IRC_OK, or a negative error code on failure.
+ * Nothing is stored; the rays count in irc_stats.rays.  Returns IRC_OK, or
+ * a negative error code on failure.
  */
-int irc_occlusion_compute(irc_cache *cache, const float p[3], const float n[3],
-                          irc_occlusion *out);
+IRC_API int irc_occlusion_compute(irc_cache *cache, const float p[3], const float n[3],
+                                  irc_occlusion *out, void *host);
 
 /*
  * Store a record (a copy, packed).  rec->radius must be > 0 and rec->e >= 0
@@ -333,7 +467,7 @@ int irc_occlusion_compute(irc_cache *cache, const float p[3], const float n[3],
  * when the pool is full and eviction is off (lookups keep working); or a
  * negative error code on failure.
  */
-int irc_cache_insert(irc_cache *cache, const irc_record *rec);
+IRC_API int irc_cache_insert(irc_cache *cache, const irc_record *rec);
 
 /*
  * Interpolate irradiance at (p, n): every record with Ward-Heckbert weight
@@ -346,35 +480,44 @@ int irc_cache_insert(irc_cache *cache, const irc_record *rec);
  * record counts, IRC_ERR_NONFINITE when the extrapolated value overflows
  * float (records near FLT_MAX), or a negative error code on failure.
  */
-int irc_cache_lookup(irc_cache *cache, const float p[3], const float n[3],
-                     float rgb[3], float *weight);
+IRC_API int irc_cache_lookup(irc_cache *cache, const float p[3], const float n[3],
+                             float rgb[3], float *weight);
 
 /*
- * Lookup; on a miss, compute a record at (p, n), insert it, and return its
- * irradiance with *weight = 0.  Returns IRC_OK, IRC_NOT_STORED (value valid, pool full and
- * eviction off), or a negative error code on failure.
+ * Lookup; on a miss, compute a record at (p, n) (host reaches the callback),
+ * insert it, and return its irradiance with *weight = 0 (a weight of 0 is
+ * how the caller tells a fresh record from an interpolated value; the new
+ * record's id is not reported: irc_cache_neighbours finds it).  A miss that
+ * had to wait for a scratch slot looks up again first, since another thread
+ * may have stored a record there meanwhile.  Returns IRC_OK, IRC_NOT_STORED
+ * (value valid, pool full and eviction off), or a negative error code on
+ * failure.
  */
-int irc_cache_lookup_or_compute(irc_cache *cache, const float p[3],
-                                const float n[3], float rgb[3], float *weight);
+IRC_API int irc_cache_lookup_or_compute(irc_cache *cache, const float p[3],
+                                        const float n[3], float rgb[3], float *weight,
+                                        void *host);
 
 /*
  * The ids (slot numbers) of the records a lookup at (p, n) would use, in no
  * particular order: up to cap of them in ids, and how many there are in
- * *count (which may exceed cap).  For debugging and visualisation.  Returns
- * IRC_OK, or a negative error code on failure.
+ * *count (which may exceed cap).  Either kind of cache (n NULL in an SH
+ * cache: free points).  For debugging and visualisation.  Returns IRC_OK,
+ * or a negative error code on failure.
  */
-int irc_cache_neighbours(irc_cache *cache, const float p[3], const float n[3],
-                         uint32_t *ids, uint32_t cap, uint32_t *count);
+IRC_API int irc_cache_neighbours(irc_cache *cache, const float p[3], const float n[3],
+                                 uint32_t *ids, uint32_t cap, uint32_t *count);
 
 /*
  * Read the record in slot id (0 <= id < capacity).  Returns IRC_OK,
- * IRC_MISS when the slot is empty, or a negative error code on failure.
+ * IRC_MISS when the slot is empty, IRC_ERR_RANGE past the capacity, or a
+ * negative error code on failure.
  */
-int irc_cache_record(irc_cache *cache, uint32_t id, irc_record *out);
+IRC_API int irc_cache_record(irc_cache *cache, uint32_t id, irc_record *out);
 
-/* Remove every record (the counters in irc_stats are kept).  Returns IRC_OK,
- * or a negative error code on failure. */
-int irc_cache_clear(irc_cache *cache);
+/* Remove every record, of either kind (the counters in irc_stats are kept).
+ * Not concurrent with other calls.  Returns IRC_OK, or a negative error
+ * code on failure. */
+IRC_API int irc_cache_clear(irc_cache *cache);
 
 /* ------------------------------------------------------------------------ */
 /* SH records (IRC_FEATURE_SH).                                              */
@@ -429,10 +572,11 @@ typedef struct irc_sh {
  * hemisphere around n, or with n NULL the whole sphere.  Nothing is stored.
  * Returns IRC_OK, or a negative error code on failure (IRC_ERR_NOSAMPLES
  * when fewer than half the rays were usable, the host's own code if trace
- * returned one).
+ * returned one).  host reaches the callback as args->host (whose n is 0, 0, 0
+ * for a free point).
  */
-int irc_sh_compute(irc_cache *cache, const float p[3], const float n[3],
-                   irc_sh *out);
+IRC_API int irc_sh_compute(irc_cache *cache, const float p[3], const float n[3],
+                           irc_sh *out, void *host);
 
 /*
  * Store an SH record (a copy).  rec->bands and rec->channels must match the
@@ -440,7 +584,7 @@ int irc_sh_compute(irc_cache *cache, const float p[3], const float n[3],
  * (IRC_ERR_RANGE), every used field finite.  Returns IRC_OK, IRC_ERR_FULL,
  * or a negative error code.
  */
-int irc_sh_insert(irc_cache *cache, const irc_sh *rec);
+IRC_API int irc_sh_insert(irc_cache *cache, const irc_sh *rec);
 
 /*
  * Interpolated coefficients at p (Eq. 15): every accepted record
@@ -450,18 +594,19 @@ int irc_sh_insert(irc_cache *cache, const irc_sh *rec);
  * IRC_MISS (out->c = 0, weight = 0), IRC_ERR_NONFINITE when an
  * extrapolation overflows float, or a negative error code.
  */
-int irc_sh_lookup(irc_cache *cache, const float p[3], const float n[3],
+IRC_API int irc_sh_lookup(irc_cache *cache, const float p[3], const float n[3],
                   irc_sh *out, float *weight);
 
 /* Lookup; on a miss, compute, insert and return the new record (*weight =
  * 0).  Returns IRC_OK, IRC_NOT_STORED (pool full, eviction off), or a
  * negative error code. */
-int irc_sh_lookup_or_compute(irc_cache *cache, const float p[3],
-                             const float n[3], irc_sh *out, float *weight);
+IRC_API int irc_sh_lookup_or_compute(irc_cache *cache, const float p[3],
+                                     const float n[3], irc_sh *out, float *weight,
+                                     void *host);
 
 /* Read the SH record in slot id.  Returns IRC_OK, IRC_MISS (empty slot),
  * IRC_ERR_RANGE, or a negative error code. */
-int irc_sh_record(irc_cache *cache, uint32_t id, irc_sh *out);
+IRC_API int irc_sh_record(irc_cache *cache, uint32_t id, irc_sh *out);
 
 /*
  * Irradiance about the unit-ish normal n from sh's coefficients: the
@@ -473,7 +618,7 @@ int irc_sh_record(irc_cache *cache, uint32_t id, irc_sh *out);
  * IRC_ERR_NULL, IRC_ERR_NORMAL, or IRC_ERR_RANGE (bands or channels out of
  * range).
  */
-int irc_sh_irradiance(const irc_sh *sh, const float n[3], float rgb[3]);
+IRC_API int irc_sh_irradiance(const irc_sh *sh, const float n[3], float rgb[3]);
 
 /*
  * A Phong-like lobe: integral of L(w) max(0, w.r)^s dw about the unit-ish
@@ -484,7 +629,7 @@ int irc_sh_irradiance(const irc_sh *sh, const float n[3], float rgb[3]);
  * lobes come out blurred.  0 <= s <= 1e4.  Returns as irc_sh_irradiance
  * (IRC_ERR_RANGE also for s out of range).
  */
-int irc_sh_glossy(const irc_sh *sh, const float r[3], float s, float rgb[3]);
+IRC_API int irc_sh_glossy(const irc_sh *sh, const float r[3], float s, float rgb[3]);
 
 typedef struct irc_stats {
     uint64_t records;        /* live records */
@@ -494,7 +639,10 @@ typedef struct irc_stats {
     uint64_t lookups;        /* lookup calls (including lookup_or_compute) */
     uint64_t hits;           /* lookups answered from records */
     uint64_t computes;       /* records computed */
-    uint64_t rays;           /* rays cast for the records computed */
+    uint64_t not_stored;     /* computed by lookup_or_compute but not stored:
+                                the pool was full (IRC_NOT_STORED) */
+    uint64_t waits;          /* computes that waited for a scratch slot */
+    uint64_t rays;           /* rays cast (records and occlusion) */
     uint64_t index_nodes;    /* index nodes in use */
     uint64_t index_nodes_max;
     size_t record_bytes;     /* bytes per stored record (feature dependent) */
@@ -504,8 +652,10 @@ typedef struct irc_stats {
     size_t bytes_total;      /* all block bytes the cache uses */
 } irc_stats;
 
-/* Counters and sizes.  Returns IRC_OK, or a negative error code on failure. */
-int irc_cache_stats(irc_cache *cache, irc_stats *out);
+/* Counters and sizes.  Thread safe; the counters are read one by one, so a
+ * concurrent call may be half counted.  Returns IRC_OK, or a negative
+ * error code on failure. */
+IRC_API int irc_cache_stats(irc_cache *cache, irc_stats *out);
 
 #ifdef __cplusplus
 }

@@ -1,7 +1,7 @@
 /*
- * port/irc_port_default.c -- the port that cfg.port = NULL selects.  Pick
- * another at build time with -DIRC_PORT_DEFAULT=irc_port_c11 (or
- * irc_port_none for a build without threads).
+ * port/irc_port_default.c -- the port that cfg.port = NULL selects: the
+ * one the build compiled (make PORT=posix|c11|none passes
+ * -DIRC_PORT_DEFAULT=irc_port_PORT).
  */
 #include "irrcache.h"
 

@@ -8,24 +8,35 @@
 #include "irrcache.h"
 #include "util.h"
 
-#define IRC__MAGIC 0x69726331u /* "irc1" */
+#define IRC__MAGIC 0x69726332u /* "irc2" */
 #define IRC__NIL 0xffffffffu
 #define IRC__ALIGN 64u
 
+/* What a block must agree on to be re-attached (irc_attach): the layout's
+ * version, pointer and size_t widths, byte order. */
+#define IRC__LAYOUT_VERSION 2u
+#define IRC__ABI                                                           \
+    (IRC__LAYOUT_VERSION | (uint32_t)sizeof(void *) << 8 |                 \
+     (uint32_t)sizeof(size_t) << 16 | (uint32_t)sizeof(double) << 24)
+
 /* Stored record: the position and radius come first so that the index's
- * distance test touches one cache line.  32 bytes; gradients follow. */
+ * distance test touches one cache line.  32 bytes; the kind's payload
+ * (gradients, SH coefficients) follows. */
 typedef struct irc__rec {
     float p[3];
     float r;         /* R_i */
     float e[3];
-    uint32_t n;      /* octahedral normal, 16 + 16 bits */
+    uint32_t n;      /* octahedral normal, 16 + 16 bits; IRC__FREE = none */
 } irc__rec;
 
 /* A gradient in the record's tangent frame (t1, t2 of the decoded normal),
- * one 2D vector per channel, as int16 times one shared scale: 16 bytes. */
+ * one 2D vector per channel as int16 mantissas, each channel with its own
+ * power-of-two scale 2^ex[c], so a dim channel keeps its relative
+ * precision beside a bright one: 16 bytes. */
 typedef struct irc__grad {
-    float scale;
     int16_t g[6];    /* g[2c] along t1, g[2c+1] along t2 */
+    int8_t ex[3];
+    uint8_t unused;
 } irc__grad;
 
 /* Octree node.  Its cube is implied by the path from the root. */
@@ -37,8 +48,8 @@ typedef struct irc__node {
 } irc__node;
 
 enum {
-    IRC__C_INSERTS, IRC__C_EVICTIONS, IRC__C_LOOKUPS,
-    IRC__C_HITS, IRC__C_COMPUTES, IRC__C_RAYS, IRC__C_COUNT
+    IRC__C_INSERTS, IRC__C_EVICTIONS, IRC__C_LOOKUPS, IRC__C_HITS,
+    IRC__C_COMPUTES, IRC__C_RAYS, IRC__C_NOT_STORED, IRC__C_WAITS, IRC__C_COUNT
 };
 
 /* One stratum's sample: the estimator needs radiance and distance, nothing
@@ -48,12 +59,77 @@ typedef struct irc__sample {
     float d;         /* hit distance; +inf when escaped; NaN when failed */
 } irc__sample;
 
+#define IRC__SH_MAX_BANDS 5
+#define IRC__FREE 0xffffffffu /* irc__rec.n of a free-point SH record */
+#define IRC__NC (IRC__SH_MAX_BANDS * IRC__SH_MAX_BANDS)
+/* The largest packed record: 32 + 25 coefficients x 3 channels x (1 + 3). */
+#define IRC__REC_MAX (32u + IRC__NC * 3u * 4u * 4u)
+
+/* A validated query: the point, and the unit normal (zero for a free
+ * point) in float as lookups use it and in double as sampling does. */
+typedef struct irc__query {
+    float p[3];
+    float n[3];
+    double un[3];
+    int free;
+} irc__query;
+
+/* A lookup's running sums, by kind. */
+typedef union irc__acc {
+    double irr[3];
+    struct {
+        double c[3][IRC__NC], g[3][IRC__NC][3], e[3];
+    } sh;
+} irc__acc;
+
+/* One record computation in progress: the cache, its claimed scratch
+ * slot, the host's per-call pointer, the query, and rays cast so far. */
+typedef struct irc__call {
+    irc_cache *c;
+    unsigned char *slot;
+    void *host;
+    irc__query q;
+    uint32_t rays;
+} irc__call;
+
+/* A record kind: what the store needs to check, pack, weigh and
+ * accumulate one kind of record (kind_irr.c, kind_sh.c).  The public
+ * structs differ (irc_record, irc_sh); the store sees them as void. */
+typedef struct irc__kind {
+    uint32_t id;            /* stored in the block: kinds are found by id */
+    int free_points;        /* queries may omit the normal */
+    size_t rec_bytes;       /* sizeof the public record struct */
+    int (*compute)(irc__call *k, void *rec);
+    int (*check)(const irc_cache *c, const void *rec, double un[3]);
+    void (*pack)(const irc_cache *c, const void *rec, const double un[3], void *dst);
+    void (*unpack)(const irc_cache *c, const void *src, void *rec);
+    int (*weigh)(const irc_cache *c, const irc__rec *r, const irc__query *q, double *w,
+                 float ni[3]);
+    void (*begin)(const irc_cache *c, irc__acc *a);
+    void (*accumulate)(const irc_cache *c, const irc__rec *r, const irc__query *q, double w,
+                       const float ni[3], irc__acc *a);
+    int (*finish)(const irc_cache *c, const irc__query *q, const irc__acc *a, double w,
+                  void *out);
+    void (*answer)(const irc_cache *c, const void *rec, void *out);
+} irc__kind;
+
+enum { IRC__KIND_IRR = 1, IRC__KIND_SH = 2 };
+extern const irc__kind irc__kind_irr, irc__kind_sh;
+
+/* The cache, at the start of its part of the block.  Everything after it
+ * is reached by offsets from the cache itself, so a block copied to
+ * another address works once irc_attach has re-set the four pointers
+ * marked "attached". */
 struct irc_cache {
     uint32_t magic;
+    uint32_t abi;            /* IRC__ABI of the build that made the block */
     uint32_t capacity;
-    irc_config cfg;          /* defaults applied; buffer = the caller's */
-    const irc_port *port;
-    uint32_t rec_size;       /* 32, 48 or 64 */
+    uint32_t kind_id;
+    irc_config cfg;          /* defaults applied; its trace, context, port and
+                                buffer are attached */
+    const irc__kind *kind;   /* attached */
+    const irc_port *port;    /* attached: cfg.port */
+    uint32_t rec_size;       /* packed record bytes */
     uint32_t off_t, off_r;   /* byte offsets of the gradients, 0 = absent */
     uint32_t strata;         /* M * N */
     uint32_t slot_samples;   /* samples a scratch slot holds: M N, or 2 M N
@@ -63,29 +139,56 @@ struct irc_cache {
     uint32_t off_sh, off_shg;/* byte offsets of SH coefficients and gradients,
                                 0 = absent */
     uint32_t node_cap;       /* nodes in the pool (1 + 8 k) */
+    size_t lock_bytes;       /* room reserved for the port's lock */
     size_t slot_bytes;       /* scratch bytes per thread slot */
     size_t total_bytes;      /* bytes of the block in use from the cache on */
-    void *lock;
-    unsigned char *records;
-    uint32_t *next;          /* per record: next record in its node's list */
-    irc__node *nodes;
-    uint64_t *used;          /* CLOCK bits, NULL without eviction */
-    unsigned char *scratch;
+    /* Offsets from the cache's own address. */
+    size_t o_lock, o_scratch, o_records, o_next, o_nodes, o_used; /* o_used 0: no CLOCK */
     /* Mutable under the write lock. */
     uint32_t count;          /* records in slots [0, count) */
     uint32_t nodes_used;
     uint32_t hand;           /* CLOCK hand */
     uint32_t root_set;
-    double root_c[3];        /* the root cube, on the power-of-two grid */
+    double root_c[3];        /* the root cube: centre exact in double */
     double root_h;           /* half its edge, a power of two */
     /* Atomic. */
     uint64_t slots_busy;     /* bit t: scratch slot t in use */
     uint64_t ctr[IRC__C_COUNT];
 };
 
-/* config.c */
+static inline unsigned char *irc__part(const irc_cache *c, size_t off)
+{
+    return (unsigned char *)(uintptr_t)c + off;
+}
+
+static inline void *irc__lock(const irc_cache *c) { return irc__part(c, c->o_lock); }
+static inline uint32_t *irc__next(const irc_cache *c)
+{
+    return (uint32_t *)(void *)irc__part(c, c->o_next);
+}
+static inline irc__node *irc__nodes(const irc_cache *c)
+{
+    return (irc__node *)(void *)irc__part(c, c->o_nodes);
+}
+static inline uint64_t *irc__used(const irc_cache *c)
+{
+    return c->o_used ? (uint64_t *)(void *)irc__part(c, c->o_used) : NULL;
+}
+static inline unsigned char *irc__slot(const irc_cache *c, uint32_t t)
+{
+    return irc__part(c, c->o_scratch + (size_t)t * c->slot_bytes);
+}
+static inline irc__rec *irc__rec_at(const irc_cache *c, uint32_t id)
+{
+    return (irc__rec *)(void *)irc__part(c, c->o_records + (size_t)id * c->rec_size);
+}
+
+/* check.c */
 int irc__check_vec(const float v[3]);
 int irc__check_normal(const float n[3], double unit[3]);
+
+/* layout.c: the block's parts, and the config rules (config.c) */
+int irc__config_resolve(const irc_config *in, irc_config *out);
 
 /* sampler.c */
 typedef struct irc__rng { uint64_t key; } irc__rng;
@@ -96,14 +199,11 @@ void irc__direction(const irc__rng *rng, uint32_t j, uint32_t k, uint32_t m,
                     const double t2[3], float dir[3]);
 void irc__rng_pair(const irc__rng *rng, uint32_t i, double *u1, double *u2);
 void irc__frame(const double n[3], double t1[3], double t2[3]);
-int irc__sample_hemisphere(irc_cache *c, unsigned char *slot, const float p[3],
-                           const double n[3], const double t1[3],
+int irc__cast(irc__call *k, irc_ray *rays, irc_hit *hits, uint32_t count);
+int irc__sample_hemisphere(irc__call *k, const double n[3], const double t1[3],
                            const double t2[3], uint32_t first, uint32_t *used);
 
 /* sh.c */
-#define IRC__SH_MAX_BANDS 5
-#define IRC__FREE 0xffffffffu /* irc__rec.n of a free-point SH record */
-#define IRC__NC (IRC__SH_MAX_BANDS * IRC__SH_MAX_BANDS)
 void irc__sh_eval(int bands, const double s[3], double *y, double (*grad)[3]);
 
 /* shgrad.c: an SH record's samples summed, in double. */
@@ -114,40 +214,40 @@ typedef struct irc__shsum {
     double inv_d;
     uint32_t used, total;
 } irc__shsum;
-int irc__sh_sample(irc_cache *c, unsigned char *slot, const float p[3], const double *un,
-                   irc__shsum *a);
+int irc__sh_sample(irc__call *k, irc__shsum *a);
 
 /* visibility.c */
-int irc__grad_visibility(irc_cache *c, unsigned char *slot, const float p[3],
-                         const double n[3], int netvis, double g[3][3], uint32_t *rays);
+int irc__grad_visibility(irc__call *k, int netvis, double g[3][3]);
 
-/* record.c */
-int irc__slot_claim(irc_cache *c, uint32_t *t);
-int irc__sample_at(irc_cache *c, const float p[3], const float n[3], const void *out,
-                   double un[3], double t1[3], double t2[3], uint32_t *t);
-void irc__slot_release(irc_cache *c, uint32_t t);
-void irc__record_build(const irc_cache *c, const irc__sample *s,
-                       const double n[3], const double t1[3],
-                       const double t2[3], double gvis[3][3], irc_record *out);
+/* irradiance.c: the irradiance record's estimator */
+int irc__irr_compute(irc__call *k, void *rec);
+int irc__hemisphere(irc__call *k, double t1[3], double t2[3]);
+
+/* octa.c: the normal codec */
 uint32_t irc__oct_encode(const double n[3]);
 void irc__oct_decode(uint32_t code, float n[3]);
-void irc__record_pack(const irc_cache *c, const irc_record *in, void *dst);
-void irc__record_unpack(const irc_cache *c, const void *src, irc_record *out);
-int irc__record_check(const irc_record *r);
+void irc__oct_frame(uint32_t code, double t1[3], double t2[3]);
 
 /* weight.c */
 int irc__weigh(const irc_cache *c, const irc__rec *r, const float p[3],
                const float n[3], double *w, float ni[3]);
 void irc__extrapolate(const irc_cache *c, const irc__rec *r, const float ni[3],
                       const float p[3], const float n[3], double out[3]);
+double irc__grad_scale(const irc__grad *g, int ch);
 
-/* cache.c */
-int irc__check_cache(const irc_cache *c);
-int irc__store(irc_cache *c, const void *packed);
-void irc__mark_used(irc_cache *c, uint32_t id);
-int irc__count_lookup(irc_cache *c, int st);
-int irc__count_miss(irc_cache *c, int ins);
-void irc__count_compute(irc_cache *c, uint64_t rays);
+/* store.c: the handle, scratch slots, insert and eviction, the lookup
+ * driver, counters; every public call goes through it. */
+int irc__enter(const irc_cache *c, const irc__kind *want);
+int irc__query_make(const irc_cache *c, const float p[3], const float n[3], irc__query *q);
+int irc__compute(irc_cache *c, const irc__kind *want, const float p[3], const float n[3],
+                 void *out, void *host, int (*fn)(irc__call *k, void *out), int record);
+int irc__insert(irc_cache *c, const irc__kind *want, const void *rec);
+int irc__lookup(irc_cache *c, const irc__kind *want, const float p[3], const float n[3],
+                void *out, float *weight);
+int irc__lookup_or_compute(irc_cache *c, const irc__kind *want, const float p[3],
+                           const float n[3], void *out, float *weight, void *host);
+int irc__record_get(irc_cache *c, const irc__kind *want, uint32_t id, void *out);
+void irc__count(irc_cache *c, int which, uint64_t v);
 
 /* index.c */
 /* Called with the first record of each visited node's list. */
@@ -157,11 +257,6 @@ void irc__index_insert(irc_cache *c, uint32_t id);
 void irc__index_remove(irc_cache *c, uint32_t id);
 void irc__index_query(const irc_cache *c, const float p[3], irc__visit_fn fn,
                       void *ud);
-
-static inline irc__rec *irc__rec_at(const irc_cache *c, uint32_t id)
-{
-    return (irc__rec *)(void *)(c->records + (size_t)id * c->rec_size);
-}
 
 /* A visibility discontinuity on an edge between two neighbouring strata:
  * the bracket [wa, wb] around the silhouette, a on the blocker's side, b on

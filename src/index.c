@@ -10,13 +10,22 @@
  * p lies in a cube no farther from p than the record's reach.
  *
  * A leaf with more than IRC__SPLIT records splits when the node pool has a
- * block of 8 free; the root doubles toward records that land outside it.
+ * block of 8 free.  The root is not tied to a grid through the origin: a
+ * scene centred on the origin would otherwise need a cube that holds 0 in
+ * its interior, which no cube of such a grid does, and its records would
+ * pile up in the root's list.  While the root is a leaf it is resized
+ * freely; when it first splits it is fitted to its records' positions
+ * (not their reaches, which may be 1e30); afterwards it doubles toward
+ * records that land outside it, the old root becoming one of its children.
+ * Centres stay exact because the root's half edge is kept at least 1/32 of
+ * its centre's largest coordinate and the tree is at most IRC__DEPTH deep.
  * When the pool is spent, lists grow instead: slower, never wrong.
  */
 #include "cache.h"
 
 #define IRC__SPLIT 8u
-#define IRC__DEPTH 40    /* keeps centres exact: see irc__index_insert */
+#define IRC__DEPTH 40    /* with the root's h >= |c|/32: centres within 2^45 of
+                            their size, so exact in double */
 #define IRC__ROOT_MAX 1e39
 
 typedef struct irc__cube {
@@ -34,7 +43,7 @@ static void irc__node_empty(irc__node *n)
 
 void irc__index_reset(irc_cache *c)
 {
-    irc__node_empty(&c->nodes[0]);
+    irc__node_empty(&irc__nodes(c)[0]);
     c->nodes_used = 1;
     c->root_set = 0;
 }
@@ -46,8 +55,8 @@ static double irc__reach(const irc_cache *c, uint32_t id)
 
 static int irc__inside(const irc__cube *q, const float p[3])
 {
-    return fabs(p[0] - q->c[0]) <= q->h && fabs(p[1] - q->c[1]) <= q->h &&
-           fabs(p[2] - q->c[2]) <= q->h;
+    return IRC_FABS(p[0] - q->c[0]) <= q->h && IRC_FABS(p[1] - q->c[1]) <= q->h &&
+           IRC_FABS(p[2] - q->c[2]) <= q->h;
 }
 
 static int irc__octant(const irc__cube *q, const float p[3])
@@ -69,7 +78,7 @@ static uint32_t irc__block_alloc(irc_cache *c)
     if (c->node_cap - b < 8u)
         return 0;
     for (i = 0; i < 8; i++)
-        irc__node_empty(&c->nodes[b + i]);
+        irc__node_empty(&irc__nodes(c)[b + i]);
     c->nodes_used += 8;
     return b;
 }
@@ -84,7 +93,7 @@ static void irc__root_cube(const irc_cache *c, irc__cube *q)
 
 static void irc__push(irc_cache *c, irc__node *n, uint32_t id, double reach)
 {
-    c->next[id] = n->head;
+    irc__next(c)[id] = n->head;
     n->head = id;
     n->count++;
     if (reach > n->reach)
@@ -96,7 +105,7 @@ static void irc__push(irc_cache *c, irc__node *n, uint32_t id, double reach)
 static irc__node *irc__home(irc_cache *c, const float p[3], double reach,
                             int grow, irc__cube *q, int *depth)
 {
-    irc__node *n = &c->nodes[0];
+    irc__node *n = &irc__nodes(c)[0];
     irc__root_cube(c, q);
     *depth = 0;
     for (;;) {
@@ -110,7 +119,7 @@ static irc__node *irc__home(irc_cache *c, const float p[3], double reach,
             irc__cube cq;
             irc__child_cube(q, oct, &cq);
             *q = cq;
-            n = &c->nodes[n->child + (uint32_t)oct];
+            n = &irc__nodes(c)[n->child + (uint32_t)oct];
             ++*depth;
         }
     }
@@ -126,11 +135,11 @@ static void irc__split(irc_cache *c, irc__node *n, const irc__cube *q)
     for (id = n->head; id != IRC__NIL; id = nid) {
         double reach = irc__reach(c, id);
         const float *p = irc__rec_at(c, id)->p;
-        nid = c->next[id];
+        nid = irc__next(c)[id];
         if (0.5 * q->h >= reach && irc__inside(q, p)) {
-            irc__push(c, &c->nodes[b + (uint32_t)irc__octant(q, p)], id, reach);
+            irc__push(c, &irc__nodes(c)[b + (uint32_t)irc__octant(q, p)], id, reach);
         } else {
-            c->next[id] = keep;
+            irc__next(c)[id] = keep;
             keep = id;
             n->count++;
         }
@@ -142,42 +151,93 @@ static void irc__split(irc_cache *c, irc__node *n, const irc__cube *q)
  * holds x: every centre derived from it by halving is exact in double. */
 static double irc__cell_centre(double x, double h)
 {
-    return (floor(x / (2.0 * h)) + 0.5) * (2.0 * h);
+    return (IRC_FLOOR(x / (2.0 * h)) + 0.5) * (2.0 * h);
 }
 
-/* Doubles the root: its parent on the power-of-two grid becomes the root, so
- * the old root is exactly one of the new root's children.  The records the
- * old root held that no longer fit a child (too large, or outside its cube)
- * move up. */
-static int irc__grow(irc_cache *c)
+static double irc__max3(const double v[3])
 {
-    irc__cube old, nq;
+    double m = IRC_FABS(v[0]);
+    if (IRC_FABS(v[1]) > m) m = IRC_FABS(v[1]);
+    if (IRC_FABS(v[2]) > m) m = IRC_FABS(v[2]);
+    return m;
+}
+
+/* A root cube around the box [lo, hi]: half edge a power of two no less
+ * than half the box's extent and 1/32 of its centre's distance from the
+ * origin (exactness), doubled about its centre until the box fits. */
+static void irc__root_fit(irc_cache *c, const double lo[3], const double hi[3])
+{
+    double mid[3], ext[3], m;
+    int i, e;
+    for (i = 0; i < 3; i++) {
+        mid[i] = 0.5 * (lo[i] + hi[i]);
+        ext[i] = 0.5 * (hi[i] - lo[i]);
+    }
+    m = irc__max3(mid) * (1.0 / 32.0);
+    if (irc__max3(ext) > m) m = irc__max3(ext);
+    if (m < 1e-30) m = 1e-30;
+    IRC_FREXP(m, &e);
+    c->root_h = IRC_LDEXP(1.0, e);
+    for (i = 0; i < 3; i++)
+        c->root_c[i] = irc__cell_centre(mid[i], c->root_h);
+    for (;;) {
+        for (i = 0; i < 3; i++)
+            if (lo[i] < c->root_c[i] - c->root_h || hi[i] > c->root_c[i] + c->root_h)
+                break;
+        if (i == 3)
+            return;
+        c->root_h *= 2.0;
+    }
+}
+
+/* Refits a leaf root to the positions it holds and p. */
+static void irc__root_refit(irc_cache *c, const float p[3])
+{
+    double lo[3], hi[3];
+    uint32_t id;
+    int i;
+    for (i = 0; i < 3; i++)
+        lo[i] = hi[i] = p[i];
+    for (id = irc__nodes(c)[0].head; id != IRC__NIL; id = irc__next(c)[id])
+        for (i = 0; i < 3; i++) {
+            double x = irc__rec_at(c, id)->p[i];
+            if (x < lo[i]) lo[i] = x;
+            if (x > hi[i]) hi[i] = x;
+        }
+    irc__root_fit(c, lo, hi);
+}
+
+/* Doubles a root that has children toward p: the old root becomes the
+ * child on the side away from p.  The records the old root held that no
+ * longer fit a child (too large, or outside its cube) move up. */
+static int irc__grow(irc_cache *c, const float p[3])
+{
+    irc__cube old;
     uint32_t b, id, nid, keep = IRC__NIL;
-    irc__node *was;
+    irc__node *was, *nodes;
     int i, oct = 0;
     if (2.0 * c->root_h > IRC__ROOT_MAX || !(b = irc__block_alloc(c)))
         return 0;
+    nodes = irc__nodes(c);
     irc__root_cube(c, &old);
-    nq.h = 2.0 * old.h;
     for (i = 0; i < 3; i++) {
-        nq.c[i] = irc__cell_centre(old.c[i], nq.h);
-        oct |= (old.c[i] >= nq.c[i]) << i;
+        int below = p[i] < old.c[i];
+        oct |= below << i;
+        c->root_c[i] = old.c[i] + (below ? -old.h : old.h);
     }
-    was = &c->nodes[b + (uint32_t)oct];
-    *was = c->nodes[0];
-    irc__node_empty(&c->nodes[0]);
-    c->nodes[0].child = b;
-    c->nodes[0].reach = was->reach;
-    for (i = 0; i < 3; i++)
-        c->root_c[i] = nq.c[i];
-    c->root_h = nq.h;
+    c->root_h = 2.0 * old.h;
+    was = &nodes[b + (uint32_t)oct];
+    *was = nodes[0];
+    irc__node_empty(&nodes[0]);
+    nodes[0].child = b;
+    nodes[0].reach = was->reach;
     was->count = 0;
     for (id = was->head; id != IRC__NIL; id = nid) {
-        nid = c->next[id];
+        nid = irc__next(c)[id];
         if (irc__reach(c, id) > old.h || !irc__inside(&old, irc__rec_at(c, id)->p)) {
-            irc__push(c, &c->nodes[0], id, irc__reach(c, id));
+            irc__push(c, &nodes[0], id, irc__reach(c, id));
         } else {
-            c->next[id] = keep;
+            irc__next(c)[id] = keep;
             keep = id;
             was->count++;
         }
@@ -186,32 +246,39 @@ static int irc__grow(irc_cache *c)
     return 1;
 }
 
+/* Makes the root's cube hold p: a leaf root is refitted (no node is
+ * spent), a root with children grows toward p. */
+static void irc__root_cover(irc_cache *c, const float p[3])
+{
+    irc__cube q;
+    if (!c->root_set) {
+        double at[3];
+        at[0] = p[0]; at[1] = p[1]; at[2] = p[2];
+        irc__root_fit(c, at, at);
+        c->root_set = 1;
+    }
+    irc__root_cube(c, &q);
+    if (irc__inside(&q, p))
+        return;
+    if (!irc__nodes(c)[0].child) {
+        irc__root_refit(c, p);
+        return;
+    }
+    do
+        irc__root_cube(c, &q);
+    while (!irc__inside(&q, p) && irc__grow(c, p));
+}
+
 void irc__index_insert(irc_cache *c, uint32_t id)
 {
     const float *p = irc__rec_at(c, id)->p;
     double reach = irc__reach(c, id);
     irc__cube q;
     irc__node *n;
-    int depth, i;
-    if (!c->root_set) {
-        /* Start the root at the first record's reach or at 1/64 of its
-         * distance from the origin, whichever is larger; the latter keeps
-         * every cube centre within 2^52 of its size, so exact. */
-        double m = fabs(p[0]);
-        if (fabs(p[1]) > m) m = fabs(p[1]);
-        if (fabs(p[2]) > m) m = fabs(p[2]);
-        m *= 1.0 / 64.0;
-        if (reach > m) m = reach;
-        if (m < 1e-30) m = 1e-30;
-        frexp(m, &i);
-        c->root_h = ldexp(1.0, i);
-        for (i = 0; i < 3; i++)
-            c->root_c[i] = irc__cell_centre(p[i], c->root_h);
-        c->root_set = 1;
-    }
-    irc__root_cube(c, &q);
-    while (!irc__inside(&q, p) && irc__grow(c))
-        irc__root_cube(c, &q);
+    int depth;
+    irc__root_cover(c, p);
+    if (!irc__nodes(c)[0].child && irc__nodes(c)[0].count >= IRC__SPLIT)
+        irc__root_refit(c, p);
     n = irc__home(c, p, reach, 1, &q, &depth);
     irc__push(c, n, id, reach);
     if (!n->child && n->count > IRC__SPLIT && depth < IRC__DEPTH && irc__inside(&q, p))
@@ -225,10 +292,10 @@ void irc__index_remove(irc_cache *c, uint32_t id)
     irc__node *n = irc__home(c, irc__rec_at(c, id)->p, irc__reach(c, id), 0, &q, &depth);
     uint32_t *link = &n->head;
     while (*link != IRC__NIL && *link != id)
-        link = &c->next[*link];
+        link = &irc__next(c)[*link];
     IRC_ASSERT(*link == id);
     if (*link == id) {
-        *link = c->next[id];
+        *link = irc__next(c)[id];
         n->count--;
     }
     /* Reaches are left as they are: an upper bound stays exact. */
@@ -248,11 +315,11 @@ static void irc__query_node(const irc_cache *c, const irc__node *n,
      * bit k of axis i sits at centre c_i - hc (k = 0) or c_i + hc (k = 1). */
     for (i = 0; i < 3; i++)
         for (k = 0; k < 2; k++) {
-            double o = fabs(p[i] - (q->c[i] + (k ? hc : -hc))) - hc;
+            double o = IRC_FABS(p[i] - (q->c[i] + (k ? hc : -hc))) - hc;
             part[i][k] = o > 0.0 ? o * o : 0.0;
         }
     for (oct = 0; oct < 8; oct++) {
-        const irc__node *ch = &c->nodes[n->child + (uint32_t)oct];
+        const irc__node *ch = &irc__nodes(c)[n->child + (uint32_t)oct];
         double r, d2;
         if (ch->reach < 0.0f)
             continue;
@@ -274,5 +341,5 @@ void irc__index_query(const irc_cache *c, const float p[3], irc__visit_fn fn,
     if (!c->root_set)
         return;
     irc__root_cube(c, &q);
-    irc__query_node(c, &c->nodes[0], &q, p, fn, ud);
+    irc__query_node(c, &irc__nodes(c)[0], &q, p, fn, ud);
 }

@@ -99,7 +99,7 @@ int irc__accept_hit(const irc_hit *h, irc__sample *s)
 
 /* In float: the ray is float, and sincosf costs half of sincos.  Rows are
  * Ward's cosine-weighted sin^2(theta) = (j + u)/M, or for SH records equal
- * solid angle, cos(theta) = 1 - (j + u)/M. */
+ * solid angle, IRC_COS(theta) = 1 - (j + u)/M. */
 void irc__direction(const irc__rng *rng, uint32_t j, uint32_t k,
                            uint32_t m, uint32_t nphi, int uniform, const double n[3],
                            const double t1[3], const double t2[3], float dir[3])
@@ -143,48 +143,67 @@ static void irc__keep_geometry(const irc_cache *c, const irc__sample *s, uint32_
     }
 }
 
-/* Fills the slot's samples first + j * N + k for every stratum, casting
- * rays in batches of cfg.max_batch.  *used gets the number of usable
- * samples.  Returns IRC_OK or a negative code (the callback's own, passed
- * through). */
-int irc__sample_hemisphere(irc_cache *c, unsigned char *slot, const float p[3],
-                           const double n[3], const double t1[3],
+/* One call of the host's callback: every ray cast goes through here, so
+ * the host always sees the same arguments (its per-call pointer, the
+ * record's position and normal) and the same checks apply.  Returns
+ * IRC_OK or a negative code (the callback's own, passed through). */
+int irc__cast(irc__call *k, irc_ray *rays, irc_hit *hits, uint32_t count)
+{
+    const irc_cache *c = k->c;
+    irc_trace_args args;
+    uint32_t i;
+    int st;
+    args.context = c->cfg.context;
+    args.host = k->host;
+    for (i = 0; i < 3; i++) {
+        args.p[i] = k->q.p[i];
+        args.n[i] = k->q.n[i];
+    }
+    args.rays = rays;
+    args.hits = hits;
+    args.count = count;
+    for (i = 0; i < count; i++)
+        hits[i].status = -1;
+    st = c->cfg.trace(&args);
+    if (st > 0)
+        return IRC_ERR_CALLBACK;
+    k->rays += count;
+    return st;
+}
+
+/* Fills the slot's samples first + j * N + k for every stratum of the
+ * hemisphere around n, casting rays in batches of cfg.max_batch.  *used
+ * gets the number of usable samples.  Returns IRC_OK or a negative code
+ * (the callback's own, passed through). */
+int irc__sample_hemisphere(irc__call *k, const double n[3], const double t1[3],
                            const double t2[3], uint32_t first, uint32_t *used)
 {
-    irc__sample *base = (irc__sample *)(void *)slot, *out = base + first;
+    irc_cache *c = k->c;
+    irc__sample *base = (irc__sample *)(void *)k->slot, *out = base + first;
     const int uniform = (c->cfg.features & IRC_FEATURE_SH) != 0;
     const uint32_t m = c->cfg.strata_theta, nphi = c->cfg.strata_phi;
     const uint32_t total = m * nphi, batch = c->cfg.max_batch;
-    irc_ray *rays = irc__slot_rays(c, slot);
+    irc_ray *rays = irc__slot_rays(c, k->slot);
     irc_hit *hits = (irc_hit *)(void *)(rays + batch);
     irc__rng rng;
-    irc_trace_args args;
     float nf[3];
     uint32_t s0, i, good = 0;
     int st;
 
     nf[0] = (float)n[0]; nf[1] = (float)n[1]; nf[2] = (float)n[2];
-    rng = irc__rng_for(p, nf, c->cfg.seed);
-    args.context = c->cfg.context;
-    args.rays = rays;
-    args.hits = hits;
+    rng = irc__rng_for(k->q.p, nf, c->cfg.seed);
     for (s0 = 0; s0 < total; s0 += batch) {
         uint32_t cnt = total - s0 < batch ? total - s0 : batch;
         for (i = 0; i < cnt; i++) {
             uint32_t s = s0 + i;
-            rays[i].org[0] = p[0];
-            rays[i].org[1] = p[1];
-            rays[i].org[2] = p[2];
+            rays[i].org[0] = k->q.p[0];
+            rays[i].org[1] = k->q.p[1];
+            rays[i].org[2] = k->q.p[2];
             irc__direction(&rng, s / nphi, s % nphi, m, nphi, uniform, n, t1, t2,
                            rays[i].dir);
-            hits[i].status = -1;
         }
-        args.count = cnt;
-        st = c->cfg.trace(&args);
-        if (st < 0)
+        if ((st = irc__cast(k, rays, hits, cnt)) < 0)
             return st;
-        if (st > 0)
-            return IRC_ERR_CALLBACK;
         for (i = 0; i < cnt; i++) {
             st = irc__accept_hit(&hits[i], &out[s0 + i]);
             if (st < 0)

@@ -8,7 +8,7 @@
 
 /* The stratum grid the samples came from: one hemisphere (a surface
  * record) or two glued at the equator with the same azimuths (a free
- * point), rows of equal solid angle, cos(theta_j) = 1 - j/M. */
+ * point), rows of equal solid angle, IRC_COS(theta_j) = 1 - j/M. */
 typedef struct irc__grid {
     const irc__sample *s;
     const float *dir, *nrm;
@@ -25,7 +25,7 @@ static int irc__hit(const irc__sample *x)
 static double irc__facing(const irc__grid *g, uint32_t i)
 {
     const float *w = g->dir + 3 * i, *n = g->nrm + 3 * i;
-    return fabs((double)w[0] * n[0] + (double)w[1] * n[1] + (double)w[2] * n[2]);
+    return IRC_FABS((double)w[0] * n[0] + (double)w[1] * n[1] + (double)w[2] * n[2]);
 }
 
 /* Whether neighbouring samples a and b lie on one continuous surface:
@@ -48,8 +48,8 @@ static int irc__continuous(const irc__grid *g, uint32_t a, uint32_t b)
     for (dw = 0.0, k = 0; k < 3; k++)
         dw += ((double)wa[k] - wb[k]) * ((double)wa[k] - wb[k]);
     big = da > db ? da : db;
-    slant = fabs(sa) > fabs(sb) ? fabs(sa) : fabs(sb);
-    return fabs(da - db) * slant <= 2.0 * IRC_SQRT(dw) * big;
+    slant = IRC_FABS(sa) > IRC_FABS(sb) ? IRC_FABS(sa) : IRC_FABS(sb);
+    return IRC_FABS(da - db) * slant <= 2.0 * IRC_SQRT(dw) * big;
 }
 
 /* The depth where the surface of sample i ends, past i on the side away
@@ -243,15 +243,16 @@ static void irc__sh_accumulate(const irc_cache *c, const irc__grid *g, const dou
  * the world z axis, the lower one's frame the upper's with the axis
  * flipped, so columns meet at the equator) into a claimed slot and sums
  * them into *a. */
-int irc__sh_sample(irc_cache *c, unsigned char *slot, const float p[3],
-                          const double *un, irc__shsum *a)
+int irc__sh_sample(irc__call *k, irc__shsum *a)
 {
     static const double up[3] = {0, 0, 1}, down[3] = {0, 0, -1};
+    irc_cache *c = k->c;
+    const double *un = k->q.free ? NULL : k->q.un;
     double t1[3], t2[3];
     irc__grid g;
     uint32_t used, h;
     int st;
-    g.s = (const irc__sample *)(const void *)slot;
+    g.s = (const irc__sample *)(const void *)k->slot;
     g.dir = irc__slot_dirs(c, g.s);
     g.nrm = irc__slot_normals(c, g.s);
     g.axis[0] = un ? un : up;
@@ -263,7 +264,7 @@ int irc__sh_sample(irc_cache *c, unsigned char *slot, const float p[3],
     g.halves = un ? 1u : 2u;
     irc__frame(g.axis[0], t1, t2);
     for (h = 0; h < g.halves; h++) {
-        st = irc__sample_hemisphere(c, slot, p, g.axis[h], t1, t2, h * c->strata, &used);
+        st = irc__sample_hemisphere(k, g.axis[h], t1, t2, h * c->strata, &used);
         if (st < 0)
             return st;
     }

@@ -1,10 +1,17 @@
 /*
  * util.h -- the one portability header of the library.  Every libc and libm
- * call, and assert, passes through a macro here so that a port can replace
- * it.  Define IRC_NO_ASSERT to compile the internal checks out.
+ * call, and assert, passes through a macro here, and each macro can be
+ * replaced on its own: define it (with -D, or in a header of yours named by
+ * IRC_USER_CONFIG, e.g. -DIRC_USER_CONFIG='"my_irc.h"', included first)
+ * and the default below steps aside for that one macro only.
+ * IRC_NO_ASSERT compiles the internal checks out.
  */
 #ifndef IRC_UTIL_H
 #define IRC_UTIL_H
+
+#ifdef IRC_USER_CONFIG
+#include IRC_USER_CONFIG
+#endif
 
 #include <float.h>
 #include <math.h>
@@ -15,25 +22,65 @@
 #ifndef IRC_MEMCPY
 #define IRC_MEMCPY(d, s, n) memcpy((d), (s), (n))
 #endif
+#ifndef IRC_MEMMOVE
+#define IRC_MEMMOVE(d, s, n) memmove((d), (s), (n))
+#endif
 #ifndef IRC_MEMSET
 #define IRC_MEMSET(d, v, n) memset((d), (v), (n))
 #endif
 #ifndef IRC_SQRT
 #define IRC_SQRT(x) sqrt(x)
+#endif
+#ifndef IRC_SQRTF
 #define IRC_SQRTF(x) sqrtf(x)
+#endif
+#ifndef IRC_SIN
 #define IRC_SIN(x) sin(x)
+#endif
+#ifndef IRC_COS
 #define IRC_COS(x) cos(x)
+#endif
+#ifndef IRC_TAN
+#define IRC_TAN(x) tan(x)
+#endif
+#ifndef IRC_ASIN
 #define IRC_ASIN(x) asin(x)
+#endif
+#ifndef IRC_ACOS
 #define IRC_ACOS(x) acos(x)
-#define IRC_COSF(x) cosf(x)
+#endif
+#ifndef IRC_SINF
 #define IRC_SINF(x) sinf(x)
 #endif
+#ifndef IRC_COSF
+#define IRC_COSF(x) cosf(x)
+#endif
+#ifndef IRC_FABS
+#define IRC_FABS(x) fabs(x)
+#endif
+#ifndef IRC_FABSF
+#define IRC_FABSF(x) fabsf(x)
+#endif
+#ifndef IRC_FLOOR
+#define IRC_FLOOR(x) floor(x)
+#endif
+#ifndef IRC_FREXP
+#define IRC_FREXP(x, e) frexp((x), (e))
+#endif
+#ifndef IRC_LDEXP
+#define IRC_LDEXP(x, e) ldexp((x), (e))
+#endif
+#ifndef IRC_POW
+#define IRC_POW(x, y) pow((x), (y))
+#endif
 
+#ifndef IRC_ASSERT
 #ifdef IRC_NO_ASSERT
 #define IRC_ASSERT(x) ((void)0)
 #else
 #include <assert.h>
 #define IRC_ASSERT(x) assert(x)
+#endif
 #endif
 
 #define IRC_PI 3.14159265358979323846

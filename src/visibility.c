@@ -7,12 +7,12 @@
  * region has unit outward normal nu (nu perpendicular to w, pointing to the
  * visible side), moves along nu at the rate -(m.nu)/D.  For a smooth blocker
  * nu is the blocker's normal at the tangent point (Eq. 44-46: its
- * alpha_u = -cos(alpha)/D and alpha_v = -(v.n)/(D c.n) are the two
+ * alpha_u = -IRC_COS(alpha)/D and alpha_v = -(v.n)/(D c.n) are the two
  * components of this motion in the (theta, phi) chart); for a polygon it is
  * the normal of the edge's image (Eq. 72).  Integrating over the silhouette
  * by arc length s,
  *
- *     grad E . m = integral (L_vis - L_blk) cos(theta) (m.nu) / D ds,
+ *     grad E . m = integral (L_vis - L_blk) IRC_COS(theta) (m.nu) / D ds,
  *
  * the sign of Eq. 35/37 (visible to blocked is positive) being the
  * orientation of nu.  In this form the weak singularity of the paper's
@@ -148,39 +148,31 @@ static void irc__narrow(irc__cross *x, const irc_ray *r, const irc_hit *h, int n
 
 /* IRC__BISECT rounds over every crossing, batched through the callback.
  * Hits are checked as the sampler checks them. */
-static int irc__bisect(irc_cache *c, unsigned char *slot, irc__sample *s, const float p[3],
-                       uint32_t count, int netvis, uint32_t *rays)
+static int irc__bisect(irc__call *k, irc__sample *s, uint32_t count, int netvis)
 {
+    const irc_cache *c = k->c;
     irc__cross *x = irc__slot_cross(c, s);
-    irc_ray *rb = irc__slot_rays(c, slot);
+    irc_ray *rb = irc__slot_rays(c, k->slot);
     irc_hit *hb = (irc_hit *)(void *)(rb + c->cfg.max_batch);
-    irc_trace_args args;
     uint32_t round, i0, i;
-    args.context = c->cfg.context;
-    args.rays = rb;
-    args.hits = hb;
     for (round = 0; round < IRC__BISECT; round++)
         for (i0 = 0; i0 < count; i0 += c->cfg.max_batch) {
             uint32_t cnt = count - i0 < c->cfg.max_batch ? count - i0 : c->cfg.max_batch;
             int st;
             for (i = 0; i < cnt; i++) {
-                rb[i].org[0] = p[0];
-                rb[i].org[1] = p[1];
-                rb[i].org[2] = p[2];
+                rb[i].org[0] = k->q.p[0];
+                rb[i].org[1] = k->q.p[1];
+                rb[i].org[2] = k->q.p[2];
                 irc__mid(x[i0 + i].wa, x[i0 + i].wb, rb[i].dir);
-                hb[i].status = -1;
             }
-            args.count = cnt;
-            st = c->cfg.trace(&args);
-            if (st != 0)
-                return st < 0 ? st : IRC_ERR_CALLBACK;
+            if ((st = irc__cast(k, rb, hb, cnt)) < 0)
+                return st;
             for (i = 0; i < cnt; i++) {
                 irc__sample chk;
                 if ((st = irc__accept_hit(&hb[i], &chk)) < 0)
                     return st;
                 irc__narrow(&x[i0 + i], &rb[i], &hb[i], netvis);
             }
-            *rays += cnt;
         }
     /* Both sides on one surface after all: a steep but continuous one. */
     for (i = 0; i < count; i++)
@@ -190,7 +182,7 @@ static int irc__bisect(irc_cache *c, unsigned char *slot, irc__sample *s, const 
 }
 
 /* What a segment's integrand needs at one end: the crossing point X, the
- * weight q = (L_vis - L_blk) cos(theta)/D per channel, and for a smooth
+ * weight q = (L_vis - L_blk) IRC_COS(theta)/D per channel, and for a smooth
  * blocker the silhouette's normal nu (its own normal there, n.X ~ 0). */
 typedef struct irc__end {
     double x[3], q[3], nu[3], e[3];
@@ -208,11 +200,11 @@ static void irc__end_of(const irc__cross *c, const double n[3], int netvis, irc_
         o->e[k] = (double)c->wb[k] - c->wa[k];
         nx += (double)c->na[k] * xf[k];
     }
-    /* Irradiance weighs by cos(theta); net visibility (Eq. 47) does not. */
+    /* Irradiance weighs by IRC_COS(theta); net visibility (Eq. 47) does not. */
     cs = netvis ? 1.0 : irc__dot3d(o->x, n);
     for (k = 0; k < 3; k++)
         o->q[k] = ((double)c->lb[k] - c->la[k]) * (cs > 0.0 ? cs : 0.0) / c->da;
-    o->smooth = fabs(nx) < IRC__SMOOTH;
+    o->smooth = IRC_FABS(nx) < IRC__SMOOTH;
     for (k = 0; k < 3; k++) {
         o->nu[k] = c->na[k] - nx * o->x[k];
         len += o->nu[k] * o->nu[k];
@@ -326,27 +318,18 @@ static void irc__cap(irc_cache *c, irc__sample *s, const double n[3], int netvis
 }
 
 /* Casts the zenith ray the cap's triangles share. */
-static int irc__zenith(irc_cache *c, unsigned char *slot, const float p[3], const double n[3],
-                       irc__sample *out, float dir[3], float nrm[3], uint32_t *rays)
+static int irc__zenith(irc__call *call, irc__sample *out, float dir[3], float nrm[3])
 {
-    irc_ray *r = irc__slot_rays(c, slot);
-    irc_hit *h = (irc_hit *)(void *)(r + c->cfg.max_batch);
-    irc_trace_args args;
+    irc_ray *r = irc__slot_rays(call->c, call->slot);
+    irc_hit *h = (irc_hit *)(void *)(r + call->c->cfg.max_batch);
     int k, st;
     for (k = 0; k < 3; k++) {
-        r->org[k] = p[k];
-        r->dir[k] = dir[k] = (float)n[k];
+        r->org[k] = call->q.p[k];
+        r->dir[k] = dir[k] = (float)call->q.un[k];
         nrm[k] = 0.0f;
     }
-    h->status = -1;
-    args.context = c->cfg.context;
-    args.rays = r;
-    args.hits = h;
-    args.count = 1;
-    st = c->cfg.trace(&args);
-    if (st != 0)
-        return st < 0 ? st : IRC_ERR_CALLBACK;
-    ++*rays;
+    if ((st = irc__cast(call, r, h, 1)) < 0)
+        return st;
     if ((st = irc__accept_hit(h, out)) < 0)
         return st;
     if (h->status == IRC_RAY_HIT) {
@@ -362,10 +345,11 @@ static int irc__zenith(irc_cache *c, unsigned char *slot, const float p[3], cons
  * the bisection rays (counted in *rays).  netvis: the gradient of the
  * visible solid angle (Eq. 48) instead, in g[0].  Returns IRC_OK or the
  * callback's error. */
-int irc__grad_visibility(irc_cache *c, unsigned char *slot, const float p[3],
-                         const double n[3], int netvis, double g[3][3], uint32_t *rays)
+int irc__grad_visibility(irc__call *k, int netvis, double g[3][3])
 {
-    irc__sample *s = (irc__sample *)(void *)slot, top;
+    irc_cache *c = k->c;
+    const double *n = k->q.un;
+    irc__sample *s = (irc__sample *)(void *)k->slot, top;
     irc__pt zenith;
     float zdir[3], znrm[3];
     uint32_t count;
@@ -376,13 +360,13 @@ int irc__grad_visibility(irc_cache *c, unsigned char *slot, const float p[3],
     zenith.s = NULL;
     if (irc__find_edges(c, s, zenith, netvis) == 0)
         return IRC_OK;
-    if ((st = irc__zenith(c, slot, p, n, &top, zdir, znrm, rays)) < 0)
+    if ((st = irc__zenith(k, &top, zdir, znrm)) < 0)
         return st;
     zenith.s = &top;
     zenith.dir = zdir;
     zenith.nrm = znrm;
     count = irc__find_edges(c, s, zenith, netvis);
-    if ((st = irc__bisect(c, slot, s, p, count, netvis, rays)) < 0)
+    if ((st = irc__bisect(k, s, count, netvis)) < 0)
         return st;
     irc__cells(c, s, n, netvis, g);
     irc__cap(c, s, n, netvis, g);
@@ -391,7 +375,7 @@ int irc__grad_visibility(irc_cache *c, unsigned char *slot, const float p[3],
 
 /* Net visibility (Eq. 47, over 2 pi): each stratum's exact solid angle,
  * (2 pi/N)(cos theta_j- - cos theta_j+), weighs whether its ray escaped, so
- * no 1/cos(theta) weight from the cosine-weighted sampling enters. */
+ * no 1/IRC_COS(theta) weight from the cosine-weighted sampling enters. */
 static double irc__visible(const irc_cache *c, const irc__sample *s)
 {
     const uint32_t m = c->cfg.strata_theta, nphi = c->cfg.strata_phi;
@@ -411,26 +395,29 @@ static double irc__visible(const irc_cache *c, const irc__sample *s)
     return all > 0.0 ? vis / all : 0.0;
 }
 
-int irc_occlusion_compute(irc_cache *c, const float p[3], const float n[3],
-                          irc_occlusion *out)
+static int irc__occlusion(irc__call *k, void *dst)
 {
-    double un[3], t1[3], t2[3], g[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
-    uint32_t t, extra = 0;
-    unsigned char *slot;
-    int st, k;
-    if (c && c->magic == IRC__MAGIC && !(c->cfg.features & IRC_FEATURE_VISIBILITY))
-        return IRC_ERR_UNSUPPORTED;
-    if ((st = irc__sample_at(c, p, n, out, un, t1, t2, &t)) < 0)
+    irc_occlusion *out = (irc_occlusion *)dst;
+    double t1[3], t2[3], g[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+    int st, i;
+    if ((st = irc__hemisphere(k, t1, t2)) < 0)
         return st;
-    slot = c->scratch + (size_t)t * c->slot_bytes;
-    out->visible = (float)irc__visible(c, (const irc__sample *)(void *)slot);
-    st = irc__grad_visibility(c, slot, p, un, 1, g, &extra);
-    irc__slot_release(c, t);
+    out->visible = (float)irc__visible(k->c, (const irc__sample *)(void *)k->slot);
+    if ((st = irc__grad_visibility(k, 1, g)) < 0)
+        return st;
+    for (i = 0; i < 3; i++)
+        out->grad[i] = (float)(g[0][i] / (2.0 * IRC_PI));
+    out->rays = k->rays;
+    return IRC_OK;
+}
+
+int irc_occlusion_compute(irc_cache *c, const float p[3], const float n[3],
+                          irc_occlusion *out, void *host)
+{
+    int st = irc__enter(c, &irc__kind_irr);
     if (st < 0)
         return st;
-    for (k = 0; k < 3; k++)
-        out->grad[k] = (float)(g[0][k] / (2.0 * IRC_PI));
-    out->rays = c->strata + extra;
-    c->port->fetch_add(&c->ctr[IRC__C_RAYS], c->strata + (uint64_t)extra);
-    return IRC_OK;
+    if (!(c->cfg.features & IRC_FEATURE_VISIBILITY))
+        return IRC_ERR_UNSUPPORTED;
+    return irc__compute(c, &irc__kind_irr, p, n, out, host, irc__occlusion, 0);
 }

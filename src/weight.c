@@ -11,7 +11,7 @@
 /* Cap on a weight: a query exactly on a record gives 1/0. */
 #define IRC__W_MAX 1e6
 
-/* Ward-Heckbert weight w = 1 / (|p - p_i|/R_i + sqrt(1 - n.n_i)), accepted
+/* Ward-Heckbert weight w = 1 / (|p - p_i|/R_i + IRC_SQRT(1 - n.n_i)), accepted
  * when w > 1/a.  n must be unit length.  Returns 1 and sets *w and the
  * record's decoded normal ni when the record counts, else 0. */
 int irc__weigh(const irc_cache *c, const irc__rec *r, const float p[3],
@@ -37,9 +37,18 @@ int irc__weigh(const irc_cache *c, const irc__rec *r, const float p[3],
     return 1;
 }
 
+/* 2^ex[ch] built from its bits: exact, no libm call per record. */
+double irc__grad_scale(const irc__grad *g, int ch)
+{
+    uint64_t bits = (uint64_t)(g->ex[ch] + 1023) << 52;
+    double s;
+    IRC_MEMCPY(&s, &bits, sizeof s);
+    return s;
+}
+
 static double irc__grad_dot(const irc__grad *g, int ch, double a, double b)
 {
-    return (g->g[2 * ch] * a + g->g[2 * ch + 1] * b) * (double)g->scale;
+    return (g->g[2 * ch] * a + g->g[2 * ch + 1] * b) * irc__grad_scale(g, ch);
 }
 
 /* E_i + (p - p_i).grad_t + (n_i x n).grad_r, each gradient stored in the

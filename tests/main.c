@@ -16,7 +16,9 @@
     X(test_sh_irradiance_convolution) X(test_sh_glossy_zonal) \
     X(test_sh_surface_record) X(test_sh_lookup_by_hand) X(test_sh_bad_input) X(test_sh_footprint) \
     X(test_insert_range_overflow) \
-    X(test_hard_scale_invariance) X(test_hard_hemispheres) X(test_hard_lookups) X(test_hard_full_cache)
+    X(test_hard_scale_invariance) X(test_hard_hemispheres) X(test_hard_lookups) X(test_hard_full_cache) \
+    X(test_footprint_bounds) X(test_footprint_size_t) X(test_radius_limits) X(test_gradient_channels) \
+    X(test_index_origin) X(test_relocate) X(test_host_context) X(test_busy_waits) X(test_not_stored_counted)
 
 TESTS(TEST_DECL)
 

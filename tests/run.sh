@@ -2,7 +2,9 @@
 # tests/run.sh -- every test stage of `make test`; the last line is
 # "N passed, N failed" over all of them.  Each suite run counts its own
 # tests; every other stage counts as one.
-#   stage 1  library builds warning-free with gcc and clang (-Werror)
+#   stage 1  library builds warning-free with gcc and clang (-Werror); the
+#            port-less build (PORT=none) needs no thread library; the
+#            shared library exports the documented irc_ API only (nm -D)
 #   stage 2  the suite, optimised
 #   stage 3  the suites and the fuzz corpora under ASan + UBSan (clang,
 #            -fno-sanitize-recover)
@@ -11,6 +13,8 @@
 #            OpenEXR, malformed scenes
 #   stage 5  the header alone as C99 and as C++; no allocator symbol in
 #            libirrcache.a; no thread or I/O header in src/
+#   stage 2c the suite built for 32 bits (-m32: size_t and pointers of a
+#            microcontroller)
 #   stage 6  line and branch coverage of src/ (gcov), printed; at least
 #            90% of lines and 80% of branches
 set -u
@@ -28,6 +32,8 @@ need=""
 command -v clang >/dev/null 2>&1 || need="$need clang"
 command -v c++ >/dev/null 2>&1 || need="$need g++"
 command -v nm >/dev/null 2>&1 || need="$need binutils"
+# 32-bit builds (stage 2c)
+[ -e /usr/lib32/crt1.o ] || [ -e /usr/lib/i386-linux-gnu/crt1.o ] || need="$need gcc-multilib"
 ls /usr/lib/llvm-*/lib/clang/*/lib/linux/libclang_rt.tsan-x86_64.a >/dev/null 2>&1 ||
     need="$need libclang-rt-14-dev"
 # OpenEXR's C library reads the demo's images back (tests only).
@@ -71,9 +77,36 @@ echo "== stage 1: builds"
 check build-gcc $MAKE -s CC=gcc BUILD=build all
 check build-clang $MAKE -s CC=clang BUILD=build-clang all
 
+# Without a port that needs threads: no pthread or C11-thread symbol.
+portless() {
+    $MAKE -s CC=gcc BUILD=build-none PORT=none lib || return 1
+    found=$(nm build-none/libirrcache.a | grep -E ' U (pthread_|thrd_|mtx_|cnd_|sched_)')
+    [ -z "$found" ] || { echo "$found"; return 1; }
+    nm build-none/libirrcache.a | grep -q ' T irc_init$'
+}
+check portless-build portless
+# Only the documented API leaves the shared library.
+exports() {
+    nm -D --defined-only build/libirrcache.so | awk '$2 ~ /^[TDBRV]$/ {print $3}' > "$LOG/exports.txt"
+    echo "$(wc -l < "$LOG/exports.txt") symbols exported"
+    bad=$(grep -vE '^irc_[a-z]' "$LOG/exports.txt")
+    [ -z "$bad" ] || { echo "not documented: $bad"; return 1; }
+    # each one is declared in the header
+    for f in $(cat "$LOG/exports.txt"); do
+        grep -qE "(^|[^a-z_])$f([^a-z_]|$)" include/irrcache.h || { echo "$f: not in irrcache.h"; return 1; }
+    done
+    grep -q '^irc_init$' "$LOG/exports.txt"
+}
+check exports-nm-D exports
+sed 's/^/[exports] /' "$LOG/exports-nm-D.log" | head -2
+
 echo "== stage 2: suite"
 check build-tests $MAKE -s BUILD=build build/irc_tests
 suite suite ./build/irc_tests
+
+echo "== stage 2c: suite at 32 bits"
+check build-m32 $MAKE -s CC="gcc -m32" BUILD=build-m32 build-m32/irc_tests
+suite m32 IRC_TEST_QUICK=1 ./build-m32/irc_tests
 
 echo "== stage 2b: demo tracer"
 check build-demo $MAKE -s BUILD=build build/irc_demo build/demo_tests build/t_image build/t_loader build/t_exr
@@ -126,8 +159,9 @@ check build-tsan $MAKE -s CC="$SAN_CC" BUILD=build-tsan OPT="-O1 -g -fsanitize=t
 suite tsan IRC_TEST_QUICK=1 TSAN_OPTIONS=halt_on_error=1 ./build-tsan/irc_tests test_threads
 
 echo "== stage 5: header, example host and library rules"
-check example $MAKE -s BUILD=build build/minimal
-check example-runs ./build/minimal
+check examples $MAKE -s BUILD=build examples
+check example-minimal ./build/minimal
+check example-threads ./build/threads
 check header-c99 cc -std=c99 -pedantic -Wall -Wextra -Werror -fsyntax-only -x c include/irrcache.h
 check header-cxx c++ -std=c++98 -pedantic -Wall -Wextra -Werror -Wno-long-long -Iinclude -c tests/header_cpp.cpp -o build/header_cpp.o
 no_allocator() {

@@ -1,6 +1,10 @@
 /* scenes.c -- analytic reference hosts (see scenes.h). */
 #include "scenes.h"
 
+#include <stdio.h>
+
+#include "cache.h" /* the lock's place in the block, on purpose */
+
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -299,4 +303,18 @@ double xrand(unsigned long long *state)
     x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
     x ^= x >> 31;
     return (double)(x >> 11) * (1.0 / 9007199254740992.0);
+}
+
+/* The block against a copy taken before a call, but for the port's lock
+ * object (the header's promise: glibc's rwlock keeps phase bits). */
+int block_same(const irc_config *cfg, const unsigned char *copy, const irc_cache *c)
+{
+    const unsigned char *b = (const unsigned char *)cfg->buffer;
+    size_t lo = (size_t)((const unsigned char *)irc__lock(c) - b), hi = lo + c->port->lock_size, o;
+    for (o = 0; o < cfg->buffer_size; o++)
+        if ((o < lo || o >= hi) && copy[o] != b[o]) {
+            printf("  first difference at byte %zu\n", o);
+            return 0;
+        }
+    return 1;
 }

@@ -77,6 +77,8 @@ irc_config scene_config(tscene *s, uint32_t features, uint32_t m, uint32_t n);
 irc_cache *block_cache(irc_config *cfg, uint32_t records, size_t guard);
 int block_guard_ok(const irc_config *cfg, size_t guard);
 void block_free(irc_config *cfg);
+/* 1 when the block equals copy byte for byte, the lock object excepted. */
+int block_same(const irc_config *cfg, const unsigned char *copy, const irc_cache *c);
 
 double xrand(unsigned long long *state); /* uniform [0,1) */
 

@@ -44,7 +44,7 @@ static int scaled_record(uint32_t features, double scale, irc_record *r)
     cfg = scene_config(&s, features, 16, 64);
     cache = block_cache(&cfg, 4, 0);
     if (cache)
-        st = irc_record_compute(cache, p, n, r);
+        st = irc_record_compute(cache, p, n, r, NULL);
     block_free(&cfg);
     return st;
 }
@@ -154,27 +154,27 @@ TEST(test_hard_hemispheres)
         irc_record r;
         irc_stats st;
         double want = TPI * (1e-6 + (1e6 - 1e-6) / 16.0);
-        CHECK(c && irc_record_compute(c, p, n, &r) == IRC_OK && finite_record(&r), "same distance");
+        CHECK(c && irc_record_compute(c, p, n, &r, NULL) == IRC_OK && finite_record(&r), "same distance");
         CHECK(fabs(r.e[0] - TPI) < 1e-5 && fabs(r.radius - 0.5f) < 1e-5f &&
                   fabs(r.grad_t[0][0]) < 1e-4 && fabs(r.grad_r[0][1]) < 1e-4,
               "same distance: E %g R %g", r.e[0], r.radius);
         h.mode = H_ESCAPE;
-        CHECK(irc_record_compute(c, p, n, &r) == IRC_OK && finite_record(&r) &&
+        CHECK(irc_record_compute(c, p, n, &r, NULL) == IRC_OK && finite_record(&r) &&
                   fabs(r.e[1] - 2.0 * TPI) < 1e-5 && r.radius == IRC_RADIUS_CAP,
               "escape: E %g R %g", r.e[1], r.radius);
         h.mode = H_FAIL;
         irc_cache_stats(c, &st);
-        CHECK(irc_record_compute(c, p, n, &r) == IRC_ERR_NOSAMPLES, "all fail");
+        CHECK(irc_record_compute(c, p, n, &r, NULL) == IRC_ERR_NOSAMPLES, "all fail");
         {
             irc_stats st2;
             irc_cache_stats(c, &st2);
             CHECK(st2.computes == st.computes && st2.rays == st.rays, "nothing counted");
         }
         h.mode = H_WIDE;
-        CHECK(irc_record_compute(c, p, n, &r) == IRC_OK && finite_record(&r), "wide range");
+        CHECK(irc_record_compute(c, p, n, &r, NULL) == IRC_OK && finite_record(&r), "wide range");
         CHECK(fabs(r.e[2] - want) < 1e-5 * want, "wide: E %g, closed form %g", r.e[2], want);
         h.mode = H_DENORMAL;
-        CHECK(irc_record_compute(c, p, n, &r) == IRC_OK && finite_record(&r), "denormals");
+        CHECK(irc_record_compute(c, p, n, &r, NULL) == IRC_OK && finite_record(&r), "denormals");
         block_free(&cfg);
     }
     {
@@ -182,12 +182,12 @@ TEST(test_hard_hemispheres)
         irc_config cfg = hard_config(&h, IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION, 1, 1);
         irc_cache *c = block_cache(&cfg, 4, 0);
         irc_record r;
-        CHECK(c && irc_record_compute(c, p, n, &r) == IRC_OK && fabs(r.e[0] - 2.0 * TPI) < 1e-5,
+        CHECK(c && irc_record_compute(c, p, n, &r, NULL) == IRC_OK && fabs(r.e[0] - 2.0 * TPI) < 1e-5,
               "one stratum");
         block_free(&cfg);
         cfg = hard_config(&h, IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION, 1024, 4096);
         c = block_cache(&cfg, 4, 0);
-        CHECK(c && irc_record_compute(c, p, n, &r) == IRC_OK && fabs(r.e[0] - 2.0 * TPI) < 1e-4 &&
+        CHECK(c && irc_record_compute(c, p, n, &r, NULL) == IRC_OK && fabs(r.e[0] - 2.0 * TPI) < 1e-4 &&
                   r.rays == 1024u * 4096u && fabs(r.grad_r[0][0]) < 1e-4,
               "largest grid: E %g", r.e[0]);
         block_free(&cfg);
@@ -285,7 +285,7 @@ TEST(test_hard_full_cache)
             p[0] = (float)(10.0 * xrand(&rs));
             p[1] = (float)(10.0 * xrand(&rs));
             p[2] = 0.0f;
-            s = irc_cache_lookup_or_compute(c, p, n, rgb, &w);
+            s = irc_cache_lookup_or_compute(c, p, n, rgb, &w, NULL);
             ok += s == IRC_OK;
             full += s == IRC_NOT_STORED;
             CHECK(s >= 0 && isfinite(rgb[0]), "call %d: %d", i, s);

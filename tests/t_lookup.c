@@ -120,13 +120,13 @@ TEST(test_lookup_or_compute)
     c = block_cache(&cfg, 1, 0);
     CHECK(c != NULL, "init");
     if (!c) return;
-    CHECK(irc_cache_lookup_or_compute(c, p, n, rgb, &w) == IRC_OK && w == 0.0f, "computed");
-    CHECK(irc_cache_lookup_or_compute(c, p, n, rgb2, &w) == IRC_OK && w > 0.0f, "then found");
+    CHECK(irc_cache_lookup_or_compute(c, p, n, rgb, &w, NULL) == IRC_OK && w == 0.0f, "computed");
+    CHECK(irc_cache_lookup_or_compute(c, p, n, rgb2, &w, NULL) == IRC_OK && w > 0.0f, "then found");
     CHECK(fabs(rgb2[0] - rgb[0]) <= 1e-4f * rgb[0], "same value %g %g", rgb[0], rgb2[0]);
     /* Pool of one: the next miss is computed but not stored. */
     {
         const float far[3] = {50.0f, 0, 0};
-        CHECK(irc_cache_lookup_or_compute(c, far, n, rgb, &w) == IRC_NOT_STORED, "not stored");
+        CHECK(irc_cache_lookup_or_compute(c, far, n, rgb, &w, NULL) == IRC_NOT_STORED, "not stored");
         CHECK(irc_cache_lookup(c, p, n, rgb2, &w) == IRC_OK, "lookups go on when full");
     }
     irc_cache_stats(c, &st);

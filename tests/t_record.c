@@ -29,7 +29,7 @@ TEST(test_uniform_sky)
         for (j = 0; j < 4; j++) {
             const float p[3] = {0.5f, -2.0f, 7.0f};
             irc_record r;
-            int st = irc_record_compute(c, p, normals[j], &r), ch;
+            int st = irc_record_compute(c, p, normals[j], &r, NULL), ch;
             CHECK(st == IRC_OK, "compute: %s", irc_strerror(st));
             for (ch = 0; ch < 3; ch++) {
                 double e = TPI * s.sky_a[ch];
@@ -95,7 +95,7 @@ TEST(test_sphere_over_plane)
             const float n[3] = {0, 0, 1};
             double g[3];
             irc_record r;
-            int st = irc_record_compute(c, p, n, &r);
+            int st = irc_record_compute(c, p, n, &r, NULL);
             CHECK(st == IRC_OK, "compute: %s", irc_strerror(st));
             sphere_plane_grad(&s, sp_points[i], g);
             check_grad(i, &r, sphere_plane_e(&s, sp_points[i]), g, 0.01, k ? 0.15 : 0.0, 10.0);
@@ -129,7 +129,7 @@ TEST(test_flat_blocker)
         const double h = 1e-5;
         double g[3], q[3];
         irc_record r;
-        int st = irc_record_compute(c, p, n, &r), k;
+        int st = irc_record_compute(c, p, n, &r, NULL), k;
         CHECK(st == IRC_OK, "compute: %s", irc_strerror(st));
         for (k = 0; k < 2; k++) {
             double e1, e0;
@@ -168,7 +168,7 @@ TEST(test_box_closed_form)
         const float p[3] = {(float)pts[i][0], (float)pts[i][1], 0.0f}, n[3] = {0, 0, 1};
         double want = box_plane_e(&s, pts[i]);
         irc_record r;
-        CHECK(irc_record_compute(c, p, n, &r) == IRC_OK, "compute");
+        CHECK(irc_record_compute(c, p, n, &r, NULL) == IRC_OK, "compute");
         printf("  point %d: E %.5f, closed form %.5f (%+.3f%%)\n", i, r.e[0], want,
                100.0 * (r.e[0] - want) / want);
         CHECK(fabs(r.e[0] - want) <= 0.005 * want, "E %g vs %g", r.e[0], want);
@@ -203,7 +203,7 @@ TEST(test_rotational_gradient_sky)
         n[0] = (float)(sin(t) * cos(ph));
         n[1] = (float)(sin(t) * sin(ph));
         n[2] = (float)cos(t);
-        st = irc_record_compute(c, p, n, &r);
+        st = irc_record_compute(c, p, n, &r, NULL);
         CHECK(st == IRC_OK, "compute: %s", irc_strerror(st));
         e = TPI * a + 2.0 * TPI / 3.0 * b * n[2];
         /* n x z = (n.y, -n.x, 0) */
@@ -233,7 +233,7 @@ TEST(test_radius_rules)
     scene_sphere_plane(&s);
     cfg = scene_config(&s, 0, 16, 64);
     c = block_cache(&cfg, 4, 0);
-    CHECK(c && irc_record_compute(c, p, n, &r0) == IRC_OK, "compute");
+    CHECK(c && irc_record_compute(c, p, n, &r0, NULL) == IRC_OK, "compute");
     /* Escaped rays count as infinitely far: R = hits / sum(1/d) * ... */
     CHECK(r0.radius == r0.mean_dist, "bare record: radius %g = mean %g", r0.radius, r0.mean_dist);
     CHECK(r0.mean_dist > 1.0f && r0.mean_dist < 1e3f, "harmonic mean %g", r0.mean_dist);
@@ -242,12 +242,12 @@ TEST(test_radius_rules)
     cfg.min_radius = 0.5f * r0.mean_dist;
     cfg.max_radius = 0.75f * r0.mean_dist;
     c = block_cache(&cfg, 4, 0);
-    CHECK(c && irc_record_compute(c, p, n, &r1) == IRC_OK, "compute");
+    CHECK(c && irc_record_compute(c, p, n, &r1, NULL) == IRC_OK, "compute");
     CHECK(r1.radius >= cfg.min_radius && r1.radius <= cfg.max_radius, "clamped %g", r1.radius);
     block_free(&cfg);
     cfg = scene_config(&s, IRC_FEATURE_TRANSLATION, 16, 64);
     c = block_cache(&cfg, 4, 0);
-    CHECK(c && irc_record_compute(c, p, n, &r1) == IRC_OK, "compute");
+    CHECK(c && irc_record_compute(c, p, n, &r1, NULL) == IRC_OK, "compute");
     {
         double lim = r1.e[0] / len3(r1.grad_t[0]);
         double want = lim < r1.mean_dist ? lim : r1.mean_dist;

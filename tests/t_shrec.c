@@ -142,7 +142,7 @@ static void emitter_errors(double dr, uint32_t m, uint32_t n, int seeds, double 
         return;
     for (sd = 0; sd < seeds; sd++) {
         c->cfg.seed = (uint64_t)sd + 1;
-        CHECK(irc_sh_compute(c, p, NULL, &rec) == IRC_OK, "compute");
+        CHECK(irc_sh_compute(c, p, NULL, &rec, NULL) == IRC_OK, "compute");
         for (i = 0; i < 9; i++) {
             mc[i] += rec.c[1][i] / seeds;
             for (k = 0; k < 3; k++)
@@ -262,7 +262,7 @@ TEST(test_sh_irradiance_convolution)
     sky_project(&s, 3, cq);
     cfg = sh_config(&s, IRC_FEATURE_SH, 128, 512, 3);
     c = block_cache(&cfg, 4, 0);
-    CHECK(c && irc_sh_compute(c, p, NULL, &rec) == IRC_OK, "compute");
+    CHECK(c && irc_sh_compute(c, p, NULL, &rec, NULL) == IRC_OK, "compute");
     for (i = 0; i < 200; i++) {
         double n[3], y[NC], len;
         float nf[3], rgb[3];
@@ -371,7 +371,7 @@ TEST(test_sh_surface_record)
     memcpy(s.centre, cc, sizeof cc);
     cfg = sh_config(&s, IRC_FEATURE_SH_GRADIENT, 512, 2048, 3);
     c = block_cache(&cfg, 4, 0);
-    CHECK(c && irc_sh_compute(c, p, n, &rec) == IRC_OK, "compute");
+    CHECK(c && irc_sh_compute(c, p, n, &rec, NULL) == IRC_OK, "compute");
     cap_at_origin(cc, 1e-4, c0, g);
     for (i = 0; i < 9; i++) {
         double e2 = 0.0;
@@ -474,18 +474,6 @@ TEST(test_sh_lookup_by_hand)
     block_free(&cfg);
 }
 
-static int block_same(const irc_config *cfg, const unsigned char *copy, const irc_cache *c)
-{
-    const unsigned char *b = (const unsigned char *)cfg->buffer;
-    size_t lo = (size_t)((const unsigned char *)c->lock - b), hi = lo + c->port->lock_size, o;
-    for (o = 0; o < cfg->buffer_size; o++)
-        if ((o < lo || o >= hi) && copy[o] != b[o]) {
-            printf("  first difference at byte %zu\n", o);
-            return 0;
-        }
-    return 1;
-}
-
 /* Bad input gives the documented status and leaves the block as it was. */
 TEST(test_sh_bad_input)
 {
@@ -526,24 +514,24 @@ TEST(test_sh_bad_input)
     CHECK(irc_sh_lookup(c, nanp, NULL, &out, NULL) == IRC_ERR_NONFINITE, "NaN query"); SAME();
     CHECK(irc_sh_lookup(c, p, NULL, NULL, NULL) == IRC_ERR_NULL, "null out"); SAME();
     CHECK(irc_sh_record(c, 1, &out) == IRC_ERR_RANGE, "range"); SAME();
-    CHECK(irc_record_compute(c, p, n, &r) == IRC_ERR_UNSUPPORTED, "irradiance call"); SAME();
+    CHECK(irc_record_compute(c, p, n, &r, NULL) == IRC_ERR_UNSUPPORTED, "irradiance call"); SAME();
     CHECK(irc_cache_lookup(c, p, n, rgb, NULL) == IRC_ERR_UNSUPPORTED, "irradiance lookup"); SAME();
     CHECK(irc_cache_insert(c, &r) == IRC_ERR_UNSUPPORTED, "irradiance insert"); SAME();
     CHECK(irc_cache_record(c, 0, &r) == IRC_ERR_UNSUPPORTED, "irradiance record"); SAME();
-    CHECK(irc_sh_compute(ic, p, n, &out) == IRC_ERR_UNSUPPORTED, "SH call on irradiance cache");
+    CHECK(irc_sh_compute(ic, p, n, &out, NULL) == IRC_ERR_UNSUPPORTED, "SH call on irradiance cache");
     CHECK(irc_sh_lookup(ic, p, n, &out, NULL) == IRC_ERR_UNSUPPORTED, "SH lookup");
     s.fail_every = 1;
     s.fail_kind = FAIL_RAY;
-    CHECK(irc_sh_compute(c, p, NULL, &out) == IRC_ERR_NOSAMPLES, "no samples"); SAME();
+    CHECK(irc_sh_compute(c, p, NULL, &out, NULL) == IRC_ERR_NOSAMPLES, "no samples"); SAME();
     s.fail_kind = FAIL_NAN_RADIANCE;
-    CHECK(irc_sh_compute(c, p, n, &out) == IRC_ERR_CALLBACK, "NaN radiance"); SAME();
+    CHECK(irc_sh_compute(c, p, n, &out, NULL) == IRC_ERR_CALLBACK, "NaN radiance"); SAME();
     s.fail_kind = FAIL_ZERO_NORMAL;
-    CHECK(irc_sh_compute(c, p, n, &out) == IRC_ERR_CALLBACK, "zero normal"); SAME();
+    CHECK(irc_sh_compute(c, p, n, &out, NULL) == IRC_ERR_CALLBACK, "zero normal"); SAME();
     s.fail_every = 0;
     s.return_code = -4242;
-    CHECK(irc_sh_lookup_or_compute(c, n, n, &out, NULL) == -4242, "host code"); SAME();
+    CHECK(irc_sh_lookup_or_compute(c, n, n, &out, NULL, NULL) == -4242, "host code"); SAME();
     s.return_code = 0;
-    CHECK(irc_sh_lookup_or_compute(c, n, n, &out, NULL) == IRC_NOT_STORED, "not stored");
+    CHECK(irc_sh_lookup_or_compute(c, n, n, &out, NULL, NULL) == IRC_NOT_STORED, "not stored");
     CHECK(block_guard_ok(&cfg, 64), "guard");
 #undef SAME
     free(copy);

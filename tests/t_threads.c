@@ -34,7 +34,7 @@ static void *stress_main(void *arg)
         switch (i % 4) {
         case 0:
         case 1:
-            s = irc_cache_lookup_or_compute(w->c, p, n, rgb, &wt);
+            s = irc_cache_lookup_or_compute(w->c, p, n, rgb, &wt, NULL);
             break;
         case 2:
             s = irc_cache_neighbours(w->c, p, n, ids, 16, &cnt);
@@ -124,7 +124,7 @@ static void *det_main(void *arg)
         const float n[3] = {0.0f, 0.0f, 1.0f};
         irc_record r;
         int mine = 0;
-        if (irc_record_compute(d->c, d->pts[i], n, &r) != IRC_OK)
+        if (irc_record_compute(d->c, d->pts[i], n, &r, NULL) != IRC_OK)
             d->errors++;
         while (!mine) {
             pthread_mutex_lock(d->mu);
@@ -171,7 +171,7 @@ TEST(test_threads_determinism)
     for (i = 0; i < NPTS; i++) {
         const float n[3] = {0.0f, 0.0f, 1.0f};
         irc_record r;
-        CHECK(irc_record_compute(cache[0], pts[i], n, &r) == IRC_OK, "compute");
+        CHECK(irc_record_compute(cache[0], pts[i], n, &r, NULL) == IRC_OK, "compute");
         CHECK(irc_cache_insert(cache[0], &r) == IRC_OK, "insert");
     }
     /* Two threads: each computes every other query, inserts in list order. */
@@ -200,9 +200,10 @@ TEST(test_threads_determinism)
               irc_cache_record(cache[1], (uint32_t)i, &b) == IRC_OK, "read");
         CHECK(memcmp(&a, &b, sizeof a) == 0, "record %d differs", i);
     }
-    CHECK(memcmp(cache[0]->records, cache[1]->records, (size_t)NPTS * cache[0]->rec_size) == 0,
+    CHECK(memcmp(irc__rec_at(cache[0], 0), irc__rec_at(cache[1], 0),
+                 (size_t)NPTS * cache[0]->rec_size) == 0,
           "stored records differ byte for byte");
-    CHECK(memcmp(cache[0]->nodes, cache[1]->nodes,
+    CHECK(memcmp(irc__nodes(cache[0]), irc__nodes(cache[1]),
                  (size_t)cache[0]->nodes_used * sizeof(irc__node)) == 0 &&
           cache[0]->nodes_used == cache[1]->nodes_used, "index differs");
     for (k = 0; k < 2; k++)

@@ -21,8 +21,8 @@ static int both(tscene *s, const double pd[3], uint32_t m, uint32_t n, irc_recor
     irc_config cw = scene_config(s, IRC_FEATURE_TRANSLATION, m, n);
     irc_cache *a = block_cache(&cv, 2, 0), *b = block_cache(&cw, 2, 0);
     const float p[3] = {(float)pd[0], (float)pd[1], (float)pd[2]}, up[3] = {0, 0, 1};
-    int ok = a && b && irc_record_compute(a, p, up, vis) == IRC_OK &&
-             irc_record_compute(b, p, up, wh) == IRC_OK;
+    int ok = a && b && irc_record_compute(a, p, up, vis, NULL) == IRC_OK &&
+             irc_record_compute(b, p, up, wh, NULL) == IRC_OK;
     block_free(&cv);
     block_free(&cw);
     return ok;
@@ -121,7 +121,7 @@ TEST(test_visibility_open_sky)
     s.sky_a[0] = s.sky_a[1] = s.sky_a[2] = 2.0f;
     cfg = scene_config(&s, IRC_FEATURE_VISIBILITY, 16, 64);
     c = block_cache(&cfg, 2, 0);
-    CHECK(c && irc_record_compute(c, p, n, &r) == IRC_OK, "compute");
+    CHECK(c && irc_record_compute(c, p, n, &r, NULL) == IRC_OK, "compute");
     CHECK(r.rays == 16u * 64u, "rays %u", r.rays);
     CHECK(hypot(r.grad_t[0][0], r.grad_t[0][1]) == 0.0 && r.grad_t[0][2] == 0.0, "gradient");
     CHECK(r.features & IRC_FEATURE_TRANSLATION, "visibility implies the translational gradient");
@@ -163,7 +163,7 @@ TEST(test_occlusion_sphere)
         const float up[3] = {0, 0, 1};
         irc_occlusion o;
         double e;
-        CHECK(irc_occlusion_compute(c, pts[i], up, &o) == IRC_OK, "compute");
+        CHECK(irc_occlusion_compute(c, pts[i], up, &o, NULL) == IRC_OK, "compute");
         e = hypot(o.grad[0] - g[i][0], o.grad[1] - g[i][1]);
         printf("  (%6.3f, %6.3f): visible %.5f (exact %.5f); |grad| %.5f, error %.6f; %u rays\n",
                pts[i][0], pts[i][1], o.visible, fr[i], hypot(g[i][0], g[i][1]), e, o.rays);
@@ -175,7 +175,7 @@ TEST(test_occlusion_sphere)
         irc_cache *pc = block_cache(&plain, 2, 0);
         irc_occlusion o;
         const float up[3] = {0, 0, 1};
-        CHECK(irc_occlusion_compute(pc, pts[0], up, &o) == IRC_ERR_UNSUPPORTED, "needs the flag");
+        CHECK(irc_occlusion_compute(pc, pts[0], up, &o, NULL) == IRC_ERR_UNSUPPORTED, "needs the flag");
         block_free(&plain);
     }
     block_free(&cfg);

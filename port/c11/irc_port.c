@@ -24,14 +24,14 @@ static int c11_lock_init(void *l)
 }
 static void c11_lock_destroy(void *l) { (void)l; }
 
-static void c11_read_lock(void *l)
+static int c11_read_lock(void *l)
 {
     atomic_int *s = &((c11_lock *)l)->state;
     for (;;) {
         int v = atomic_load_explicit(s, memory_order_relaxed);
         if (v >= 0 && atomic_compare_exchange_weak_explicit(
                           s, &v, v + 1, memory_order_acquire, memory_order_relaxed))
-            return;
+            return 0;
         thrd_yield();
     }
 }
@@ -39,14 +39,14 @@ static void c11_read_unlock(void *l)
 {
     atomic_fetch_sub_explicit(&((c11_lock *)l)->state, 1, memory_order_release);
 }
-static void c11_write_lock(void *l)
+static int c11_write_lock(void *l)
 {
     atomic_int *s = &((c11_lock *)l)->state;
     for (;;) {
         int v = 0;
         if (atomic_compare_exchange_weak_explicit(s, &v, -1, memory_order_acquire,
                                                   memory_order_relaxed))
-            return;
+            return 0;
         thrd_yield();
     }
 }
@@ -54,6 +54,8 @@ static void c11_write_unlock(void *l)
 {
     atomic_store_explicit(&((c11_lock *)l)->state, 0, memory_order_release);
 }
+
+static void c11_yield(void) { thrd_yield(); }
 
 #define C11_A(o) ((_Atomic uint64_t *)(o))
 static uint64_t c11_load(const uint64_t *o)
@@ -80,5 +82,5 @@ static int c11_cas(uint64_t *o, uint64_t e, uint64_t d)
 
 const irc_port irc_port_c11 = {
     "c11", sizeof(c11_lock), c11_lock_init, c11_lock_destroy,
-    c11_read_lock, c11_read_unlock, c11_write_lock, c11_write_unlock,
+    c11_read_lock, c11_read_unlock, c11_write_lock, c11_write_unlock, c11_yield,
     c11_load, c11_store, c11_add, c11_or, c11_cas};

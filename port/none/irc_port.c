@@ -6,6 +6,7 @@
 
 static int none_lock_init(void *l) { (void)l; return 0; }
 static void none_lock(void *l) { (void)l; }
+static int none_take(void *l) { (void)l; return 0; }
 static uint64_t none_load(const uint64_t *o) { return *o; }
 static void none_store(uint64_t *o, uint64_t v) { *o = v; }
 static uint64_t none_add(uint64_t *o, uint64_t v) { uint64_t old = *o; *o = old + v; return old; }
@@ -19,5 +20,5 @@ static int none_cas(uint64_t *o, uint64_t e, uint64_t d)
 }
 
 const irc_port irc_port_none = {
-    "none", 0, none_lock_init, none_lock, none_lock, none_lock, none_lock,
-    none_lock, none_load, none_store, none_add, none_or, none_cas};
+    "none", 0, none_lock_init, none_lock, none_take, none_lock, none_take,
+    none_lock, NULL, none_load, none_store, none_add, none_or, none_cas};

@@ -3,6 +3,7 @@
  * block, and the GCC/Clang __atomic builtins on the block's 64-bit words.
  */
 #include <pthread.h>
+#include <sched.h>
 
 #include "irrcache.h"
 
@@ -15,8 +16,9 @@ static int posix_lock_init(void *l)
     return pthread_rwlock_init((pthread_rwlock_t *)l, NULL) == 0 ? 0 : -1;
 }
 static void posix_lock_destroy(void *l) { pthread_rwlock_destroy((pthread_rwlock_t *)l); }
-static void posix_read_lock(void *l) { pthread_rwlock_rdlock((pthread_rwlock_t *)l); }
-static void posix_write_lock(void *l) { pthread_rwlock_wrlock((pthread_rwlock_t *)l); }
+static int posix_read_lock(void *l) { return pthread_rwlock_rdlock((pthread_rwlock_t *)l) == 0 ? 0 : -1; }
+static int posix_write_lock(void *l) { return pthread_rwlock_wrlock((pthread_rwlock_t *)l) == 0 ? 0 : -1; }
+static void posix_yield(void) { sched_yield(); }
 static void posix_unlock(void *l) { pthread_rwlock_unlock((pthread_rwlock_t *)l); }
 
 static uint64_t posix_load(const uint64_t *o) { return __atomic_load_n(o, __ATOMIC_ACQUIRE); }
@@ -30,5 +32,5 @@ static int posix_cas(uint64_t *o, uint64_t e, uint64_t d)
 
 const irc_port irc_port_posix = {
     "posix", sizeof(pthread_rwlock_t), posix_lock_init, posix_lock_destroy,
-    posix_read_lock, posix_unlock, posix_write_lock, posix_unlock,
+    posix_read_lock, posix_unlock, posix_write_lock, posix_unlock, posix_yield,
     posix_load, posix_store, posix_add, posix_or, posix_cas};

@@ -42,6 +42,7 @@ int main(void)
     cfg.trace = trace;
     cfg.max_batch = 64;
     cfg.features = IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION;
+    cfg.max_radius = 4.0f;  /* rays that escape count as infinitely far */
     if ((st = irc_footprint(&cfg, 1000, &bytes)) < 0)
         return fprintf(stderr, "%s\n", irc_strerror(st)), 1;
     cfg.buffer = malloc(bytes);              /* the host's memory, any kind */
@@ -52,9 +53,11 @@ int main(void)
         const float p[3] = {0.25f * i, 0.0f, 0.0f}, n[3] = {0.0f, 0.0f, 1.0f};
         float rgb[3], w;
         double d2 = p[0] * p[0] + 4.0, exact = 3.14159265 * (1.0 - 2.0 / (d2 * sqrt(d2)));
-        st = irc_cache_lookup_or_compute(cache, p, n, rgb, &w);
+        st = irc_cache_lookup_or_compute(cache, p, n, rgb, &w, NULL);
         if (st < 0)
             return fprintf(stderr, "%s\n", irc_strerror(st)), 1;
+        if (st == IRC_NOT_STORED) /* valid, but the pool is full: size it up */
+            fprintf(stderr, "pool full\n");
         printf("x = %.2f  E = %.4f  exact %.4f  %s\n", p[0], rgb[0], exact,
                w > 0.0f ? "(interpolated)" : "(new record)");
     }

@@ -200,7 +200,7 @@ static int fig8(const scene *s, uint32_t m, uint32_t n)
             if (!(c2 = make_cache(&e, IRC_FEATURE_SH, m, n, &block2)))
                 return -1;
             e.seed = 0;
-            if (irc_sh_compute(c, o, NULL, &r0) < 0)
+            if (irc_sh_compute(c, o, NULL, &r0, NULL) < 0)
                 return -1;
             for (t = 0; t <= 10; t++) {
                 float p[3];
@@ -209,10 +209,10 @@ static int fig8(const scene *s, uint32_t m, uint32_t n)
                     p[k] = 0.1f * (float)t * path[k] + 0.0f;
                 /* The truth's own noise: the same point, another seed. */
                 e.seed = 11;
-                if (irc_sh_compute(c2, p, NULL, &other) < 0)
+                if (irc_sh_compute(c2, p, NULL, &other, NULL) < 0)
                     return -1;
                 e.seed = 0;
-                if (irc_sh_compute(c, p, NULL, &truth) < 0)
+                if (irc_sh_compute(c, p, NULL, &truth, NULL) < 0)
                     return -1;
                 err[v][2][t] = rel_rms(&other, &truth);
                 extrapolate(&r0, p, 0, &ex);
@@ -324,7 +324,7 @@ static int truth(env *e, const material *m, const float *pts, int np, uint32_t m
         return -1;
     for (i = 0; i < np; i++) {
         irc_sh r;
-        if (irc_sh_compute(c, pts + 9 * i, NULL, &r) < 0)
+        if (irc_sh_compute(c, pts + 9 * i, NULL, &r, NULL) < 0)
             return -1;
         shade_sh(&r, m, pts + 9 * i + 3, pts + 9 * i + 6, out + 3 * i);
     }
@@ -344,7 +344,7 @@ static int method(env *e, const material *m, const float *pts, int np, const flo
         return -1;
     for (i = 0; i < count; i++) {
         irc_sh r;
-        if (irc_sh_compute(c, at[i], NULL, &r) < 0 || irc_sh_insert(c, &r) < 0)
+        if (irc_sh_compute(c, at[i], NULL, &r, NULL) < 0 || irc_sh_insert(c, &r) < 0)
             return -1;
     }
     for (i = 0; i < np; i++) {
@@ -424,7 +424,7 @@ static double per_record(irc_cache *c, int reps)
         for (i = 0; i < reps; i++) {
             float p[3] = {0.001f * i, 0, 0};
             irc_sh r;
-            if (irc_sh_compute(c, p, NULL, &r) < 0)
+            if (irc_sh_compute(c, p, NULL, &r, NULL) < 0)
                 return -1.0;
         }
         if (now() - t0 < best)

@@ -85,7 +85,7 @@ static double record_cost(uint32_t features, uint32_t m, uint32_t n)
     do {
         float p[3] = {(float)urand(), (float)urand(), 0.0f}, nn[3] = {0.0f, 0.0f, 1.0f};
         irc_record r;
-        if (irc_record_compute(c, p, nn, &r) != IRC_OK)
+        if (irc_record_compute(c, p, nn, &r, NULL) != IRC_OK)
             return -1.0;
         done++;
         t1 = now();

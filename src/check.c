@@ -1,0 +1,34 @@
+/*
+ * check.c -- the checks every call makes of the vectors it is given.
+ */
+#include "cache.h"
+
+int irc__check_vec(const float v[3])
+{
+    if (!v)
+        return IRC_ERR_NULL;
+    return irc__finite3(v) ? IRC_OK : IRC_ERR_NONFINITE;
+}
+
+/* Normalises in double after dividing by the largest component, so that a
+ * normal made of denormals is still a direction and not a zero. */
+int irc__check_normal(const float n[3], double unit[3])
+{
+    double m, len;
+    int i;
+    if (!n)
+        return IRC_ERR_NULL;
+    if (!irc__finite3(n))
+        return IRC_ERR_NORMAL;
+    m = IRC_FABS((double)n[0]);
+    if (IRC_FABS((double)n[1]) > m) m = IRC_FABS((double)n[1]);
+    if (IRC_FABS((double)n[2]) > m) m = IRC_FABS((double)n[2]);
+    if (m == 0.0)
+        return IRC_ERR_NORMAL;
+    for (i = 0; i < 3; i++)
+        unit[i] = (double)n[i] / m;
+    len = IRC_SQRT(irc__dot3d(unit, unit));
+    for (i = 0; i < 3; i++)
+        unit[i] /= len;
+    return IRC_OK;
+}

@@ -1,0 +1,191 @@
+/*
+ * kind_irr.c -- the irradiance record kind: its packed form (gradients per
+ * channel in the tangent frame of the stored normal), its check, the
+ * Ward-Heckbert weight and gradient extrapolation as the store's table,
+ * and the irradiance calls, thin wrappers over the store.
+ */
+#include "cache.h"
+
+/* Each channel's 2D vector as int16 mantissas with the channel's own
+ * exponent: 2^ex is the smallest power of two with |v| < 2^(ex + 15) for
+ * both components, so the larger keeps at least 14 bits (relative
+ * precision 2^-14 per channel, whatever the other channels hold). */
+static void irc__grad_pack(const float g[3][3], const double t1[3], const double t2[3],
+                           irc__grad *out)
+{
+    int ch, i;
+    for (ch = 0; ch < 3; ch++) {
+        double gi[3], v[2], big, q;
+        int e = 0;
+        gi[0] = g[ch][0]; gi[1] = g[ch][1]; gi[2] = g[ch][2];
+        v[0] = irc__dot3d(gi, t1);
+        v[1] = irc__dot3d(gi, t2);
+        big = IRC_FABS(v[0]) > IRC_FABS(v[1]) ? IRC_FABS(v[0]) : IRC_FABS(v[1]);
+        if (big > 0.0)
+            IRC_FREXP(big, &e);
+        e -= 15;
+        /* The int8 range reaches 2^-128: smaller gradients lose bits, as
+         * float denormals do. */
+        if (e < -128) e = -128;
+        if (e > 127) e = 127;
+        out->ex[ch] = (int8_t)e;
+        for (i = 0; i < 2; i++) {
+            q = IRC_FLOOR(IRC_LDEXP(v[i], -e) + 0.5);
+            out->g[2 * ch + i] = (int16_t)(q > 32767.0 ? 32767.0 : q < -32767.0 ? -32767.0 : q);
+        }
+    }
+    out->unused = 0;
+}
+
+static void irc__grad_unpack(const irc__grad *in, const double t1[3], const double t2[3],
+                             float g[3][3])
+{
+    int ch, k;
+    for (ch = 0; ch < 3; ch++) {
+        double s = irc__grad_scale(in, ch), a = in->g[2 * ch] * s, b = in->g[2 * ch + 1] * s;
+        for (k = 0; k < 3; k++)
+            g[ch][k] = (float)(a * t1[k] + b * t2[k]);
+    }
+}
+
+static int irc__irr_check(const irc_cache *c, const void *rec, double un[3])
+{
+    const irc_record *r = (const irc_record *)rec;
+    int st, ch;
+    (void)c;
+    if ((st = irc__check_vec(r->p)) < 0 || (st = irc__check_normal(r->n, un)) < 0)
+        return st;
+    if (!irc__finite3(r->e) || !irc__finite(r->radius))
+        return IRC_ERR_NONFINITE;
+    for (ch = 0; ch < 3; ch++)
+        if (!irc__finite3(r->grad_t[ch]) || !irc__finite3(r->grad_r[ch]))
+            return IRC_ERR_NONFINITE;
+    if (!(r->radius > 0.0f) || r->e[0] < 0.0f || r->e[1] < 0.0f || r->e[2] < 0.0f)
+        return IRC_ERR_RANGE;
+    return IRC_OK;
+}
+
+static void irc__irr_pack(const irc_cache *c, const void *rec, const double un[3], void *dst)
+{
+    const irc_record *in = (const irc_record *)rec;
+    unsigned char *b = (unsigned char *)dst;
+    irc__rec *r = (irc__rec *)dst;
+    double t1[3], t2[3];
+    int ch;
+    IRC_MEMSET(dst, 0, c->rec_size);
+    for (ch = 0; ch < 3; ch++) {
+        r->p[ch] = in->p[ch];
+        r->e[ch] = in->e[ch];
+    }
+    r->r = in->radius < FLT_MIN ? FLT_MIN : in->radius > IRC_RADIUS_CAP ? IRC_RADIUS_CAP : in->radius;
+    r->n = irc__oct_encode(un);
+    irc__oct_frame(r->n, t1, t2);
+    if (c->off_t)
+        irc__grad_pack(in->grad_t, t1, t2, (irc__grad *)(void *)(b + c->off_t));
+    if (c->off_r)
+        irc__grad_pack(in->grad_r, t1, t2, (irc__grad *)(void *)(b + c->off_r));
+}
+
+static void irc__irr_unpack(const irc_cache *c, const void *src, void *rec)
+{
+    const unsigned char *b = (const unsigned char *)src;
+    const irc__rec *r = (const irc__rec *)src;
+    irc_record *out = (irc_record *)rec;
+    double t1[3], t2[3];
+    int ch;
+    IRC_MEMSET(out, 0, sizeof *out);
+    for (ch = 0; ch < 3; ch++) {
+        out->p[ch] = r->p[ch];
+        out->e[ch] = r->e[ch];
+    }
+    out->radius = r->r;
+    out->mean_dist = NAN; /* not stored */
+    irc__oct_decode(r->n, out->n);
+    irc__oct_frame(r->n, t1, t2);
+    out->features = c->cfg.features;
+    if (c->off_t)
+        irc__grad_unpack((const irc__grad *)(const void *)(b + c->off_t), t1, t2, out->grad_t);
+    if (c->off_r)
+        irc__grad_unpack((const irc__grad *)(const void *)(b + c->off_r), t1, t2, out->grad_r);
+}
+
+static int irc__irr_weigh(const irc_cache *c, const irc__rec *r, const irc__query *q,
+                          double *w, float ni[3])
+{
+    return irc__weigh(c, r, q->p, q->n, w, ni);
+}
+
+static void irc__irr_begin(const irc_cache *c, irc__acc *a)
+{
+    (void)c;
+    a->irr[0] = a->irr[1] = a->irr[2] = 0.0;
+}
+
+static void irc__irr_accumulate(const irc_cache *c, const irc__rec *r, const irc__query *q,
+                                double w, const float ni[3], irc__acc *a)
+{
+    double v[3];
+    irc__extrapolate(c, r, ni, q->p, q->n, v);
+    a->irr[0] += w * v[0];
+    a->irr[1] += w * v[1];
+    a->irr[2] += w * v[2];
+}
+
+static int irc__irr_finish(const irc_cache *c, const irc__query *q, const irc__acc *a,
+                           double w, void *out)
+{
+    float *rgb = (float *)out;
+    int ch;
+    (void)c;
+    (void)q;
+    for (ch = 0; ch < 3; ch++)
+        rgb[ch] = w > 0.0 ? (float)(a->irr[ch] / w) : 0.0f;
+    /* Records with irradiance and gradients near FLT_MAX can extrapolate
+     * past it. */
+    if (!irc__finite3(rgb))
+        return IRC_ERR_NONFINITE;
+    return w > 0.0 ? IRC_OK : IRC_MISS;
+}
+
+static void irc__irr_answer(const irc_cache *c, const void *rec, void *out)
+{
+    const irc_record *r = (const irc_record *)rec;
+    float *rgb = (float *)out;
+    (void)c;
+    rgb[0] = r->e[0];
+    rgb[1] = r->e[1];
+    rgb[2] = r->e[2];
+}
+
+const irc__kind irc__kind_irr = {
+    IRC__KIND_IRR, 0, sizeof(irc_record), irc__irr_compute, irc__irr_check,
+    irc__irr_pack, irc__irr_unpack, irc__irr_weigh, irc__irr_begin,
+    irc__irr_accumulate, irc__irr_finish, irc__irr_answer};
+
+int irc_record_compute(irc_cache *c, const float p[3], const float n[3], irc_record *out,
+                       void *host)
+{
+    return irc__compute(c, &irc__kind_irr, p, n, out, host, irc__irr_compute, 1);
+}
+
+int irc_cache_insert(irc_cache *c, const irc_record *rec)
+{
+    return irc__insert(c, &irc__kind_irr, rec);
+}
+
+int irc_cache_lookup(irc_cache *c, const float p[3], const float n[3], float rgb[3],
+                     float *weight)
+{
+    return irc__lookup(c, &irc__kind_irr, p, n, rgb, weight);
+}
+
+int irc_cache_lookup_or_compute(irc_cache *c, const float p[3], const float n[3],
+                                float rgb[3], float *weight, void *host)
+{
+    return irc__lookup_or_compute(c, &irc__kind_irr, p, n, rgb, weight, host);
+}
+
+int irc_cache_record(irc_cache *c, uint32_t id, irc_record *out)
+{
+    return irc__record_get(c, &irc__kind_irr, id, out);
+}

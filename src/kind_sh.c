@@ -1,0 +1,267 @@
+/*
+ * kind_sh.c -- the SH record kind (IRC_FEATURE_SH): from the estimator's
+ * sums (shgrad.c) to a record, its packed form and check, the weights and
+ * the extrapolation of Eq. 14-16 as the store's table, and the SH calls,
+ * thin wrappers over the store.
+ */
+#include "cache.h"
+
+/* Cap on a free-point weight: a query on a record gives 1/0. */
+#define IRC__SH_W_MAX 1e6
+
+/* The record from the sums: each usable sample stands for 2 pi/(M N)
+ * steradians, scaled by total/used when some rays failed. */
+static void irc__sh_finish(const irc_cache *c, const irc__shsum *a, irc_sh *out)
+{
+    const double dw = 2.0 * IRC_PI / c->strata * ((double)a->total / a->used);
+    double hm = a->inv_d > 0.0 ? a->used / a->inv_d : HUGE_VAL, r = hm;
+    uint32_t ch, i, k;
+    out->bands = c->cfg.sh_bands;
+    out->channels = c->sh_ch;
+    out->features = c->cfg.features;
+    out->rays = a->total;
+    out->rays_used = a->used;
+    for (ch = 0; ch < 3; ch++)
+        out->e[ch] = (float)(dw * a->e[ch]);
+    for (ch = 0; ch < c->sh_ch; ch++) {
+        double len;
+        for (i = 0; i < c->sh_n; i++) {
+            out->c[ch][i] = (float)(dw * a->c[ch][i]);
+            for (k = 0; k < 3; k++)
+                out->grad[ch][i][k] = (float)(dw * a->g[ch][3 * i + k]);
+        }
+        /* R <= |c_0|/|grad c_0|: where first-order extrapolation would
+         * change the mean radiance by 100%. */
+        len = dw * IRC_SQRT(irc__dot3d(a->g[ch], a->g[ch]));
+        if (len > 0.0 && dw * IRC_FABS(a->c[ch][0]) / len < r)
+            r = dw * IRC_FABS(a->c[ch][0]) / len;
+    }
+    if (r < c->cfg.min_radius) r = c->cfg.min_radius;
+    if (r > c->cfg.max_radius) r = c->cfg.max_radius;
+    if (r < FLT_MIN) r = FLT_MIN;
+    out->radius = (float)r;
+}
+
+static int irc__sh_check(const irc_cache *c, const void *rec, double un[3])
+{
+    const irc_sh *r = (const irc_sh *)rec;
+    uint32_t ch, i;
+    int st;
+    if ((st = irc__check_vec(r->p)) < 0)
+        return st;
+    un[0] = un[1] = un[2] = 0.0;
+    if ((r->n[0] != 0.0f || r->n[1] != 0.0f || r->n[2] != 0.0f) &&
+        (st = irc__check_normal(r->n, un)) < 0)
+        return st;
+    if (r->bands != c->cfg.sh_bands || r->channels != c->sh_ch)
+        return IRC_ERR_RANGE;
+    if (!irc__finite3(r->e) || !irc__finite(r->radius))
+        return IRC_ERR_NONFINITE;
+    for (ch = 0; ch < c->sh_ch; ch++)
+        for (i = 0; i < c->sh_n; i++)
+            if (!irc__finite(r->c[ch][i]) || !irc__finite3(r->grad[ch][i]))
+                return IRC_ERR_NONFINITE;
+    return r->radius > 0.0f && r->e[0] >= 0.0f && r->e[1] >= 0.0f && r->e[2] >= 0.0f
+               ? IRC_OK : IRC_ERR_RANGE;
+}
+
+static void irc__sh_pack(const irc_cache *c, const void *rec, const double un[3], void *out)
+{
+    const irc_sh *in = (const irc_sh *)rec;
+    unsigned char *dst = (unsigned char *)out;
+    irc__rec *r = (irc__rec *)out;
+    float *cf = (float *)(void *)(dst + c->off_sh);
+    float *gf = c->off_shg ? (float *)(void *)(dst + c->off_shg) : NULL;
+    uint32_t ch, i, k;
+    IRC_MEMSET(dst, 0, c->rec_size);
+    for (k = 0; k < 3; k++) {
+        r->p[k] = in->p[k];
+        r->e[k] = in->e[k];
+    }
+    r->r = in->radius > IRC_RADIUS_CAP ? IRC_RADIUS_CAP : in->radius;
+    r->n = un[0] == 0.0 && un[1] == 0.0 && un[2] == 0.0 ? IRC__FREE : irc__oct_encode(un);
+    for (ch = 0; ch < c->sh_ch; ch++)
+        for (i = 0; i < c->sh_n; i++) {
+            *cf++ = in->c[ch][i];
+            if (gf)
+                for (k = 0; k < 3; k++)
+                    *gf++ = in->grad[ch][i][k];
+        }
+}
+
+static void irc__sh_unpack(const irc_cache *c, const void *rec, void *dst)
+{
+    const unsigned char *src = (const unsigned char *)rec;
+    const irc__rec *r = (const irc__rec *)rec;
+    irc_sh *out = (irc_sh *)dst;
+    const float *cf = (const float *)(const void *)(src + c->off_sh);
+    const float *gf = c->off_shg ? (const float *)(const void *)(src + c->off_shg) : NULL;
+    uint32_t ch, i, k;
+    IRC_MEMSET(out, 0, sizeof *out);
+    for (k = 0; k < 3; k++) {
+        out->p[k] = r->p[k];
+        out->e[k] = r->e[k];
+    }
+    if (r->n != IRC__FREE)
+        irc__oct_decode(r->n, out->n);
+    out->radius = r->r;
+    out->bands = c->cfg.sh_bands;
+    out->channels = c->sh_ch;
+    out->features = c->cfg.features;
+    for (ch = 0; ch < c->sh_ch; ch++)
+        for (i = 0; i < c->sh_n; i++) {
+            out->c[ch][i] = *cf++;
+            if (gf)
+                for (k = 0; k < 3; k++)
+                    out->grad[ch][i][k] = *gf++;
+        }
+}
+
+/* Surface records: Ward-Heckbert (weight.c).  Free points: (R_j/d)^b
+ * within a R_j (Eq. 16 made scale-free). */
+static int irc__sh_weigh(const irc_cache *c, const irc__rec *r, const irc__query *q,
+                         double *w, float ni[3])
+{
+    double dx = (double)q->p[0] - r->p[0], dy = (double)q->p[1] - r->p[1],
+           dz = (double)q->p[2] - r->p[2], d, ra = (double)c->cfg.accuracy * r->r;
+    if (!q->free)
+        return irc__weigh(c, r, q->p, q->n, w, ni);
+    if (r->n != IRC__FREE)
+        return 0;
+    d = IRC_SQRT(dx * dx + dy * dy + dz * dz);
+    if (!(d < ra))
+        return 0;
+    *w = d * IRC__SH_W_MAX > r->r ? IRC_POW(r->r / d, c->cfg.sh_power) : IRC__SH_W_MAX;
+    if (*w > IRC__SH_W_MAX)
+        *w = IRC__SH_W_MAX;
+    return 1;
+}
+
+static void irc__sh_begin(const irc_cache *c, irc__acc *a)
+{
+    (void)c;
+    IRC_MEMSET(&a->sh, 0, sizeof a->sh);
+}
+
+/* Eq. 15: each accepted record extrapolated to p (Eq. 14), weighted. */
+static void irc__sh_gather(const irc_cache *c, const irc__rec *r, const irc__query *q,
+                               double w, const float ni[3], irc__acc *a)
+{
+    const unsigned char *b = (const unsigned char *)r;
+    const float *cf = (const float *)(const void *)(b + c->off_sh);
+    const float *gf = c->off_shg ? (const float *)(const void *)(b + c->off_shg) : NULL;
+    double d[3];
+    uint32_t ch, i, k;
+    (void)ni;
+    for (k = 0; k < 3; k++) {
+        d[k] = (double)q->p[k] - r->p[k];
+        a->sh.e[k] += w * r->e[k];
+    }
+    for (ch = 0; ch < c->sh_ch; ch++)
+        for (i = 0; i < c->sh_n; i++) {
+            double v = *cf++;
+            if (gf) {
+                for (k = 0; k < 3; k++) {
+                    v += gf[k] * d[k];
+                    a->sh.g[ch][i][k] += w * gf[k];
+                }
+                gf += 3;
+            }
+            a->sh.c[ch][i] += w * v;
+        }
+}
+
+static void irc__sh_blank(const irc_cache *c, const irc__query *q, irc_sh *out)
+{
+    uint32_t k;
+    IRC_MEMSET(out, 0, sizeof *out);
+    out->bands = c->cfg.sh_bands;
+    out->channels = c->sh_ch;
+    out->features = c->cfg.features;
+    for (k = 0; k < 3; k++) {
+        out->p[k] = q->p[k];
+        out->n[k] = q->n[k];
+    }
+}
+
+static int irc__sh_end(const irc_cache *c, const irc__query *q, const irc__acc *a, double w,
+                       void *dst)
+{
+    irc_sh *out = (irc_sh *)dst;
+    uint32_t ch, i, k;
+    int st;
+    irc__sh_blank(c, q, out);
+    if (!(w > 0.0))
+        return IRC_MISS;
+    for (k = 0; k < 3; k++)
+        out->e[k] = (float)(a->sh.e[k] / w);
+    st = irc__finite3(out->e) ? IRC_OK : IRC_ERR_NONFINITE;
+    for (ch = 0; ch < c->sh_ch; ch++)
+        for (i = 0; i < c->sh_n; i++) {
+            out->c[ch][i] = (float)(a->sh.c[ch][i] / w);
+            for (k = 0; k < 3; k++)
+                out->grad[ch][i][k] = (float)(a->sh.g[ch][i][k] / w);
+            /* Huge gradients far from their record can overflow float. */
+            if (!irc__finite(out->c[ch][i]) || !irc__finite3(out->grad[ch][i]))
+                st = IRC_ERR_NONFINITE;
+        }
+    return st;
+}
+
+static void irc__sh_answer(const irc_cache *c, const void *rec, void *out)
+{
+    (void)c;
+    *(irc_sh *)out = *(const irc_sh *)rec;
+}
+
+static int irc__sh_compute(irc__call *k, void *rec)
+{
+    irc_cache *c = k->c;
+    irc_sh *out = (irc_sh *)rec;
+    irc__shsum a;
+    double un[3];
+    int st, i;
+    IRC_MEMSET(&a, 0, sizeof a);
+    if ((st = irc__sh_sample(k, &a)) < 0)
+        return st;
+    IRC_MEMSET(out, 0, sizeof *out);
+    irc__sh_finish(c, &a, out);
+    for (i = 0; i < 3; i++) {
+        out->p[i] = k->q.p[i];
+        out->n[i] = k->q.n[i];
+    }
+    /* Finite radiances can still sum past FLT_MAX. */
+    return irc__sh_check(c, out, un);
+}
+
+const irc__kind irc__kind_sh = {
+    IRC__KIND_SH, 1, sizeof(irc_sh), irc__sh_compute, irc__sh_check,
+    irc__sh_pack, irc__sh_unpack, irc__sh_weigh, irc__sh_begin,
+    irc__sh_gather, irc__sh_end, irc__sh_answer};
+
+int irc_sh_compute(irc_cache *c, const float p[3], const float n[3], irc_sh *out, void *host)
+{
+    return irc__compute(c, &irc__kind_sh, p, n, out, host, irc__sh_compute, 1);
+}
+
+int irc_sh_insert(irc_cache *c, const irc_sh *rec)
+{
+    return irc__insert(c, &irc__kind_sh, rec);
+}
+
+int irc_sh_lookup(irc_cache *c, const float p[3], const float n[3], irc_sh *out,
+                  float *weight)
+{
+    return irc__lookup(c, &irc__kind_sh, p, n, out, weight);
+}
+
+int irc_sh_lookup_or_compute(irc_cache *c, const float p[3], const float n[3], irc_sh *out,
+                             float *weight, void *host)
+{
+    return irc__lookup_or_compute(c, &irc__kind_sh, p, n, out, weight, host);
+}
+
+int irc_sh_record(irc_cache *c, uint32_t id, irc_sh *out)
+{
+    return irc__record_get(c, &irc__kind_sh, id, out);
+}

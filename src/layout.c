@@ -1,0 +1,260 @@
+/*
+ * layout.c -- the caller's block: its parts, their sizes, init, re-attach
+ * and fini.
+ *
+ * Byte 0 of the block holds the distance (1..64) from the block's start to
+ * the cache, which sits on the first 64-byte boundary after byte 0; from
+ * there on:
+ *   struct irc_cache | lock | scratch slots | records | next links | nodes |
+ *   CLOCK bits (only with eviction)
+ * each part on a 64-byte boundary, reached by its offset from the cache.
+ * So the footprint carries 64 bytes of slack, and irc_attach can find the
+ * cache in a block copied to any address.
+ */
+#include "cache.h"
+
+typedef struct irc__layout {
+    uint64_t lock, scratch, records, next, nodes, used, total;
+    uint64_t slot_bytes, lock_bytes;
+    uint32_t rec_size, off_t, off_r, off_sh, off_shg, node_cap, samples;
+} irc__layout;
+
+static uint64_t irc__up(uint64_t x)
+{
+    return (x + (IRC__ALIGN - 1)) & ~(uint64_t)(IRC__ALIGN - 1);
+}
+
+/* Index pool: the root plus one block of 8 children per 8 records.  A leaf
+ * splits when more than 8 records sit in it, and records lie on surfaces,
+ * which fill about half of a split's 8 children: a 126 x 126 floor used
+ * 0.7 nodes a record (test_index_origin).  When the pool runs out, leaves
+ * simply grow longer (lookups stay exact, only slower).  irc_stats reports
+ * the nodes used. */
+static uint32_t irc__node_cap(uint32_t capacity)
+{
+    return 1u + 8u * (capacity / 8u + 8u);
+}
+
+/* Record bytes: the 32-byte head, then the kind's payload. */
+static void irc__record_layout(const irc_config *cfg, irc__layout *l)
+{
+    l->rec_size = (uint32_t)sizeof(irc__rec);
+    l->off_t = l->off_r = l->off_sh = l->off_shg = 0;
+    if (cfg->features & IRC_FEATURE_TRANSLATION) {
+        l->off_t = l->rec_size;
+        l->rec_size += (uint32_t)sizeof(irc__grad);
+    }
+    if (cfg->features & IRC_FEATURE_ROTATION) {
+        l->off_r = l->rec_size;
+        l->rec_size += (uint32_t)sizeof(irc__grad);
+    }
+    if (cfg->features & IRC_FEATURE_SH) {
+        uint32_t k = cfg->sh_bands * cfg->sh_bands * cfg->sh_channels;
+        l->off_sh = l->rec_size;
+        l->rec_size += k * (uint32_t)sizeof(float);
+        if (cfg->features & IRC_FEATURE_SH_GRADIENT) {
+            l->off_shg = l->rec_size;
+            l->rec_size += 3u * k * (uint32_t)sizeof(float);
+        }
+    }
+}
+
+/* A scratch slot (cache.h, irc__slot_rays and on). */
+static uint64_t irc__slot_layout(const irc_config *cfg, irc__layout *l)
+{
+    uint64_t geom = 0;
+    l->samples = cfg->strata_theta * cfg->strata_phi;
+    if (cfg->features & IRC_FEATURE_SH) {
+        l->samples *= 2u;
+        geom = (uint64_t)l->samples * 6u * sizeof(float);
+    }
+    if (cfg->features & IRC_FEATURE_VISIBILITY)
+        geom = (uint64_t)l->samples * (6u * sizeof(float) + 2u * sizeof(int32_t) +
+                                       2u * sizeof(irc__cross)) +
+               (uint64_t)cfg->strata_phi * (sizeof(int32_t) + sizeof(irc__cross));
+    return irc__up((uint64_t)l->samples * sizeof(irc__sample) +
+                   (uint64_t)cfg->max_batch * (sizeof(irc_ray) + sizeof(irc_hit)) +
+                   (uint64_t)cfg->strata_theta * 2u * sizeof(double) + geom);
+}
+
+/* In 64-bit arithmetic, so that a 32-bit size_t is checked, not wrapped. */
+static void irc__layout_of(const irc_config *cfg, uint32_t capacity, irc__layout *l)
+{
+    uint64_t at = irc__up(sizeof(irc_cache));
+    irc__record_layout(cfg, l);
+    l->slot_bytes = irc__slot_layout(cfg, l);
+    l->node_cap = irc__node_cap(capacity);
+    l->lock_bytes = irc__up(cfg->port->lock_size ? cfg->port->lock_size : 1);
+    l->lock = at;
+    at += l->lock_bytes;
+    l->scratch = at;
+    at += (uint64_t)cfg->threads * l->slot_bytes;
+    l->records = at;
+    at += irc__up((uint64_t)capacity * l->rec_size);
+    l->next = at;
+    at += irc__up((uint64_t)capacity * sizeof(uint32_t));
+    l->nodes = at;
+    at += irc__up((uint64_t)l->node_cap * sizeof(irc__node));
+    l->used = at;
+    if (cfg->evict == IRC_EVICT_CLOCK)
+        at += irc__up(((uint64_t)capacity + 63u) / 64u * sizeof(uint64_t));
+    l->total = at;
+}
+
+int irc_footprint(const irc_config *cfg, uint32_t max_records, size_t *bytes)
+{
+    irc_config r;
+    irc__layout l;
+    int st;
+    if (!bytes)
+        return IRC_ERR_NULL;
+    if ((st = irc__config_resolve(cfg, &r)) < 0)
+        return st;
+    if (max_records == 0 || max_records > IRC_MAX_RECORDS)
+        return IRC_ERR_CONFIG;
+    irc__layout_of(&r, max_records, &l);
+    if (l.total > (uint64_t)(SIZE_MAX - IRC__ALIGN))
+        return IRC_ERR_CONFIG;
+    *bytes = (size_t)(l.total + IRC__ALIGN);
+    return IRC_OK;
+}
+
+/* The first 64-byte boundary after the block's byte 0. */
+static size_t irc__pad(const void *buffer)
+{
+    return IRC__ALIGN - ((uintptr_t)buffer & (IRC__ALIGN - 1));
+}
+
+/* The pointers a block cannot carry from one address or process to
+ * another: taken from the caller at init and at attach. */
+static void irc__attach_pointers(irc_cache *c, const irc_config *cfg, const irc_port *port)
+{
+    c->cfg.trace = cfg->trace;
+    c->cfg.context = cfg->context;
+    c->cfg.port = c->port = port;
+    c->cfg.buffer = cfg->buffer;
+    c->cfg.buffer_size = cfg->buffer_size;
+    c->kind = c->kind_id == IRC__KIND_SH ? &irc__kind_sh : &irc__kind_irr;
+}
+
+static void irc__set_parts(irc_cache *c, const irc__layout *l)
+{
+    c->rec_size = l->rec_size;
+    c->off_t = l->off_t;
+    c->off_r = l->off_r;
+    c->off_sh = l->off_sh;
+    c->off_shg = l->off_shg;
+    c->slot_samples = l->samples;
+    c->node_cap = l->node_cap;
+    c->lock_bytes = (size_t)l->lock_bytes;
+    c->slot_bytes = (size_t)l->slot_bytes;
+    c->total_bytes = (size_t)l->total;
+    c->o_lock = (size_t)l->lock;
+    c->o_scratch = (size_t)l->scratch;
+    c->o_records = (size_t)l->records;
+    c->o_next = (size_t)l->next;
+    c->o_nodes = (size_t)l->nodes;
+    c->o_used = c->cfg.evict == IRC_EVICT_CLOCK ? (size_t)l->used : 0;
+}
+
+int irc_init(const irc_config *cfg, uint32_t max_records, irc_cache **out)
+{
+    irc_config r;
+    irc__layout l;
+    unsigned char *base;
+    irc_cache *c;
+    size_t need, pad;
+    int st;
+    if (!out)
+        return IRC_ERR_NULL;
+    if ((st = irc_footprint(cfg, max_records, &need)) < 0)
+        return st;
+    if (!cfg->buffer)
+        return IRC_ERR_NULL;
+    if (cfg->buffer_size < need)
+        return IRC_ERR_NOMEM;
+    irc__config_resolve(cfg, &r);
+    irc__layout_of(&r, max_records, &l);
+    pad = irc__pad(cfg->buffer);
+    base = (unsigned char *)cfg->buffer + pad;
+    IRC_MEMSET(base, 0, (size_t)l.total);
+    c = (irc_cache *)(void *)base;
+    c->abi = IRC__ABI;
+    c->capacity = max_records;
+    c->cfg = r;
+    c->kind_id = (r.features & IRC_FEATURE_SH) ? IRC__KIND_SH : IRC__KIND_IRR;
+    irc__attach_pointers(c, cfg, r.port);
+    irc__set_parts(c, &l);
+    c->strata = r.strata_theta * r.strata_phi;
+    c->keep_geom = (r.features & (IRC_FEATURE_VISIBILITY | IRC_FEATURE_SH)) != 0;
+    if (r.features & IRC_FEATURE_SH) {
+        c->sh_n = r.sh_bands * r.sh_bands;
+        c->sh_ch = r.sh_channels;
+    }
+    irc__index_reset(c);
+    if (c->port->lock_init(irc__lock(c)) < 0)
+        return IRC_ERR_PORT;
+    c->magic = IRC__MAGIC;
+    *(unsigned char *)cfg->buffer = (unsigned char)pad;
+    *out = c;
+    return IRC_OK;
+}
+
+/* Reads the cache's header where byte 0 says it is (it may sit at any
+ * alignment now) and checks it belongs to this build. */
+static int irc__find(const irc_config *cfg, size_t *at, irc_cache *head)
+{
+    const unsigned char *b = (const unsigned char *)cfg->buffer;
+    size_t pad = b[0];
+    if (pad < 1 || pad > IRC__ALIGN || cfg->buffer_size < pad + sizeof *head)
+        return cfg->buffer_size < IRC__ALIGN + sizeof *head ? IRC_ERR_NOMEM : IRC_ERR_CONFIG;
+    IRC_MEMCPY(head, b + pad, sizeof *head);
+    if (head->magic != IRC__MAGIC || head->abi != IRC__ABI ||
+        (head->kind_id != IRC__KIND_IRR && head->kind_id != IRC__KIND_SH))
+        return IRC_ERR_CONFIG;
+    if (head->total_bytes + IRC__ALIGN > cfg->buffer_size)
+        return IRC_ERR_NOMEM;
+    *at = pad;
+    return IRC_OK;
+}
+
+int irc_attach(const irc_config *cfg, irc_cache **out)
+{
+    irc_cache head, *c;
+    const irc_port *port;
+    size_t was, pad;
+    int st;
+    if (!cfg || !out || !cfg->buffer || !cfg->trace)
+        return IRC_ERR_NULL;
+    port = cfg->port ? cfg->port : irc_port_default;
+    if ((st = irc__find(cfg, &was, &head)) < 0)
+        return st;
+    if (!port->lock_init || !port->read_lock || port->lock_size > head.lock_bytes)
+        return IRC_ERR_CONFIG;
+    pad = irc__pad(cfg->buffer);
+    c = (irc_cache *)(void *)((unsigned char *)cfg->buffer + pad);
+    if (pad != was)
+        IRC_MEMMOVE(c, (unsigned char *)cfg->buffer + was, head.total_bytes);
+    *(unsigned char *)cfg->buffer = (unsigned char)pad;
+    irc__attach_pointers(c, cfg, port);
+    /* The copied lock object is the old address's: made anew.  Nothing
+     * holds it, and no slot is busy, in a block at rest. */
+    IRC_MEMSET(irc__lock(c), 0, c->lock_bytes);
+    c->slots_busy = 0;
+    /* A lock that cannot be made leaves the block moved but whole:
+     * irc_attach may be called again. */
+    if (port->lock_init(irc__lock(c)) < 0)
+        return IRC_ERR_PORT;
+    *out = c;
+    return IRC_OK;
+}
+
+int irc_fini(irc_cache *c)
+{
+    int st = irc__enter(c, NULL);
+    if (st < 0)
+        return st;
+    c->port->lock_destroy(irc__lock(c));
+    c->magic = 0;
+    return IRC_OK;
+}

@@ -1,0 +1,415 @@
+/*
+ * store.c -- the one record store behind every public call: the handle
+ * check, scratch slots, insert with CLOCK eviction, the lookup driver
+ * (index query, weighting, accumulation through the record kind's table),
+ * lookup-or-compute, and the counters.  Lookups hold the port's read lock;
+ * anything that changes records or the index holds its write lock; the
+ * host's callback runs with no lock held.  Counters are updated only once
+ * a call has succeeded, so a call that fails leaves the block as it was.
+ */
+#include "cache.h"
+
+/* Every public call on a cache starts here: a live cache (IRC_ERR_CONFIG
+ * for anything else), of the kind the call serves when want is set. */
+int irc__enter(const irc_cache *c, const irc__kind *want)
+{
+    if (!c)
+        return IRC_ERR_NULL;
+    if (c->magic != IRC__MAGIC)
+        return IRC_ERR_CONFIG;
+    return want && c->kind != want ? IRC_ERR_UNSUPPORTED : IRC_OK;
+}
+
+/* A finite point and a usable normal; no normal is a free point, for the
+ * kinds that have them. */
+int irc__query_make(const irc_cache *c, const float p[3], const float n[3], irc__query *q)
+{
+    int st, k;
+    if ((st = irc__check_vec(p)) < 0)
+        return st;
+    q->free = n == NULL;
+    if (q->free) {
+        if (!c->kind->free_points)
+            return IRC_ERR_NULL;
+        q->un[0] = q->un[1] = q->un[2] = 0.0;
+    } else if ((st = irc__check_normal(n, q->un)) < 0) {
+        return st;
+    }
+    for (k = 0; k < 3; k++) {
+        q->p[k] = p[k];
+        q->n[k] = (float)q->un[k];
+    }
+    return IRC_OK;
+}
+
+void irc__count(irc_cache *c, int which, uint64_t v)
+{
+    c->port->fetch_add(&c->ctr[which], v);
+}
+
+/* Claims a free scratch slot (index in *t).  When all are taken it waits
+ * through the port's yield, so a miss always gets its value; only a cache
+ * told not to wait, or a port that cannot, reports IRC_ERR_BUSY. */
+static int irc__slot_claim(irc_cache *c, uint32_t *t, int *waited)
+{
+    for (;;) {
+        uint64_t busy = c->port->load(&c->slots_busy);
+        uint32_t i;
+        for (i = 0; i < c->cfg.threads && (busy >> i & 1u); i++)
+            ;
+        if (i < c->cfg.threads) {
+            if (c->port->cas(&c->slots_busy, busy, busy | (1ull << i))) {
+                *t = i;
+                return IRC_OK;
+            }
+            continue;
+        }
+        if (c->cfg.no_wait || !c->port->yield)
+            return IRC_ERR_BUSY;
+        *waited = 1;
+        c->port->yield();
+    }
+}
+
+/* Zeroes the slot, so that a failed call leaves the block as it was and no
+ * samples outlive it, and releases it through the acq_rel CAS, so that its
+ * next owner sees this thread's writes as done (a relaxed add would not). */
+static void irc__slot_release(irc_cache *c, uint32_t t)
+{
+    uint64_t busy;
+    IRC_MEMSET(irc__slot(c, t), 0, c->slot_bytes);
+    do
+        busy = c->port->load(&c->slots_busy);
+    while (!c->port->cas(&c->slots_busy, busy, busy & ~(1ull << t)));
+}
+
+/* Runs fn with slot t, then gives the slot back. */
+static int irc__run(irc_cache *c, irc__call *k, uint32_t t, void *host,
+                    int (*fn)(irc__call *k, void *out), void *out)
+{
+    int st;
+    k->c = c;
+    k->slot = irc__slot(c, t);
+    k->host = host;
+    k->rays = 0;
+    st = fn(k, out);
+    irc__slot_release(c, t);
+    return st;
+}
+
+static void irc__count_compute(irc_cache *c, const irc__call *k, int record, int waited)
+{
+    if (record)
+        irc__count(c, IRC__C_COMPUTES, 1);
+    if (waited)
+        irc__count(c, IRC__C_WAITS, 1);
+    irc__count(c, IRC__C_RAYS, k->rays);
+}
+
+int irc__compute(irc_cache *c, const irc__kind *want, const float p[3], const float n[3],
+                 void *out, void *host, int (*fn)(irc__call *k, void *out), int record)
+{
+    irc__call k;
+    uint32_t t;
+    int st, waited = 0;
+    if ((st = irc__enter(c, want)) < 0)
+        return st;
+    if (!out)
+        return IRC_ERR_NULL;
+    if ((st = irc__query_make(c, p, n, &k.q)) < 0 ||
+        (st = irc__slot_claim(c, &t, &waited)) < 0 ||
+        (st = irc__run(c, &k, t, host, fn, out)) < 0)
+        return st;
+    irc__count_compute(c, &k, record, waited);
+    return IRC_OK;
+}
+
+/* Second-chance CLOCK: the hand clears the bit of every used record it
+ * passes and stops at the first unused one.  Two turns at most. */
+static uint32_t irc__clock_victim(irc_cache *c)
+{
+    uint64_t *used = irc__used(c);
+    for (;;) {
+        uint32_t id = c->hand;
+        uint64_t *w = &used[id >> 6], bit = 1ull << (id & 63u);
+        c->hand = id + 1 == c->capacity ? 0 : id + 1;
+        if (!(c->port->load(w) & bit))
+            return id;
+        c->port->store(w, c->port->load(w) & ~bit);
+    }
+}
+
+/* Stores a packed record (rec_size bytes, already checked) in a free slot,
+ * or in CLOCK's victim. */
+static int irc__store(irc_cache *c, const void *packed)
+{
+    uint32_t id;
+    if (c->port->write_lock(irc__lock(c)) < 0)
+        return IRC_ERR_PORT;
+    if (c->count < c->capacity) {
+        id = c->count++;
+    } else if (c->o_used) {
+        id = irc__clock_victim(c);
+        irc__index_remove(c, id);
+        irc__count(c, IRC__C_EVICTIONS, 1);
+    } else {
+        c->port->write_unlock(irc__lock(c));
+        return IRC_ERR_FULL;
+    }
+    IRC_MEMCPY(irc__rec_at(c, id), packed, c->rec_size);
+    irc__index_insert(c, id);
+    irc__count(c, IRC__C_INSERTS, 1);
+    c->port->write_unlock(irc__lock(c));
+    return IRC_OK;
+}
+
+static int irc__insert_checked(irc_cache *c, const void *rec)
+{
+    union { irc__rec head; float f[IRC__REC_MAX / sizeof(float)]; } packed;
+    double un[3];
+    int st;
+    if ((st = c->kind->check(c, rec, un)) < 0)
+        return st;
+    c->kind->pack(c, rec, un, &packed);
+    return irc__store(c, &packed);
+}
+
+int irc__insert(irc_cache *c, const irc__kind *want, const void *rec)
+{
+    int st = irc__enter(c, want);
+    if (st < 0)
+        return st;
+    return rec ? irc__insert_checked(c, rec) : IRC_ERR_NULL;
+}
+
+/* CLOCK's use bit: set by lookups, only when not yet set (no write when the
+ * line is shared). */
+static void irc__mark_used(irc_cache *c, uint32_t id)
+{
+    uint64_t *used = irc__used(c);
+    if (used) {
+        uint64_t *word = &used[id >> 6], bit = 1ull << (id & 63u);
+        if (!(c->port->load(word) & bit))
+            c->port->fetch_or(word, bit);
+    }
+}
+
+/* One lookup's walk: the records of every list the index hands over that
+ * the kind accepts, accumulated (acc set) or collected as ids. */
+typedef struct irc__walk {
+    irc_cache *c;
+    const irc__query *q;
+    irc__acc *acc;
+    double w;
+    uint32_t *ids, cap, found;
+} irc__walk;
+
+static void irc__visit(void *ud, uint32_t id)
+{
+    irc__walk *v = (irc__walk *)ud;
+    const irc_cache *c = v->c;
+    const uint32_t *next = irc__next(c);
+    for (; id != IRC__NIL; id = next[id]) {
+        const irc__rec *r = irc__rec_at(c, id);
+        double w;
+        float ni[3];
+        if (!irc__within_reach(c, r, v->q->p) || !c->kind->weigh(c, r, v->q, &w, ni))
+            continue;
+        v->w += w;
+        if (v->acc) {
+            c->kind->accumulate(c, r, v->q, w, ni, v->acc);
+            irc__mark_used(v->c, id);
+        } else {
+            if (v->found < v->cap)
+                v->ids[v->found] = id;
+            v->found++;
+        }
+    }
+}
+
+static int irc__walk_index(irc_cache *c, irc__walk *v)
+{
+    if (c->port->read_lock(irc__lock(c)) < 0)
+        return IRC_ERR_PORT;
+    irc__index_query(c, v->q->p, irc__visit, v);
+    c->port->read_unlock(irc__lock(c));
+    return IRC_OK;
+}
+
+static int irc__lookup_once(irc_cache *c, const irc__query *q, void *out, float *weight)
+{
+    irc__acc acc;
+    irc__walk v;
+    int st;
+    IRC_MEMSET(&v, 0, sizeof v);
+    v.c = c;
+    v.q = q;
+    v.acc = &acc;
+    c->kind->begin(c, &acc);
+    if ((st = irc__walk_index(c, &v)) < 0)
+        return st;
+    if (weight)
+        *weight = (float)v.w;
+    return c->kind->finish(c, q, &acc, v.w, out);
+}
+
+/* Counts a lookup that returned st (and a hit when it answered).  Errors
+ * count nothing. */
+static int irc__count_lookup(irc_cache *c, int st)
+{
+    if (st < 0)
+        return st;
+    irc__count(c, IRC__C_LOOKUPS, 1);
+    if (st == IRC_OK)
+        irc__count(c, IRC__C_HITS, 1);
+    return st;
+}
+
+int irc__lookup(irc_cache *c, const irc__kind *want, const float p[3], const float n[3],
+                void *out, float *weight)
+{
+    irc__query q;
+    int st;
+    if ((st = irc__enter(c, want)) < 0)
+        return st;
+    if (!out)
+        return IRC_ERR_NULL;
+    if ((st = irc__query_make(c, p, n, &q)) < 0)
+        return st;
+    return irc__count_lookup(c, irc__lookup_once(c, &q, out, weight));
+}
+
+/* The end of a miss: the computed record offered to the pool.  A full
+ * pool is IRC_NOT_STORED, counted, not an error. */
+static int irc__keep(irc_cache *c, const void *rec, void *out, float *weight)
+{
+    int st = irc__insert_checked(c, rec);
+    if (st < 0 && st != IRC_ERR_FULL)
+        return st;
+    irc__count(c, IRC__C_LOOKUPS, 1);
+    if (st == IRC_ERR_FULL)
+        irc__count(c, IRC__C_NOT_STORED, 1);
+    c->kind->answer(c, rec, out);
+    if (weight)
+        *weight = 0.0f;
+    return st == IRC_ERR_FULL ? IRC_NOT_STORED : IRC_OK;
+}
+
+int irc__lookup_or_compute(irc_cache *c, const irc__kind *want, const float p[3],
+                           const float n[3], void *out, float *weight, void *host)
+{
+    union { irc_record irr; irc_sh sh; } rec;
+    irc__call k;
+    uint32_t t;
+    int st, waited = 0;
+    if ((st = irc__enter(c, want)) < 0)
+        return st;
+    if (!out)
+        return IRC_ERR_NULL;
+    if ((st = irc__query_make(c, p, n, &k.q)) < 0)
+        return st;
+    if ((st = irc__lookup_once(c, &k.q, out, weight)) != IRC_MISS)
+        return irc__count_lookup(c, st);
+    if ((st = irc__slot_claim(c, &t, &waited)) < 0)
+        return st;
+    /* While this thread waited, another may have stored a record here. */
+    if (waited && (st = irc__lookup_once(c, &k.q, out, weight)) != IRC_MISS) {
+        irc__slot_release(c, t);
+        return irc__count_lookup(c, st);
+    }
+    if ((st = irc__run(c, &k, t, host, c->kind->compute, &rec)) < 0)
+        return st;
+    irc__count_compute(c, &k, 1, waited);
+    return irc__keep(c, &rec, out, weight);
+}
+
+int irc__record_get(irc_cache *c, const irc__kind *want, uint32_t id, void *out)
+{
+    int st = irc__enter(c, want);
+    if (st < 0)
+        return st;
+    if (!out)
+        return IRC_ERR_NULL;
+    if (id >= c->capacity)
+        return IRC_ERR_RANGE;
+    if (c->port->read_lock(irc__lock(c)) < 0)
+        return IRC_ERR_PORT;
+    st = id < c->count ? IRC_OK : IRC_MISS;
+    if (st == IRC_OK)
+        c->kind->unpack(c, irc__rec_at(c, id), out);
+    c->port->read_unlock(irc__lock(c));
+    return st;
+}
+
+int irc_cache_neighbours(irc_cache *c, const float p[3], const float n[3],
+                         uint32_t *ids, uint32_t cap, uint32_t *count)
+{
+    irc__query q;
+    irc__walk v;
+    int st;
+    if ((st = irc__enter(c, NULL)) < 0 || (st = irc__query_make(c, p, n, &q)) < 0)
+        return st;
+    if (!count || (!ids && cap))
+        return IRC_ERR_NULL;
+    IRC_MEMSET(&v, 0, sizeof v);
+    v.c = c;
+    v.q = &q;
+    v.ids = ids;
+    v.cap = cap;
+    if ((st = irc__walk_index(c, &v)) < 0)
+        return st;
+    *count = v.found;
+    return IRC_OK;
+}
+
+int irc_cache_clear(irc_cache *c)
+{
+    int st = irc__enter(c, NULL);
+    if (st < 0)
+        return st;
+    if (c->port->write_lock(irc__lock(c)) < 0)
+        return IRC_ERR_PORT;
+    c->count = 0;
+    c->hand = 0;
+    IRC_MEMSET(irc__rec_at(c, 0), 0, (size_t)c->capacity * c->rec_size);
+    IRC_MEMSET(irc__next(c), 0, (size_t)c->capacity * sizeof(uint32_t));
+    IRC_MEMSET(irc__nodes(c), 0, (size_t)c->nodes_used * sizeof(irc__node));
+    if (c->o_used)
+        IRC_MEMSET(irc__used(c), 0, ((size_t)c->capacity + 63u) / 64u * sizeof(uint64_t));
+    irc__index_reset(c);
+    c->port->write_unlock(irc__lock(c));
+    return IRC_OK;
+}
+
+int irc_cache_stats(irc_cache *c, irc_stats *out)
+{
+    int st = irc__enter(c, NULL);
+    if (st < 0)
+        return st;
+    if (!out)
+        return IRC_ERR_NULL;
+    if (c->port->read_lock(irc__lock(c)) < 0)
+        return IRC_ERR_PORT;
+    IRC_MEMSET(out, 0, sizeof *out);
+    out->records = c->count;
+    out->index_nodes = c->nodes_used;
+    c->port->read_unlock(irc__lock(c));
+    out->capacity = c->capacity;
+    out->inserts = c->port->load(&c->ctr[IRC__C_INSERTS]);
+    out->evictions = c->port->load(&c->ctr[IRC__C_EVICTIONS]);
+    out->lookups = c->port->load(&c->ctr[IRC__C_LOOKUPS]);
+    out->hits = c->port->load(&c->ctr[IRC__C_HITS]);
+    out->computes = c->port->load(&c->ctr[IRC__C_COMPUTES]);
+    out->not_stored = c->port->load(&c->ctr[IRC__C_NOT_STORED]);
+    out->waits = c->port->load(&c->ctr[IRC__C_WAITS]);
+    out->rays = c->port->load(&c->ctr[IRC__C_RAYS]);
+    out->index_nodes_max = c->node_cap;
+    out->record_bytes = c->rec_size;
+    out->bytes_records = (size_t)c->capacity * c->rec_size;
+    out->bytes_index = (size_t)c->capacity * sizeof(uint32_t) +
+                       (size_t)c->node_cap * sizeof(irc__node) +
+                       (c->o_used ? ((size_t)c->capacity + 63u) / 64u * 8u : 0u);
+    out->bytes_scratch = (size_t)c->cfg.threads * c->slot_bytes;
+    out->bytes_total = c->total_bytes;
+    return IRC_OK;
+}
