@@ -328,7 +328,10 @@ typedef struct irc_config {
 #define IRC_MAX_BATCH 4096u
 #define IRC_MAX_THREADS 64u
 #define IRC_MAX_RECORDS 0x3fffffffu
-#define IRC_RADIUS_CAP 1e30f  /* radii are clamped to this (all rays escaped) */
+/* Radii are clamped to 2^100 (about 1.27e30; all rays escaped): a power of
+ * two, so that it compares equal to a stored radius in any float
+ * evaluation (x87's excess precision included). */
+#define IRC_RADIUS_CAP 1267650600228229401496703205376.0f
 #define IRC_SH_MAX_BANDS 5u
 #define IRC_SH_MAX_COEFFS 25u /* IRC_SH_MAX_BANDS squared */
 

@@ -11,6 +11,9 @@
 #define IRC__MAGIC 0x69726332u /* "irc2" */
 #define IRC__NIL 0xffffffffu
 #define IRC__ALIGN 64u
+/* The radius cap as a float: compared as the literal, an x87 build (i386)
+ * keeps 1e30 unrounded and finds the stored cap above it. */
+#define IRC__CAP ((float)IRC_RADIUS_CAP)
 
 /* What a block must agree on to be re-attached (irc_attach): the layout's
  * version, pointer and size_t widths, byte order. */
@@ -238,7 +241,6 @@ double irc__grad_scale(const irc__grad *g, int ch);
 /* store.c: the handle, scratch slots, insert and eviction, the lookup
  * driver, counters; every public call goes through it. */
 int irc__enter(const irc_cache *c, const irc__kind *want);
-int irc__query_make(const irc_cache *c, const float p[3], const float n[3], irc__query *q);
 int irc__compute(irc_cache *c, const irc__kind *want, const float p[3], const float n[3],
                  void *out, void *host, int (*fn)(irc__call *k, void *out), int record);
 int irc__insert(irc_cache *c, const irc__kind *want, const void *rec);

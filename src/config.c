@@ -53,9 +53,9 @@ static int irc__features_resolve(irc_config *out)
 static int irc__radii_resolve(irc_config *out)
 {
     if (out->max_radius == 0.0f)
-        out->max_radius = IRC_RADIUS_CAP;
-    if (!(out->min_radius >= 0.0f && out->min_radius < IRC_RADIUS_CAP) ||
-        !(out->max_radius > out->min_radius && out->max_radius <= IRC_RADIUS_CAP))
+        out->max_radius = IRC__CAP;
+    if (!(out->min_radius >= 0.0f && out->min_radius < IRC__CAP) ||
+        !(out->max_radius > out->min_radius && out->max_radius <= IRC__CAP))
         return IRC_ERR_CONFIG;
     return IRC_OK;
 }

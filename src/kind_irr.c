@@ -77,7 +77,7 @@ static void irc__irr_pack(const irc_cache *c, const void *rec, const double un[3
         r->p[ch] = in->p[ch];
         r->e[ch] = in->e[ch];
     }
-    r->r = in->radius < FLT_MIN ? FLT_MIN : in->radius > IRC_RADIUS_CAP ? IRC_RADIUS_CAP : in->radius;
+    r->r = in->radius < FLT_MIN ? FLT_MIN : in->radius > IRC__CAP ? IRC__CAP : in->radius;
     r->n = irc__oct_encode(un);
     irc__oct_frame(r->n, t1, t2);
     if (c->off_t)

@@ -78,7 +78,7 @@ static void irc__sh_pack(const irc_cache *c, const void *rec, const double un[3]
         r->p[k] = in->p[k];
         r->e[k] = in->e[k];
     }
-    r->r = in->radius > IRC_RADIUS_CAP ? IRC_RADIUS_CAP : in->radius;
+    r->r = in->radius > IRC__CAP ? IRC__CAP : in->radius;
     r->n = un[0] == 0.0 && un[1] == 0.0 && un[2] == 0.0 ? IRC__FREE : irc__oct_encode(un);
     for (ch = 0; ch < c->sh_ch; ch++)
         for (i = 0; i < c->sh_n; i++) {

@@ -22,7 +22,8 @@ int irc__enter(const irc_cache *c, const irc__kind *want)
 
 /* A finite point and a usable normal; no normal is a free point, for the
  * kinds that have them. */
-int irc__query_make(const irc_cache *c, const float p[3], const float n[3], irc__query *q)
+static int irc__query_make(const irc_cache *c, const float p[3], const float n[3],
+                           irc__query *q)
 {
     int st, k;
     if ((st = irc__check_vec(p)) < 0)
@@ -40,6 +41,17 @@ int irc__query_make(const irc_cache *c, const float p[3], const float n[3], irc_
         q->n[k] = (float)q->un[k];
     }
     return IRC_OK;
+}
+
+/* What every call that takes a query checks first, in this order: the
+ * cache, the output, the query. */
+static int irc__open(const irc_cache *c, const irc__kind *want, const void *out,
+                     const float p[3], const float n[3], irc__query *q)
+{
+    int st = irc__enter(c, want);
+    if (st < 0)
+        return st;
+    return out ? irc__query_make(c, p, n, q) : IRC_ERR_NULL;
 }
 
 void irc__count(irc_cache *c, int which, uint64_t v)
@@ -112,11 +124,7 @@ int irc__compute(irc_cache *c, const irc__kind *want, const float p[3], const fl
     irc__call k;
     uint32_t t;
     int st, waited = 0;
-    if ((st = irc__enter(c, want)) < 0)
-        return st;
-    if (!out)
-        return IRC_ERR_NULL;
-    if ((st = irc__query_make(c, p, n, &k.q)) < 0 ||
+    if ((st = irc__open(c, want, out, p, n, &k.q)) < 0 ||
         (st = irc__slot_claim(c, &t, &waited)) < 0 ||
         (st = irc__run(c, &k, t, host, fn, out)) < 0)
         return st;
@@ -269,12 +277,8 @@ int irc__lookup(irc_cache *c, const irc__kind *want, const float p[3], const flo
                 void *out, float *weight)
 {
     irc__query q;
-    int st;
-    if ((st = irc__enter(c, want)) < 0)
-        return st;
-    if (!out)
-        return IRC_ERR_NULL;
-    if ((st = irc__query_make(c, p, n, &q)) < 0)
+    int st = irc__open(c, want, out, p, n, &q);
+    if (st < 0)
         return st;
     return irc__count_lookup(c, irc__lookup_once(c, &q, out, weight));
 }
@@ -302,11 +306,7 @@ int irc__lookup_or_compute(irc_cache *c, const irc__kind *want, const float p[3]
     irc__call k;
     uint32_t t;
     int st, waited = 0;
-    if ((st = irc__enter(c, want)) < 0)
-        return st;
-    if (!out)
-        return IRC_ERR_NULL;
-    if ((st = irc__query_make(c, p, n, &k.q)) < 0)
+    if ((st = irc__open(c, want, out, p, n, &k.q)) < 0)
         return st;
     if ((st = irc__lookup_once(c, &k.q, out, weight)) != IRC_MISS)
         return irc__count_lookup(c, st);
