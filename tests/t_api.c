@@ -3,7 +3,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "cache.h"
+#include "cache.h" /* internals on purpose: a busy slot, no_wait */
 #include "scenes.h"
 #include "test.h"
 
@@ -20,7 +20,7 @@ TEST(test_config_checks)
 {
     irc_config cfg;
     size_t bytes;
-    struct { const char *what; int want; } cases[48];
+    struct { const char *what; int want; } cases[64];
     int i, n = 0;
     sky_init();
 #define CASE(field_set, code)                                               \
@@ -53,6 +53,8 @@ TEST(test_config_checks)
     CASE(cfg.accuracy = NAN, IRC_ERR_CONFIG);
     CASE(cfg.min_radius = -1.0f, IRC_ERR_CONFIG);
     CASE((cfg.min_radius = 2.0f, cfg.max_radius = 1.0f), IRC_ERR_CONFIG);
+    CASE(cfg.no_wait = 2, IRC_ERR_CONFIG);
+    CASE(cfg.no_wait = 1, IRC_OK);
     CASE(cfg.strata_theta = 2000, IRC_ERR_CONFIG);
     CASE((cfg.strata_theta = 1024, cfg.strata_phi = 4097), IRC_ERR_CONFIG);
     CASE((cfg.strata_theta = 1024, cfg.strata_phi = 4096), IRC_OK);
@@ -68,9 +70,19 @@ TEST(test_config_checks)
     CHECK(irc_footprint(NULL, 16, &bytes) == IRC_ERR_NULL, "null cfg");
     CHECK(irc_footprint(&cfg, 16, NULL) == IRC_ERR_NULL, "null out");
     CHECK(irc_footprint(&cfg, 0, &bytes) == IRC_ERR_CONFIG, "zero records");
-    for (i = IRC_ERR_LAST; i <= IRC_NOT_STORED; i++)
+    /* Every library code has a text of its own: not the host-code text,
+     * not the unknown-status text, and no two alike. */
+    for (i = IRC_ERR_LAST; i <= IRC_NOT_STORED; i++) {
+        int j;
         CHECK(irc_strerror(i) != NULL && *irc_strerror(i), "strerror %d", i);
+        CHECK(strcmp(irc_strerror(i), irc_strerror(IRC_ERR_LAST - 1)) != 0 &&
+                  strcmp(irc_strerror(i), irc_strerror(IRC_NOT_STORED + 1)) != 0,
+              "strerror %d is a fallback: %s", i, irc_strerror(i));
+        for (j = IRC_ERR_LAST; j < i; j++)
+            CHECK(strcmp(irc_strerror(i), irc_strerror(j)) != 0, "strerror %d = %d", i, j);
+    }
     CHECK(strcmp(irc_strerror(-1000), irc_strerror(IRC_ERR_LAST - 1)) == 0, "host codes");
+    CHECK(strcmp(irc_strerror(1000), irc_strerror(-1000)) != 0, "unknown positive status");
 }
 
 /* A cache pays only for what it enables; the compile-time bound holds. */

@@ -3,7 +3,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "cache.h"
+#include "cache.h" /* internals on purpose: records scanned without the index */
 #include "scenes.h"
 #include "test.h"
 

@@ -1,7 +1,7 @@
 /* t_sh.c -- the real SH basis and its Cartesian gradient. */
 #include <math.h>
 
-#include "cache.h"
+#include "cache.h" /* internals on purpose: the SH basis (irc__sh_eval) */
 #include "scenes.h"
 #include "test.h"
 

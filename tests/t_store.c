@@ -8,7 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "cache.h"
+#include "cache.h" /* internals on purpose: candidates the index hands over */
 #include "scenes.h"
 #include "test.h"
 

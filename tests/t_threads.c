@@ -5,7 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "cache.h"
+#include "cache.h" /* internals on purpose: stored bytes and index compared */
 #include "scenes.h"
 #include "test.h"
 

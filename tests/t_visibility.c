@@ -3,7 +3,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "cache.h"
+#include "irrcache.h"
 #include "scenes.h"
 #include "test.h"
 
