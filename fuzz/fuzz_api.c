@@ -191,6 +191,44 @@ static int call(fuzz_in *in, irc_cache *c, uint32_t cap)
     }
 }
 
+/* The filled block copied to a shifted address and re-attached answers
+ * as the original does: stats, and lookups at points from the input. */
+static void relocated(fuzz_in *in, irc_config cfg, irc_cache *c, size_t bytes)
+{
+    size_t shift = 1u + fz_u8(in) % 127u;
+    unsigned char *mem = (unsigned char *)malloc(bytes + 128u);
+    irc_cache *copy;
+    irc_stats a, b;
+    int k;
+    if (!mem)
+        return;
+    memcpy(mem + shift, cfg.buffer, bytes);
+    cfg.buffer = mem + shift;
+    check(irc_attach(&cfg, &copy) == IRC_OK);
+    check(irc_cache_stats(c, &a) == IRC_OK && irc_cache_stats(copy, &b) == IRC_OK);
+    check(a.records == b.records && a.index_nodes == b.index_nodes);
+    for (k = 0; k < 4 && in->n > 0; k++) {
+        float p[3], n[3], ra[3] = {0, 0, 0}, rb[3] = {0, 0, 0}, wa = 0.0f, wb = 0.0f;
+        int sa, sb;
+        read_vec(in, p);
+        read_vec(in, n);
+        if (cfg.features & (IRC_FEATURE_SH | IRC_FEATURE_SH_GRADIENT)) {
+            irc_sh ha, hb;
+            const float *nn = fz_u8(in) & 1 ? n : NULL;
+            sa = irc_sh_lookup(c, p, nn, &ha, &wa);
+            sb = irc_sh_lookup(copy, p, nn, &hb, &wb);
+            check(sa != IRC_OK || memcmp(ha.c, hb.c, sizeof ha.c) == 0);
+        } else {
+            sa = irc_cache_lookup(c, p, n, ra, &wa);
+            sb = irc_cache_lookup(copy, p, n, rb, &wb);
+            check(memcmp(ra, rb, sizeof ra) == 0);
+        }
+        check(sa == sb && (wa == wb || wa != wa));
+    }
+    irc_fini(copy);
+    free(mem);
+}
+
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
@@ -219,6 +257,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         if (st < 0)
             check(memcmp(b.copy, b.block, bytes) == 0);
     }
+    if (bytes <= (4u << 20))
+        relocated(&in, cfg, c, bytes);
     irc_fini(c);
     fz_block_free(&b);
     return 0;
