@@ -135,14 +135,14 @@ LOADER_SRC = demo/loader.c demo/obj.c
 EXR_CFLAGS = $(shell pkg-config --cflags OpenEXR)
 EXR_LIBS = $(shell pkg-config --libs OpenEXR)
 
-$(BUILD)/t_image: tests/t_image.c $(IMAGE_SRC) demo/image.h demo/image_int.h
-	$(CC) $(TEST_CFLAGS) -Idemo $(OPT) $(CFLAGS) tests/t_image.c $(IMAGE_SRC) -o $@ -lm
+$(BUILD)/t_image: tests/t_image.c tests/harness.c tests/test.h $(IMAGE_SRC) demo/image.h demo/image_int.h
+	$(CC) $(TEST_CFLAGS) -Idemo $(OPT) $(CFLAGS) tests/t_image.c tests/harness.c $(IMAGE_SRC) -o $@ -lm
 
-$(BUILD)/t_loader: tests/t_loader.c $(LOADER_SRC) demo/scene.h demo/loader_int.h
-	$(CC) $(TEST_CFLAGS) -Idemo $(OPT) $(CFLAGS) tests/t_loader.c $(LOADER_SRC) -o $@ -lm
+$(BUILD)/t_loader: tests/t_loader.c tests/harness.c tests/test.h $(LOADER_SRC) demo/scene.h demo/loader_int.h
+	$(CC) $(TEST_CFLAGS) -Idemo $(OPT) $(CFLAGS) tests/t_loader.c tests/harness.c $(LOADER_SRC) -o $@ -lm
 
-$(BUILD)/t_exr: tests/t_exr.c $(IMAGE_SRC) demo/image.h
-	$(CC) $(TEST_CFLAGS) -Idemo $(EXR_CFLAGS) $(OPT) $(CFLAGS) tests/t_exr.c $(IMAGE_SRC) -o $@ $(EXR_LIBS) -lm
+$(BUILD)/t_exr: tests/t_exr.c tests/harness.c tests/test.h $(IMAGE_SRC) demo/image.h
+	$(CC) $(TEST_CFLAGS) -Idemo $(EXR_CFLAGS) $(OPT) $(CFLAGS) tests/t_exr.c tests/harness.c $(IMAGE_SRC) -o $@ $(EXR_LIBS) -lm
 
 # ---------------------------------------------------------------- fuzz
 # make fuzz FUZZ_SECONDS=N runs each harness under libFuzzer (clang) for N

@@ -607,7 +607,10 @@ IRC_API int irc_sh_lookup_or_compute(irc_cache *cache, const float p[3],
                                      const float n[3], irc_sh *out, float *weight,
                                      void *host);
 
-/* Read the SH record in slot id.  Returns IRC_OK, IRC_MISS (empty slot),
+/* Read the SH record in slot id.  Coefficients, gradients, position,
+ * radius and e come back exactly; n to about 5e-5 rad (0, 0, 0 for a free
+ * point); bands, channels and features are the cache's; rays and
+ * rays_used are 0 (not stored).  Returns IRC_OK, IRC_MISS (empty slot),
  * IRC_ERR_RANGE, or a negative error code. */
 IRC_API int irc_sh_record(irc_cache *cache, uint32_t id, irc_sh *out);
 

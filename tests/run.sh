@@ -85,6 +85,21 @@ portless() {
     nm build-none/libirrcache.a | grep -q ' T irc_init$'
 }
 check portless-build portless
+# A user configuration header replaces single macros of src/util.h.
+user_config() {
+    d=build/user-config
+    mkdir -p "$d"
+    for f in src/*.c; do
+        gcc -std=c99 -O1 -Iinclude -Itests -DIRC_USER_CONFIG='"user_config.h"' -c "$f" \
+            -o "$d/$(basename "$f" .c).o" || return 1
+    done
+    nm "$d"/*.o > "$d/nm.txt"
+    grep -q ' U irc_user_sqrt$' "$d/nm.txt" || { echo "IRC_SQRT was not replaced"; return 1; }
+    grep -q ' U irc_user_assert$' "$d/nm.txt" || { echo "IRC_ASSERT was not replaced"; return 1; }
+    ! grep -qE ' U (sqrt|__assert_fail)$' "$d/nm.txt" || { echo "a call bypasses the macros"; return 1; }
+    grep -qE ' U (sqrtf|ldexp)$' "$d/nm.txt" || { echo "the other macros lost their defaults"; return 1; }
+}
+check user-config user_config
 # Only the documented API leaves the shared library.
 exports() {
     nm -D --defined-only build/libirrcache.so | awk '$2 ~ /^[TDBRV]$/ {print $3}' > "$LOG/exports.txt"
@@ -156,7 +171,7 @@ done
 
 echo "== stage 4: threads under TSan"
 check build-tsan $MAKE -s CC="$SAN_CC" BUILD=build-tsan OPT="-O1 -g -fsanitize=thread" build-tsan/irc_tests
-suite tsan IRC_TEST_QUICK=1 TSAN_OPTIONS=halt_on_error=1 ./build-tsan/irc_tests test_threads
+suite tsan IRC_TEST_QUICK=1 TSAN_OPTIONS=halt_on_error=1 ./build-tsan/irc_tests test_threads test_busy_waits
 
 echo "== stage 5: header, example host and library rules"
 check examples $MAKE -s BUILD=build examples
@@ -175,6 +190,10 @@ src_headers() {
         sed -E 's/.*<([^>]+)>.*/\1/' | sort -u |
         grep -vxE 'assert.h|float.h|math.h|stddef.h|stdint.h|string.h')
     [ -z "$bad" ] || { echo "src/ includes: $bad"; return 1; }
+    # every libc and libm call goes through a macro of util.h
+    bare=$(grep -nE '(^|[^_A-Za-z0-9])(sqrtf?|sinf?|cosf?|tanf?|asin|acos|atan2?|fabsf?|floor|ceil|frexp|ldexp|pow|exp|log|memcpy|memmove|memset|assert)[[:space:]]*\(' \
+        src/*.c src/*.h | grep -v '^src/util.h:')
+    [ -z "$bare" ] || { echo "calls past util.h: $bare"; return 1; }
 }
 check src-headers src_headers
 

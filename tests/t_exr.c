@@ -11,11 +11,14 @@
  * compression, have a data window of W x H, exactly channels B, G, R of one
  * type, and decode (in the file's own type) to exactly the reference: the
  * same float bits, or float_to_half of the reference for half files.
- * Ends with "N passed, N failed".
+ * Uses the shared harness (tests/harness.c): the synthetic images are one
+ * test each, the demo's file one test named after it; ends with
+ * "N passed, N failed".
  */
 #ifndef _POSIX_C_SOURCE
 #define _POSIX_C_SOURCE 200809L
 #endif
+#include <errno.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -34,30 +37,13 @@
 #endif
 
 #include "image.h"
+#include "test.h"
 
-static int n_pass, n_fail, cur_fail;
-
-#define CHECK(c) check(c, #c, __LINE__)
-
-static int check(int ok, const char *what, int line)
-{
-    if (!ok && cur_fail++ < 10)
-        printf("  t_exr.c:%d: %s\n", line, what);
-    return ok;
-}
-
-static void report(const char *name)
-{
-    if (cur_fail) {
-        n_fail++;
-        printf("FAIL %s\n", name);
-    } else {
-        n_pass++;
-        printf("ok   %s\n", name);
-    }
-    fflush(stdout);
-    cur_fail = 0;
-}
+#define TESTS(X)                                                                          \
+    X(test_float_37x23) X(test_half_37x23) X(test_float_1x1) X(test_half_1x1)             \
+    X(test_half_301x7) X(test_float_5x130)
+TESTS(TEST_DECL)
+TEST_DECL(test_demo_file)
 
 /* What OpenEXRCore found: B, G, R planes in the file's own pixel type. */
 typedef struct core_image {
@@ -65,10 +51,10 @@ typedef struct core_image {
     unsigned char *plane[3];
 } core_image;
 
+/* Checks that an OpenEXRCore call succeeded; returns whether it did. */
 static int rv_ok(exr_result_t rv, const char *call)
 {
-    if (rv != EXR_ERR_SUCCESS && cur_fail++ < 10)
-        printf("  %s: %s\n", call, exr_get_error_code_as_string(rv));
+    CHECK(rv == EXR_ERR_SUCCESS, "%s: %s", call, exr_get_error_code_as_string(rv));
     return rv == EXR_ERR_SUCCESS;
 }
 
@@ -80,24 +66,45 @@ static int check_layout(exr_context_t ctx, core_image *im)
     exr_storage_t st;
     exr_compression_t comp;
     int parts = 0, c;
-    if (!rv_ok(exr_get_count(ctx, &parts), "exr_get_count") || !CHECK(parts == 1) ||
-        !rv_ok(exr_get_storage(ctx, 0, &st), "exr_get_storage") ||
-        !CHECK(st == EXR_STORAGE_SCANLINE) ||
-        !rv_ok(exr_get_compression(ctx, 0, &comp), "exr_get_compression") ||
-        !CHECK(comp == EXR_COMPRESSION_NONE) ||
+    /* stops at the first failure */
+    if (!rv_ok(exr_get_count(ctx, &parts), "exr_get_count"))
+        return -1;
+    CHECK(parts == 1, "%d parts", parts);
+    if (parts != 1 || !rv_ok(exr_get_storage(ctx, 0, &st), "exr_get_storage"))
+        return -1;
+    CHECK(st == EXR_STORAGE_SCANLINE, "storage %d", (int)st);
+    if (st != EXR_STORAGE_SCANLINE ||
+        !rv_ok(exr_get_compression(ctx, 0, &comp), "exr_get_compression"))
+        return -1;
+    CHECK(comp == EXR_COMPRESSION_NONE, "compression %d", (int)comp);
+    if (comp != EXR_COMPRESSION_NONE ||
         !rv_ok(exr_get_data_window(ctx, 0, &dw), "exr_get_data_window") ||
-        !rv_ok(exr_get_channels(ctx, 0, &cl), "exr_get_channels") ||
-        !CHECK(cl->num_channels == 3))
+        !rv_ok(exr_get_channels(ctx, 0, &cl), "exr_get_channels"))
+        return -1;
+    CHECK(cl->num_channels == 3, "%d channels", (int)cl->num_channels);
+    if (cl->num_channels != 3)
         return -1;
     im->w = dw.max.x - dw.min.x + 1;
     im->h = dw.max.y - dw.min.y + 1;
     im->type = cl->entries[0].pixel_type;
     for (c = 0; c < 3; c++) {
         const exr_attr_chlist_entry_t *e = &cl->entries[c];
-        if (!CHECK(strcmp(e->name.str, c == 0 ? "B" : c == 1 ? "G" : "R") == 0) ||
-            !CHECK(e->pixel_type == EXR_PIXEL_HALF || e->pixel_type == EXR_PIXEL_FLOAT) ||
-            !CHECK((int)e->pixel_type == im->type) ||
-            !CHECK(e->x_sampling == 1 && e->y_sampling == 1))
+        const char *want = c == 0 ? "B" : c == 1 ? "G" : "R";
+        CHECK(strcmp(e->name.str, want) == 0, "channel %d is \"%s\", want \"%s\"", c,
+              e->name.str, want);
+        if (strcmp(e->name.str, want) != 0)
+            return -1;
+        CHECK(e->pixel_type == EXR_PIXEL_HALF || e->pixel_type == EXR_PIXEL_FLOAT,
+              "channel %s: pixel type %d", want, (int)e->pixel_type);
+        if (!(e->pixel_type == EXR_PIXEL_HALF || e->pixel_type == EXR_PIXEL_FLOAT))
+            return -1;
+        CHECK((int)e->pixel_type == im->type, "channel %s: pixel type %d, channel B's %d", want,
+              (int)e->pixel_type, im->type);
+        if ((int)e->pixel_type != im->type)
+            return -1;
+        CHECK(e->x_sampling == 1 && e->y_sampling == 1, "channel %s: sampling %d x %d", want,
+              (int)e->x_sampling, (int)e->y_sampling);
+        if (!(e->x_sampling == 1 && e->y_sampling == 1))
             return -1;
     }
     return 0;
@@ -111,17 +118,22 @@ static void check_attrs(exr_context_t ctx, int w, int h)
     exr_lineorder_t lo;
     float par = 0, sww = 0;
     if (rv_ok(exr_get_data_window(ctx, 0, &dw), "exr_get_data_window"))
-        CHECK(dw.min.x == 0 && dw.min.y == 0 && dw.max.x == w - 1 && dw.max.y == h - 1);
+        CHECK(dw.min.x == 0 && dw.min.y == 0 && dw.max.x == w - 1 && dw.max.y == h - 1,
+              "data window (%d, %d)-(%d, %d), want (0, 0)-(%d, %d)", dw.min.x, dw.min.y,
+              dw.max.x, dw.max.y, w - 1, h - 1);
     if (rv_ok(exr_get_display_window(ctx, 0, &dw), "exr_get_display_window"))
-        CHECK(dw.min.x == 0 && dw.min.y == 0 && dw.max.x == w - 1 && dw.max.y == h - 1);
+        CHECK(dw.min.x == 0 && dw.min.y == 0 && dw.max.x == w - 1 && dw.max.y == h - 1,
+              "display window (%d, %d)-(%d, %d), want (0, 0)-(%d, %d)", dw.min.x, dw.min.y,
+              dw.max.x, dw.max.y, w - 1, h - 1);
     if (rv_ok(exr_get_lineorder(ctx, 0, &lo), "exr_get_lineorder"))
-        CHECK(lo == EXR_LINEORDER_INCREASING_Y);
+        CHECK(lo == EXR_LINEORDER_INCREASING_Y, "line order %d", (int)lo);
     if (rv_ok(exr_get_pixel_aspect_ratio(ctx, 0, &par), "exr_get_pixel_aspect_ratio"))
-        CHECK(par == 1.0f);
+        CHECK(par == 1.0f, "pixel aspect ratio %g", (double)par);
     if (rv_ok(exr_get_screen_window_center(ctx, 0, &swc), "exr_get_screen_window_center"))
-        CHECK(swc.x == 0.0f && swc.y == 0.0f);
+        CHECK(swc.x == 0.0f && swc.y == 0.0f, "screen window centre (%g, %g)", (double)swc.x,
+              (double)swc.y);
     if (rv_ok(exr_get_screen_window_width(ctx, 0, &sww), "exr_get_screen_window_width"))
-        CHECK(sww == 1.0f);
+        CHECK(sww == 1.0f, "screen window width %g", (double)sww);
 }
 
 /* Decodes every chunk straight into the planes, without type conversion. */
@@ -132,8 +144,10 @@ static int decode_all(exr_context_t ctx, core_image *im)
     int32_t spc = 0, y;
     int bpe = im->type == EXR_PIXEL_HALF ? 2 : 4, c, first = 1, ok = 1;
     if (!rv_ok(exr_get_data_window(ctx, 0, &dw), "exr_get_data_window") ||
-        !rv_ok(exr_get_scanlines_per_chunk(ctx, 0, &spc), "exr_get_scanlines_per_chunk") ||
-        !CHECK(spc == 1))
+        !rv_ok(exr_get_scanlines_per_chunk(ctx, 0, &spc), "exr_get_scanlines_per_chunk"))
+        return -1;
+    CHECK(spc == 1, "%d scanlines per chunk", (int)spc);
+    if (spc != 1)
         return -1;
     for (y = dw.min.y; ok && y <= dw.max.y; y += spc) {
         exr_chunk_info_t ci;
@@ -170,12 +184,17 @@ static int core_read(const char *path, core_image *im, int want_w, int want_h)
     memset(im, 0, sizeof *im);
     if (!rv_ok(exr_start_read(&ctx, path, NULL), "exr_start_read"))
         return -1;
-    if (check_layout(ctx, im) == 0 && CHECK(im->w == want_w && im->h == want_h)) {
-        check_attrs(ctx, want_w, want_h);
-        for (c = 0; c < 3; c++)
-            im->plane[c] = calloc((size_t)im->w * im->h, im->type == EXR_PIXEL_HALF ? 2 : 4);
-        if (CHECK(im->plane[0] && im->plane[1] && im->plane[2]))
-            r = decode_all(ctx, im);
+    if (check_layout(ctx, im) == 0) {
+        CHECK(im->w == want_w && im->h == want_h, "%d x %d, want %d x %d", im->w, im->h, want_w,
+              want_h);
+        if (im->w == want_w && im->h == want_h) {
+            check_attrs(ctx, want_w, want_h);
+            for (c = 0; c < 3; c++)
+                im->plane[c] = calloc((size_t)im->w * im->h, im->type == EXR_PIXEL_HALF ? 2 : 4);
+            CHECK(im->plane[0] && im->plane[1] && im->plane[2], "out of memory");
+            if (im->plane[0] && im->plane[1] && im->plane[2])
+                r = decode_all(ctx, im);
+        }
     }
     exr_finish(&ctx);
     return r;
@@ -205,24 +224,20 @@ static void compare(const core_image *im, const float *ref)
                        (int)(i % (size_t)im->w), (int)(i / (size_t)im->w), "BGR"[c],
                        (unsigned long)got, (unsigned long)exp);
         }
-    if (bad)
-        printf("  %ld pixel values differ\n", bad);
-    CHECK(bad == 0);
+    CHECK(bad == 0, "%ld pixel values differ", bad);
 }
 
-static void check_file(const char *name, const char *path, const float *ref, int w, int h,
-                       int want_type)
+static void check_file(const char *path, const float *ref, int w, int h, int want_type)
 {
     core_image im;
     if (core_read(path, &im, w, h) == 0) {
         if (want_type >= 0)
-            CHECK(im.type == want_type);
+            CHECK(im.type == want_type, "pixel type %d, want %d", im.type, want_type);
         compare(&im, ref);
     }
     free(im.plane[0]);
     free(im.plane[1]);
     free(im.plane[2]);
-    report(name);
 }
 
 static float *synthetic(int w, int h)
@@ -246,26 +261,30 @@ static float *synthetic(int w, int h)
 
 static void synthetic_test(int w, int h, int half)
 {
-    char path[64], name[64], err[256];
+    char path[64], err[256];
     float *rgb = synthetic(w, h);
-    int fd;
-    snprintf(name, sizeof name, "%s %dx%d", half ? "half" : "float", w, h);
+    int fd, made, rc;
     snprintf(path, sizeof path, "/tmp/t_exr_XXXXXX");
     fd = mkstemp(path);
-    if (fd < 0 || close(fd) != 0) {
-        perror("mkstemp");
-        CHECK(0);
-        report(name);
-    } else if (!CHECK(exr_write(path, w, h, rgb, half, err, sizeof err) == 0)) {
-        printf("  %s\n", err);
-        report(name);
-    } else {
-        check_file(name, path, rgb, w, h, half ? EXR_PIXEL_HALF : EXR_PIXEL_FLOAT);
+    made = fd >= 0 && close(fd) == 0;
+    CHECK(made, "mkstemp: %s", strerror(errno));
+    if (made) {
+        rc = exr_write(path, w, h, rgb, half, err, sizeof err);
+        CHECK(rc == 0, "exr_write: %s", err);
+        if (rc == 0)
+            check_file(path, rgb, w, h, half ? EXR_PIXEL_HALF : EXR_PIXEL_FLOAT);
     }
     if (fd >= 0)
         remove(path);
     free(rgb);
 }
+
+TEST(test_float_37x23) { synthetic_test(37, 23, 0); }
+TEST(test_half_37x23) { synthetic_test(37, 23, 1); }
+TEST(test_float_1x1) { synthetic_test(1, 1, 0); }
+TEST(test_half_1x1) { synthetic_test(1, 1, 1); }
+TEST(test_half_301x7) { synthetic_test(301, 7, 1); }
+TEST(test_float_5x130) { synthetic_test(5, 130, 0); }
 
 static float *read_raw(const char *path, int w, int h)
 {
@@ -293,27 +312,33 @@ static float *read_raw(const char *path, int w, int h)
     return rgb;
 }
 
+/* The file mode's arguments: IMAGE.exr RAW.f32 W H. */
+static char **file_args;
+
+TEST(test_demo_file)
+{
+    int w = atoi(file_args[2]), h = atoi(file_args[3]);
+    float *ref = w > 0 && h > 0 ? read_raw(file_args[1], w, h) : NULL;
+    CHECK(ref != NULL, "no %s x %s reference in %s", file_args[2], file_args[3], file_args[1]);
+    if (ref)
+        check_file(file_args[0], ref, w, h, -1);
+    free(ref);
+}
+
 int main(int argc, char **argv)
 {
-    if (argc == 1) {
-        synthetic_test(37, 23, 0);
-        synthetic_test(37, 23, 1);
-        synthetic_test(1, 1, 0);
-        synthetic_test(1, 1, 1);
-        synthetic_test(301, 7, 1);
-        synthetic_test(5, 130, 0);
-    } else if (argc == 5) {
-        int w = atoi(argv[3]), h = atoi(argv[4]);
-        float *ref = w > 0 && h > 0 ? read_raw(argv[2], w, h) : NULL;
-        if (CHECK(ref != NULL))
-            check_file(argv[1], argv[1], ref, w, h, -1);
-        else
-            report(argv[1]);
-        free(ref);
-    } else {
+    static const test_case all[] = {TESTS(TEST_ROW)};
+    if (argc == 5) {
+        /* one test, named after the file */
+        test_case one;
+        one.name = argv[1];
+        one.fn = test_demo_file;
+        file_args = argv + 1;
+        return test_run(&one, 1, 1, argv);
+    }
+    if (argc != 1) {
         fprintf(stderr, "usage: %s [IMAGE.exr RAW.f32 W H]\n", argv[0]);
         return 2;
     }
-    printf("%d passed, %d failed\n", n_pass, n_fail);
-    return n_fail ? 1 : 0;
+    return test_run(all, sizeof all / sizeof all[0], argc, argv);
 }

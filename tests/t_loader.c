@@ -1,10 +1,12 @@
 /* t_loader.c -- the demo's scene loader (demo/loader.c, demo/obj.c): every
  * malformed file in tests/data/bad fails at exactly the expected FILE:LINE
  * and leaves the scene empty; the good files and the four shipped scenes
- * load with the expected contents.  A standalone program:
- *   cc -std=c99 -Idemo demo/loader.c demo/obj.c tests/t_loader.c -o t_loader -lm
- *   t_loader [ROOT]   ROOT the project's root (default: the current
- *                     directory, or found from the program's own path). */
+ * load with the expected contents.  Uses the shared harness:
+ *   cc -std=c99 -Idemo -Itests demo/loader.c demo/obj.c tests/t_loader.c tests/harness.c \
+ *       -o t_loader -lm
+ *   t_loader [ROOT [TEST...]]   ROOT the project's root (default: the current
+ *                               directory, or found from the program's own
+ *                               path); the tests named (by prefix), or all. */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <stdio.h>
@@ -15,28 +17,12 @@
 #include <unistd.h>
 
 #include "scene.h"
+#include "test.h"
 
-static int n_pass, n_fail, cur_fails;
-
-#define CHECK(cond, ...)                                                                           \
-    do {                                                                                           \
-        if (!(cond)) {                                                                             \
-            cur_fails++;                                                                           \
-            printf("  %s:%d: CHECK(%s) failed: ", __FILE__, __LINE__, #cond);                      \
-            printf(__VA_ARGS__);                                                                   \
-            printf("\n");                                                                          \
-        }                                                                                          \
-    } while (0)
-
-static void report(const char *name)
-{
-    printf("%s %s\n", cur_fails ? "FAIL" : "ok  ", name);
-    if (cur_fails)
-        n_fail++;
-    else
-        n_pass++;
-    cur_fails = 0;
-}
+#define TESTS(X)                                                                           \
+    X(test_bad_files) X(test_missing_message) X(test_good_crlf) X(test_big) X(test_cornell) \
+    X(test_fig5) X(test_fig15) X(test_sh)
+TESTS(TEST_DECL)
 
 static int near(double a, double b, double tol)
 {
@@ -127,9 +113,10 @@ static const bad_case bad_cases[] = {
     {"m_crlf.scene", "m_crlf.mtl:4", "unknown MTL statement \"bogus\""},
 };
 
+/* One malformed file; every message names it. */
 static void test_bad(const bad_case *c)
 {
-    char path[256], where[256], err[512], name[300];
+    char path[256], where[256], err[512];
     scene s;
     size_t n;
     int rc;
@@ -139,23 +126,29 @@ static void test_bad(const bad_case *c)
     where[n - 1] = '\0';
     memset(&s, 0xab, sizeof s); /* the loader must empty it */
     rc = scene_load(path, &s, err, sizeof err);
-    CHECK(rc == -1, "loaded (rc %d)", rc);
+    CHECK(rc == -1, "bad/%s: loaded (rc %d)", c->file, rc);
     if (rc == 0) {
         scene_free(&s);
     } else {
         /* exactly FILE:LINE, then ": " */
         CHECK(strncmp(err, where, n - 1) == 0 && strncmp(err + n - 1, ": ", 2) == 0,
-              "error \"%s\", expected at %s", err, where);
-        CHECK(strstr(err, c->says) != NULL, "error \"%s\" does not say \"%s\"", err, c->says);
-        CHECK(is_empty(&s), "scene not left empty");
+              "bad/%s: error \"%s\", expected at %s", c->file, err, where);
+        CHECK(strstr(err, c->says) != NULL, "bad/%s: error \"%s\" does not say \"%s\"", c->file,
+              err, c->says);
+        CHECK(is_empty(&s), "bad/%s: scene not left empty", c->file);
     }
-    snprintf(name, sizeof name, "bad/%s", c->file);
     if (rc == -1)
         printf("  %s\n", err);
-    report(name);
 }
 
-static void test_missing_message(void)
+TEST(test_bad_files)
+{
+    size_t i;
+    for (i = 0; i < sizeof bad_cases / sizeof bad_cases[0]; i++)
+        test_bad(&bad_cases[i]);
+}
+
+TEST(test_missing_message)
 {
     char err[512];
     scene s;
@@ -173,7 +166,6 @@ static void test_missing_message(void)
     CHECK(scene_load("tests/data/bad/s_missing_obj.scene", &s, err, 12) == -1, "loaded");
     CHECK(strlen(err) == 11, "\"%s\"", err);
     CHECK(scene_load("tests/data/bad/s_missing_obj.scene", &s, NULL, 0) == -1, "loaded");
-    report("error messages");
 }
 
 /* ------------------------------------------------------------ good files */
@@ -212,7 +204,7 @@ static int mat_named(const scene *s, const char *name)
     return -1;
 }
 
-static void test_good_crlf(void)
+TEST(test_good_crlf)
 {
     /* tris of sub/mesh.obj: material, has_n (see the file) */
     static const char *const mats[12] = {"default", "a", "a", "a", "b", "b",
@@ -221,10 +213,8 @@ static void test_good_crlf(void)
     scene s;
     int i;
     const material *a, *b;
-    if (load("tests/data/good/crlf.scene", &s) < 0) {
-        report("good/crlf.scene");
+    if (load("tests/data/good/crlf.scene", &s) < 0)
         return;
-    }
     CHECK(s.ntris == 12, "%d triangles", s.ntris);
     CHECK(s.nmats == 3, "%d materials (the MTL named twice must be read once)", s.nmats);
     for (i = 0; i < s.ntris && i < 12; i++) {
@@ -260,11 +250,10 @@ static void test_good_crlf(void)
     scene_free(&s);
     CHECK(is_empty(&s), "scene_free leaves it empty");
     scene_free(&s); /* twice is harmless */
-    report("good/crlf.scene");
 }
 
 /* A big generated OBJ: growth must be geometric, not one realloc per line. */
-static void test_big(void)
+TEST(test_big)
 {
     char dir[64], scn[96], obj[96];
     int n = 300, i, j;
@@ -300,7 +289,6 @@ static void test_big(void)
     remove(obj);
     remove(scn);
     rmdir(dir);
-    report("big generated OBJ (absolute path)");
 }
 
 /* ------------------------------------------------------------ shipped scenes */
@@ -316,15 +304,13 @@ static int count_emitters(const scene *s, int *which)
     return n;
 }
 
-static void test_cornell(void)
+TEST(test_cornell)
 {
     scene s;
     int i, light = -1, nlight = 0;
     const material *m;
-    if (load("demo/scenes/cornell.scene", &s) < 0) {
-        report("demo/scenes/cornell.scene");
+    if (load("demo/scenes/cornell.scene", &s) < 0)
         return;
-    }
     /* 16 surfaces: 15 quads of 2 triangles, the left wall as 2 */
     CHECK(s.ntris == 32, "%d triangles", s.ntris);
     CHECK(s.nspheres == 0 && s.nmats == 4, "%d spheres, %d materials", s.nspheres, s.nmats);
@@ -360,18 +346,15 @@ static void test_cornell(void)
           "camera");
     CHECK(s.cam.width == 512 && s.cam.height == 512 && s.env.kind == ENV_NONE, "res/env");
     scene_free(&s);
-    report("demo/scenes/cornell.scene");
 }
 
-static void test_fig5(void)
+TEST(test_fig5)
 {
     scene s;
     int i, light = -1;
     const material *m;
-    if (load("demo/scenes/fig5.scene", &s) < 0) {
-        report("demo/scenes/fig5.scene");
+    if (load("demo/scenes/fig5.scene", &s) < 0)
         return;
-    }
     CHECK(s.nspheres == 4 && s.ntris == 2, "%d spheres, %d triangles", s.nspheres, s.ntris);
     CHECK(count_emitters(&s, &light) == 1 && s.mats[light].ke[1] == 8, "one light, Ke 8");
     for (i = 0; i < s.ntris; i++) {
@@ -394,18 +377,15 @@ static void test_fig5(void)
     CHECK(s.cam.width == 512 && s.cam.height == 384, "resolution");
     CHECK(s.env.kind == ENV_CONSTANT && s.env.base[0] == 0.05f, "environment");
     scene_free(&s);
-    report("demo/scenes/fig5.scene");
 }
 
-static void test_fig15(void)
+TEST(test_fig15)
 {
     static const float centre[3] = {1.8f, 2.0f, 0.5f}; /* of the box */
     scene s;
     int i, k;
-    if (load("demo/scenes/fig15.scene", &s) < 0) {
-        report("demo/scenes/fig15.scene");
+    if (load("demo/scenes/fig15.scene", &s) < 0)
         return;
-    }
     CHECK(s.ntris == 2 + 12 && s.nspheres == 1, "%d triangles", s.ntris);
     CHECK(s.nspheres == 1 && s.spheres[0].r == 1 && s.spheres[0].c[0] == -1.5f &&
               s.spheres[0].c[1] == 2 && s.mats[s.spheres[0].mat].kd[0] == 0,
@@ -433,7 +413,6 @@ static void test_fig15(void)
           "direction normalised");
     CHECK(s.cam.width == 512 && s.cam.height == 512, "resolution");
     scene_free(&s);
-    report("demo/scenes/fig15.scene");
 }
 
 static float edge(const triangle *t, int a, int b)
@@ -442,14 +421,12 @@ static float edge(const triangle *t, int a, int b)
     return sqrtf(d0 * d0 + d1 * d1 + d2 * d2);
 }
 
-static void test_sh(void)
+TEST(test_sh)
 {
     scene s;
     int i, k, seen[3] = {0, 0, 0};
-    if (load("demo/scenes/sh.scene", &s) < 0) {
-        report("demo/scenes/sh.scene");
+    if (load("demo/scenes/sh.scene", &s) < 0)
         return;
-    }
     CHECK(s.ntris == 2 + 6 && s.nspheres == 1, "%d triangles", s.ntris);
     CHECK(s.nspheres == 1 && s.spheres[0].r == 1 && s.spheres[0].c[0] == 0 &&
               s.mats[s.spheres[0].mat].ks[0] == 0.3f && s.mats[s.spheres[0].mat].ns == 30,
@@ -480,7 +457,6 @@ static void test_sh(void)
     CHECK(seen[0] == 2 && seen[1] == 2 && seen[2] == 2, "two triangles per colour");
     CHECK(s.env.kind == ENV_NONE && s.cam.width == 512 && s.cam.height == 512, "env, res");
     scene_free(&s);
-    report("demo/scenes/sh.scene");
 }
 
 /* ------------------------------------------------------------ main */
@@ -514,20 +490,15 @@ static int find_root(int argc, char **argv)
 
 int main(int argc, char **argv)
 {
-    size_t i;
+    static const test_case all[] = {TESTS(TEST_ROW)};
     if (find_root(argc, argv) < 0) {
         fprintf(stderr, "t_loader: run from the project's root or pass it: t_loader ROOT\n");
         return 2;
     }
-    for (i = 0; i < sizeof bad_cases / sizeof bad_cases[0]; i++)
-        test_bad(&bad_cases[i]);
-    test_missing_message();
-    test_good_crlf();
-    test_big();
-    test_cornell();
-    test_fig5();
-    test_fig15();
-    test_sh();
-    printf("%d passed, %d failed\n", n_pass, n_fail);
-    return n_fail ? 1 : 0;
+    /* after ROOT come the names of the tests to run */
+    if (argc > 1) {
+        argc--;
+        argv++;
+    }
+    return test_run(all, sizeof all / sizeof all[0], argc, argv);
 }
