@@ -263,10 +263,16 @@ enum irc_feature {
                                           instead of irradiance (see "SH
                                           records" below); excludes the three
                                           flags above */
-    IRC_FEATURE_SH_GRADIENT = 1u << 4  /* SH records also carry the
+    IRC_FEATURE_SH_GRADIENT = 1u << 4, /* SH records also carry the
                                           coefficients' translational
                                           gradients (SH-gradient paper, Eq.
                                           6-12), from the same rays: implies SH */
+    IRC_FEATURE_HESSIAN = 1u << 5      /* irradiance records: the
+                                          occlusion-aware Hessian of E from
+                                          the rays already cast (Schwarzhaupt
+                                          et al. 2012), in irc_record.hessian;
+                                          no extra rays, 24 scratch bytes a
+                                          stratum */
 };
 
 /* What insert does when the record pool is full. */
@@ -344,8 +350,9 @@ typedef struct irc_config {
  */
 #define IRC_FOOTPRINT_BOUND(features, records, s, t, b)                          \
     (8192u +                                                                     \
-     (size_t)(t) * (128u + (size_t)(s) * (((features) & IRC_FEATURE_VISIBILITY) \
-                                             ? 320u : 32u) + (size_t)(b) * 56u) + \
+     (size_t)(t) * (128u + (size_t)(s) * (((features) & IRC_FEATURE_VISIBILITY) ? 320u : \
+                                          ((features) & IRC_FEATURE_HESSIAN) ? 64u : 32u) + \
+                    (size_t)(b) * 56u) + \
      (size_t)(records) * (64u + 4u + 1u) + ((size_t)(records) / 8u + 16u) * 128u)
 #define IRC_SH_FOOTPRINT_BOUND(records, bands, ch, s, t, b)                      \
     (8192u + (size_t)(t) * (128u + (size_t)(s) * 112u + (size_t)(b) * 56u) +     \
@@ -429,6 +436,11 @@ typedef struct irc_record {
     float grad_r[3][3];  /* grad_r[c]: E_c(n') ~ e[c] + (n x n').grad_r[c],
                             irradiance per radian of normal rotation (zero
                             unless ROTATION) */
+    float hessian[3][6]; /* hessian[c]: second derivatives of E_c in p,
+                            world space, packed xx xy xz yy yz zz; only
+                            moves along the surface are meaningful (zero
+                            unless HESSIAN; not stored, zero when read
+                            back) */
     uint32_t features;   /* which gradients are valid */
     uint32_t rays;       /* rays cast, and how many were usable: */
     uint32_t rays_used;

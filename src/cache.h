@@ -219,6 +219,11 @@ typedef struct irc__shsum {
 } irc__shsum;
 int irc__sh_sample(irc__call *k, irc__shsum *a);
 
+/* hessian.c */
+void irc__hessian(const irc_cache *c, const irc__sample *s, const float *dirs,
+                  const double n[3], double h[3][6]);
+void irc__eigen2(double a, double b, double c, double *l0, double *l1, double u[2]);
+
 /* visibility.c */
 int irc__grad_visibility(irc__call *k, int netvis, double g[3][3]);
 

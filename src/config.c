@@ -23,7 +23,7 @@ static int irc__port_ok(const irc_port *p)
 static int irc__features_resolve(irc_config *out)
 {
     const uint32_t irr = IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION |
-                         IRC_FEATURE_VISIBILITY;
+                         IRC_FEATURE_VISIBILITY | IRC_FEATURE_HESSIAN;
     const uint32_t sh = IRC_FEATURE_SH | IRC_FEATURE_SH_GRADIENT;
     if (out->features & ~(irr | sh))
         return IRC_ERR_CONFIG;

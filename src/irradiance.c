@@ -223,6 +223,15 @@ int irc__irr_compute(irc__call *k, void *rec)
         return st;
     irc__record_build(c, (const irc__sample *)(void *)k->slot, k->q.un, t1, t2,
                       vis ? gvis : NULL, out);
+    if (c->cfg.features & IRC_FEATURE_HESSIAN) {
+        const irc__sample *s = (const irc__sample *)(void *)k->slot;
+        double h[3][6];
+        int ch, i;
+        irc__hessian(c, s, irc__slot_dirs(c, s), k->q.un, h);
+        for (ch = 0; ch < 3; ch++)
+            for (i = 0; i < 6; i++)
+                out->hessian[ch][i] = (float)h[ch][i];
+    }
     out->rays = k->rays;
     out->p[0] = k->q.p[0];
     out->p[1] = k->q.p[1];

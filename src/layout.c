@@ -68,6 +68,8 @@ static uint64_t irc__slot_layout(const irc_config *cfg, irc__layout *l)
         l->samples *= 2u;
         geom = (uint64_t)l->samples * 6u * sizeof(float);
     }
+    if (cfg->features & IRC_FEATURE_HESSIAN)
+        geom = (uint64_t)l->samples * 6u * sizeof(float);
     if (cfg->features & IRC_FEATURE_VISIBILITY)
         geom = (uint64_t)l->samples * (6u * sizeof(float) + 2u * sizeof(int32_t) +
                                        2u * sizeof(irc__cross)) +
@@ -186,7 +188,8 @@ int irc_init(const irc_config *cfg, uint32_t max_records, irc_cache **out)
     irc__attach_pointers(c, cfg, r.port);
     irc__set_parts(c, &l);
     c->strata = r.strata_theta * r.strata_phi;
-    c->keep_geom = (r.features & (IRC_FEATURE_VISIBILITY | IRC_FEATURE_SH)) != 0;
+    c->keep_geom =
+        (r.features & (IRC_FEATURE_VISIBILITY | IRC_FEATURE_SH | IRC_FEATURE_HESSIAN)) != 0;
     if (r.features & IRC_FEATURE_SH) {
         c->sh_n = r.sh_bands * r.sh_bands;
         c->sh_ch = r.sh_channels;

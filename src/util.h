@@ -49,6 +49,9 @@
 #ifndef IRC_ACOS
 #define IRC_ACOS(x) acos(x)
 #endif
+#ifndef IRC_ATAN2
+#define IRC_ATAN2(y, x) atan2((y), (x))
+#endif
 #ifndef IRC_SINF
 #define IRC_SINF(x) sinf(x)
 #endif

@@ -1,0 +1,228 @@
+/*
+ * hessian.c -- the occlusion-aware Hessian of irradiance from the samples
+ * a record already cast (Schwarzhaupt, Jensen and Jarosz 2012; the
+ * per-edge closed forms as Radiance's ambcomp.c evaluates them), and the
+ * eigen-decomposition of its tangent-plane part.
+ *
+ * The hit points of neighbouring strata span triangles; each triangle
+ * shines with the radiance of its farthest vertex (a triangle across a
+ * silhouette belongs to what lies behind), so E(x) ~ sum_T L_T F_T(x), and
+ * the Hessian is sum_T L_T H F_T(x).  A triangle's form factor is the sum
+ * over its edges of (n.c) I1/(2 pi) (Lambert's formula, c = r0 x r1), whose
+ * second derivatives in x have the closed forms below.  No ray is cast.
+ */
+#include "cache.h"
+
+/* Escaped rays get a hit point this many times the record's farthest hit
+ * away: far enough that their triangles' derivatives vanish, finite so
+ * that the edges along a silhouette against the sky are formed. */
+#define IRC__FAR 1e3
+/* Black occluders: every triangle's radiance is lifted by this fraction of
+ * the record's mean radiance, so a black blocker against a black wall
+ * still bends E (notes: Radiance adds 1%). */
+#define IRC__FLOOR 0.01
+
+/* One edge r0 -> r1 (relative to x) of a triangle shining with l: adds
+ * l H F_e to h (hessian.md: I1, I2, J2, I3, J3, K3, g, M). */
+static void irc__edge_hessian(const double r0[3], const double r1[3], const double n[3],
+                              const double l[3], double h[3][6])
+{
+    double e[3], c[3], nxe[3], g[3], m[6], d00, d11, ee, cc, er0, er1, cs, i1, i2, j2, i3, j3,
+        k3, nc, f[6];
+    int i, ch;
+    for (i = 0; i < 3; i++)
+        e[i] = r1[i] - r0[i];
+    irc__cross3d(r0, r1, c);
+    cc = irc__dot3d(c, c);
+    ee = irc__dot3d(e, e);
+    d00 = irc__dot3d(r0, r0);
+    d11 = irc__dot3d(r1, r1);
+    /* Degenerate edges (a point, or collinear with x) carry no form factor. */
+    if (!(cc > 1e-24 * d00 * d11) || !(ee > 0.0))
+        return;
+    er0 = irc__dot3d(e, r0);
+    er1 = irc__dot3d(e, r1);
+    cs = irc__dot3d(r0, r1) / IRC_SQRT(d00 * d11);
+    cs = cs > 1.0 ? 1.0 : cs < -1.0 ? -1.0 : cs;
+    i1 = IRC_ACOS(cs) / IRC_SQRT(cc);
+    i2 = (er1 / d11 - er0 / d00 + ee * i1) / (2.0 * cc);
+    j2 = (0.5 * (1.0 / d00 - 1.0 / d11) - er0 * i2) / ee;
+    i3 = (er1 / (d11 * d11) - er0 / (d00 * d00) + 3.0 * ee * i2) / (4.0 * cc);
+    j3 = (0.25 * (1.0 / (d00 * d00) - 1.0 / (d11 * d11)) - er0 * i3) / ee;
+    k3 = (i2 - d00 * i3 - 2.0 * er0 * j3) / ee;
+    for (i = 0; i < 3; i++)
+        g[i] = i2 * r0[i] + j2 * e[i];
+    /* M = I3 r0 r0^T + J3 (r0 e^T + e r0^T) + K3 e e^T, packed xx xy xz yy yz zz */
+    {
+        static const int a[6] = {0, 0, 0, 1, 1, 2}, b[6] = {0, 1, 2, 1, 2, 2};
+        irc__cross3d(n, e, nxe);
+        nc = irc__dot3d(n, c);
+        for (i = 0; i < 6; i++) {
+            m[i] = i3 * r0[a[i]] * r0[b[i]] + j3 * (r0[a[i]] * e[b[i]] + e[a[i]] * r0[b[i]]) +
+                   k3 * e[a[i]] * e[b[i]];
+            f[i] = (nxe[a[i]] * g[b[i]] + g[a[i]] * nxe[b[i]] +
+                    nc * (4.0 * m[i] - (a[i] == b[i] ? i2 : 0.0))) / IRC_PI;
+        }
+    }
+    /* E = pi sum L_T F_T, and the closed forms give -H F_e (Radiance's
+     * comp_hessian returns the same sign). */
+    for (ch = 0; ch < 3; ch++)
+        for (i = 0; i < 6; i++)
+            h[ch][i] -= IRC_PI * l[ch] * f[i];
+}
+
+/* A vertex of the grid: its hit point relative to x and its radiance. */
+typedef struct irc__vtx {
+    double r[3], d;
+    const float *l;
+} irc__vtx;
+
+static void irc__triangle(const irc__vtx *a, const irc__vtx *b, const irc__vtx *c3,
+                          const double n[3], double floor_l, double h[3][6])
+{
+    const irc__vtx *far = a->d >= b->d && a->d >= c3->d ? a : b->d >= c3->d ? b : c3;
+    double l[3];
+    int ch;
+    for (ch = 0; ch < 3; ch++)
+        l[ch] = far->l[ch] + floor_l;
+    irc__edge_hessian(a->r, b->r, n, l, h);
+    irc__edge_hessian(b->r, c3->r, n, l, h);
+    irc__edge_hessian(c3->r, a->r, n, l, h);
+}
+
+/* The grid the vertices come from. */
+typedef struct irc__mesh {
+    const irc__sample *s;
+    const float *dirs, *nrm;
+    uint32_t m, n;
+    double far, fill;
+} irc__mesh;
+
+static int irc__escaped_at(const irc__mesh *g, int64_t j, int64_t k)
+{
+    if (j < 0 || j >= (int64_t)g->m)
+        return 0;
+    k = (k + g->n) % g->n;
+    return !(g->s[j * g->n + k].d < HUGE_VALF);
+}
+
+static double irc__facing(const irc__mesh *g, uint32_t i)
+{
+    const float *w = g->dirs + 3 * i, *nn = g->nrm + 3 * i;
+    return IRC_FABS((double)w[0] * nn[0] + (double)w[1] * nn[1] + (double)w[2] * nn[2]);
+}
+
+/* A hit beside an escaped stratum lies inside a silhouette, nearer than
+ * the silhouette itself when the blocker is curved: its depth is
+ * extrapolated linearly in |n.w| to 0 from its inner neighbour (a smooth
+ * blocker's depth and facing both go as sqrt of the angle to the
+ * silhouette), but only when the facing falls as fast as that (the SH
+ * estimator's rule, shgrad.c); a polygon's edge keeps its depth. */
+static double irc__silhouette(const irc__mesh *g, uint32_t j, uint32_t k, double d)
+{
+    static const int dj[4] = {0, 0, 1, -1}, dk[4] = {1, -1, 0, 0};
+    int q;
+    for (q = 0; q < 4; q++)
+        if (irc__escaped_at(g, (int64_t)j + dj[q], (int64_t)k + dk[q])) {
+            int64_t ij = (int64_t)j - dj[q], ik = ((int64_t)k - dk[q] + g->n) % g->n;
+            uint32_t i = j * g->n + k, o;
+            double fi, fo, dout;
+            if (ij < 0 || ij >= (int64_t)g->m)
+                return d;
+            o = (uint32_t)(ij * g->n + ik);
+            dout = g->s[o].d;
+            if (!(dout < HUGE_VALF) || dout != dout)
+                return d;
+            fi = irc__facing(g, i);
+            fo = irc__facing(g, o);
+            if (!(fo * fo >= 1.25 * fi * fi))
+                return d;
+            d += fi * (d - dout) / (fo - fi);
+            return d;
+        }
+    return d;
+}
+
+/* Escaped strata lie at far, failed ones at the harmonic mean distance. */
+static void irc__vertex(const irc__mesh *g, uint32_t j, uint32_t k, irc__vtx *v)
+{
+    uint32_t i = j * g->n + k;
+    double d = g->s[i].d;
+    int q;
+    if (d != d)
+        d = g->fill;
+    else if (!(d < HUGE_VALF))
+        d = g->far;
+    else {
+        double x = irc__silhouette(g, j, k, d);
+        d = x < d ? d : x > 2.0 * d ? 2.0 * d : x;
+    }
+    for (q = 0; q < 3; q++)
+        v->r[q] = d * g->dirs[3 * i + q];
+    v->d = d;
+    v->l = g->s[i].l;
+}
+
+/* The Hessian of E at the record, per channel, packed xx xy xz yy yz zz in
+ * world space, from the samples and directions of one hemisphere (failed
+ * strata carry the mean radiance and the mean hit distance). */
+void irc__hessian(const irc_cache *c, const irc__sample *s, const float *dirs,
+                  const double n[3], double h[3][6])
+{
+    const uint32_t m = c->cfg.strata_theta, nphi = c->cfg.strata_phi;
+    double far = 0.0, mean = 0.0, inv = 0.0;
+    uint32_t i, j, k, hits = 0;
+    irc__mesh g;
+    IRC_MEMSET(h, 0, 3 * 6 * sizeof(double));
+    for (i = 0; i < m * nphi; i++) {
+        if (s[i].d == s[i].d && s[i].d < HUGE_VALF) {
+            if (s[i].d > far)
+                far = s[i].d;
+            inv += 1.0 / s[i].d;
+            hits++;
+        }
+        mean += ((double)s[i].l[0] + s[i].l[1] + s[i].l[2]) / 3.0;
+    }
+    if (hits == 0 || m < 2 || nphi < 3)
+        return;
+    g.s = s;
+    g.dirs = dirs;
+    g.nrm = irc__slot_normals(c, s);
+    g.m = m;
+    g.n = nphi;
+    g.fill = hits / inv;
+    g.far = far * IRC__FAR;
+    mean = IRC__FLOOR * mean / (m * nphi);
+    for (j = 0; j + 1 < m; j++)
+        for (k = 0; k < nphi; k++) {
+            uint32_t k1 = (k + 1) % nphi;
+            irc__vtx a, b, c0, d;
+            irc__vertex(&g, j, k, &a);
+            irc__vertex(&g, j, k1, &b);
+            irc__vertex(&g, j + 1, k, &c0);
+            irc__vertex(&g, j + 1, k1, &d);
+            irc__triangle(&a, &b, &c0, n, mean, h);
+            irc__triangle(&d, &c0, &b, n, mean, h);
+        }
+}
+
+/* Eigen-decomposition of the symmetric 2x2 [[a, b], [b, c]]: l0 >= l1 in
+ * |l| and the unit eigenvector (u[0], u[1]) of l0.  The angle comes from
+ * atan2 of the signed entries (notes: Radiance's slope from |l| rotates the
+ * axes when the smaller eigenvalue is negative). */
+void irc__eigen2(double a, double b, double c, double *l0, double *l1, double u[2])
+{
+    double mid = 0.5 * (a + c), half = 0.5 * (a - c), r = IRC_SQRT(half * half + b * b);
+    double la = mid + r, lb = mid - r, ang = 0.5 * IRC_ATAN2(2.0 * b, a - c);
+    /* ang is the direction of la; swap so that l0 is the larger in size */
+    if (IRC_FABS(lb) > IRC_FABS(la)) {
+        double t = la;
+        la = lb;
+        lb = t;
+        ang += 0.5 * IRC_PI;
+    }
+    *l0 = la;
+    *l1 = lb;
+    u[0] = IRC_COS(ang);
+    u[1] = IRC_SIN(ang);
+}
