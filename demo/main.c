@@ -62,6 +62,18 @@ static int parse_float(const char *s, float *v)
 
 static int parse_features(const char *s, uint32_t *f)
 {
+    char base[64];
+    size_t len = strlen(s);
+    /* ",hess" after any irradiance set adds Hessian radii */
+    if (len > 5 && len < sizeof base && !strcmp(s + len - 5, ",hess")) {
+        memcpy(base, s, len - 5);
+        base[len - 5] = '\0';
+        if (!strcmp(base, "hess") || !parse_features(base, f) || (*f & IRC_FEATURE_SH))
+            return 0;
+        *f |= IRC_FEATURE_HESSIAN;
+        return 1;
+    }
+    if (!strcmp(s, "hess")) { *f = IRC_FEATURE_HESSIAN; return 1; }
     if (!strcmp(s, "none")) *f = 0;
     else if (!strcmp(s, "trans")) *f = IRC_FEATURE_TRANSLATION;
     else if (!strcmp(s, "rot")) *f = IRC_FEATURE_ROTATION;

@@ -145,6 +145,46 @@ static void irc__grad_rot(const irc_cache *c, const irc__sample *s,
     }
 }
 
+/* With IRC_FEATURE_HESSIAN: the Hessian into out->hessian, and the radius
+ * at which the second-order term reaches the accuracy target.  A record
+ * extrapolated to first order errs by 1/2 |l| d^2 at distance d along an
+ * eigen-axis of the tangent Hessian (eigenvalue l); a lookup reaches d =
+ * a R, so R = sqrt(2 E / |l|) keeps that error at a^2 E at the edge of
+ * reach (hessian.md's max-error variant, relative to E), per channel, the
+ * largest |l| deciding.  Without a gradient the first-order term is
+ * still there, and E/|grad E| (or the split sphere) bounds R as before. */
+static double irc__hessian_radius(const irc_cache *c, const irc__sample *s, const double n[3],
+                                  const double t1[3], const double t2[3], irc_record *out)
+{
+    double h[3][6], r = HUGE_VAL;
+    int ch, i;
+    irc__hessian(c, s, irc__slot_dirs(c, s), n, h);
+    for (ch = 0; ch < 3; ch++) {
+        /* t^T H t' from the packed xx xy xz yy yz zz */
+        static const int ix[3][3] = {{0, 1, 2}, {1, 3, 4}, {2, 4, 5}};
+        double q[3][2], a = 0.0, b = 0.0, d = 0.0, l0, l1, u[2];
+        int x, y;
+        for (i = 0; i < 6; i++)
+            out->hessian[ch][i] = (float)h[ch][i];
+        for (x = 0; x < 3; x++) {
+            q[x][0] = q[x][1] = 0.0;
+            for (y = 0; y < 3; y++) {
+                q[x][0] += h[ch][ix[x][y]] * t1[y];
+                q[x][1] += h[ch][ix[x][y]] * t2[y];
+            }
+        }
+        for (x = 0; x < 3; x++) {
+            a += t1[x] * q[x][0];
+            b += t1[x] * q[x][1];
+            d += t2[x] * q[x][1];
+        }
+        irc__eigen2(a, b, d, &l0, &l1, u);
+        if (IRC_FABS(l0) > 0.0 && IRC_SQRT(2.0 * out->e[ch] / IRC_FABS(l0)) < r)
+            r = IRC_SQRT(2.0 * out->e[ch] / IRC_FABS(l0));
+    }
+    return r;
+}
+
 static void irc__record_build(const irc_cache *c, const irc__sample *s,
                        const double n[3], const double t1[3],
                        const double t2[3], double gvis[3][3], irc_record *out)
@@ -191,6 +231,15 @@ static void irc__record_build(const irc_cache *c, const irc__sample *s,
             for (k = 0; k < 3; k++)
                 out->grad_r[ch][k] = (float)g[ch][k];
     }
+    if (c->cfg.features & IRC_FEATURE_HESSIAN) {
+        double rh = irc__hessian_radius(c, s, n, t1, t2, out);
+        /* With a gradient the second-order term decides alone; the split
+         * sphere still bounds it from what the record saw. */
+        if (c->cfg.features & IRC_FEATURE_TRANSLATION)
+            r = hm;
+        if (rh < r)
+            r = rh;
+    }
     if (r < c->cfg.min_radius) r = c->cfg.min_radius;
     if (r > c->cfg.max_radius) r = c->cfg.max_radius;
     if (r < FLT_MIN) r = FLT_MIN;
@@ -223,15 +272,7 @@ int irc__irr_compute(irc__call *k, void *rec)
         return st;
     irc__record_build(c, (const irc__sample *)(void *)k->slot, k->q.un, t1, t2,
                       vis ? gvis : NULL, out);
-    if (c->cfg.features & IRC_FEATURE_HESSIAN) {
-        const irc__sample *s = (const irc__sample *)(void *)k->slot;
-        double h[3][6];
-        int ch, i;
-        irc__hessian(c, s, irc__slot_dirs(c, s), k->q.un, h);
-        for (ch = 0; ch < 3; ch++)
-            for (i = 0; i < 6; i++)
-                out->hessian[ch][i] = (float)h[ch][i];
-    }
+
     out->rays = k->rays;
     out->p[0] = k->q.p[0];
     out->p[1] = k->q.p[1];

@@ -144,3 +144,61 @@ TEST(test_eigen2)
               "case %zu: not an eigenvector", i);
     }
 }
+
+
+/* The radius rule with gradients (irradiance.c, irc__hessian_radius):
+ * R = sqrt(2 E/|l|), so that first-order extrapolation errs by a^2 E at
+ * the edge of reach a R along the Hessian's major axis.  Checked against
+ * the disk's closed form: the true error of the exact first-order
+ * extrapolation there, where the Hessian and not the split sphere set R. */
+TEST(test_hessian_radius)
+{
+    static const double pts[3][3] = {{0.3, 0, 0}, {1.2, 0, 0}, {-0.5, 1.0, 0}};
+    tscene s;
+    irc_config cfg;
+    irc_cache *c;
+    int i, bound = 0;
+    scene_init(&s);
+    s.sky_a[0] = s.sky_a[1] = s.sky_a[2] = 1.0f;
+    s.has_disk = 1;
+    s.disk_c[2] = 1.0;
+    s.disk_r = 0.8;
+    cfg = scene_config(&s, IRC_FEATURE_TRANSLATION | IRC_FEATURE_HESSIAN, 64, 256);
+    c = block_cache(&cfg, 16, 0);
+    CHECK(c != NULL, "init");
+    if (!c) return;
+    for (i = 0; i < 3; i++) {
+        const float p[3] = {(float)pts[i][0], (float)pts[i][1], 0.0f}, nn[3] = {0, 0, 1};
+        const double a = cfg.accuracy > 0.0f ? cfg.accuracy : 0.2, e = 1e-5;
+        double h[3], l0, l1, u[2], d, q[3], g[2], e0, err;
+        irc_record r;
+        CHECK(irc_record_compute(c, p, nn, &r, NULL) == IRC_OK, "compute");
+        irc__eigen2(r.hessian[0][0], r.hessian[0][1], r.hessian[0][3], &l0, &l1, u);
+        if (fabs(r.radius - sqrt(2.0 * r.e[0] / fabs(l0))) > 1e-4 * r.radius) {
+            printf("  (%.1f, %.1f): R %.4f set by the split sphere (%.4f)\n", pts[i][0],
+                   pts[i][1], r.radius, r.mean_dist);
+            continue;
+        }
+        bound++;
+        /* exact value and exact gradient of the closed form at p */
+        closed_hessian(&s, disk_plane_e, pts[i], h);
+        e0 = disk_plane_e(&s, pts[i]);
+        memcpy(q, pts[i], sizeof q);
+        q[0] += e;
+        g[0] = (disk_plane_e(&s, q) - e0) / e;
+        q[0] -= e;
+        q[1] += e;
+        g[1] = (disk_plane_e(&s, q) - e0) / e;
+        d = a * r.radius;
+        q[0] = pts[i][0] + d * u[0];
+        q[1] = pts[i][1] + d * u[1];
+        q[2] = 0.0;
+        err = fabs(disk_plane_e(&s, q) - e0 - d * (g[0] * u[0] + g[1] * u[1])) / e0;
+        printf("  (%.1f, %.1f): R %.4f, first-order error at a R: %.5f (a^2 = %.4f)\n",
+               pts[i][0], pts[i][1], r.radius, err, a * a);
+        CHECK(err > 0.5 * a * a && err < 1.5 * a * a, "error %.5f at the edge, want ~%.4f", err,
+              a * a);
+    }
+    CHECK(bound >= 1, "no point had its radius set by the Hessian");
+    block_free(&cfg);
+}
