@@ -270,9 +270,17 @@ enum irc_feature {
     IRC_FEATURE_HESSIAN = 1u << 5      /* irradiance records: the
                                           occlusion-aware Hessian of E from
                                           the rays already cast (Schwarzhaupt
-                                          et al. 2012), in irc_record.hessian;
-                                          no extra rays, 24 scratch bytes a
-                                          stratum */
+                                          et al. 2012), in irc_record.hessian,
+                                          and the radius it implies: R <=
+                                          sqrt(2 E/|l|), l the tangent
+                                          Hessian's larger eigenvalue, so
+                                          first-order extrapolation errs by
+                                          about a^2 E at the edge of reach;
+                                          with TRANSLATION this bound replaces
+                                          E/|grad E| (the split sphere still
+                                          bounds R).  No extra rays, 24
+                                          scratch bytes a stratum, no record
+                                          bytes */
 };
 
 /* What insert does when the record pool is full. */
