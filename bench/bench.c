@@ -54,7 +54,8 @@ typedef struct run {
     double param;          /* rays per point, or a */
     uint32_t m, n;         /* strata (cache runs) */
     render_stats st;
-    double rmse, p99;
+    double rmse, p99, p999, maxe; /* relative errors of pixels */
+    int over10;                   /* pixels more than 10% off */
 } run;
 
 typedef struct ctx {
@@ -80,7 +81,7 @@ static int on_lattice(const ctx *c, int i)
 
 /* Relative RMSE and the 99th percentile of the per-pixel relative error
  * over the lattice. */
-static void measure(const ctx *c, const float *img, const float *ref, double *rmse, double *p99)
+static void measure(const ctx *c, const float *img, const float *ref, run *r)
 {
     const int n = c->w * c->h;
     double se = 0.0, sr = 0.0, mean = 0.0;
@@ -114,8 +115,14 @@ static void measure(const ctx *c, const float *img, const float *ref, double *rm
                 rel[j] = v;
             }
     }
-    *rmse = sr > 0.0 ? sqrt(se / sr) : 0.0;
-    *p99 = rel[(int)(0.99 * (m - 1))];
+    /* Outliers seen, not averaged away: the 99.9th percentile, the worst
+     * pixel, and how many are over 10%. */
+    r->rmse = sr > 0.0 ? sqrt(se / sr) : 0.0;
+    r->p99 = rel[(int)(0.99 * (m - 1))];
+    r->p999 = rel[(int)(0.999 * (m - 1))];
+    r->maxe = rel[m - 1];
+    for (i = 0, r->over10 = 0; i < m; i++)
+        r->over10 += rel[i] > 0.1;
     free(rel);
 }
 
@@ -186,9 +193,9 @@ static int reference(ctx *c, const bscene *b)
     for (i = 0; i < 3 * n; i++)
         c->ref[i] = 0.5f * (one[0][i] + one[1][i]);
     {
-        double p;
-        measure(c, one[0], one[1], &c->ref_noise, &p);
-        c->ref_noise *= 0.5; /* of the average of two */
+        run noise;
+        measure(c, one[0], one[1], &noise);
+        c->ref_noise = 0.5 * noise.rmse; /* of the average of two */
     }
     free(one[0]);
     free(one[1]);
@@ -206,17 +213,19 @@ static int add_run(ctx *c, const char *method, double param, const render_opts *
         return -1;
     snprintf(r->method, sizeof r->method, "%s", method);
     r->param = param;
-    measure(c, img, c->ref, &r->rmse, &r->p99);
+    measure(c, img, c->ref, r);
     free(img);
     c->nruns++;
-    fprintf(csv, "%s,%s,%g,%ux%u,%.4f,%.4f,%.4f,%llu,%llu,%zu,%zu,%.5f,%.5f,%.5f\n", b->name,
-            method, param, r->m, r->n, r->st.wall, r->st.trace_s, r->st.cache_s, (unsigned long long)r->st.rays,
-            (unsigned long long)r->st.records, (size_t)r->st.records * r->st.record_bytes,
-            r->st.cache_bytes, r->rmse, r->p99, c->ref_noise);
+    fprintf(csv, "%s,%s,%g,%ux%u,%.4f,%.4f,%.4f,%llu,%llu,%zu,%zu,%.5f,%.5f,%.5f,%.5f,%.5f,%d\n",
+            b->name, method, param, r->m, r->n, r->st.wall, r->st.trace_s, r->st.cache_s,
+            (unsigned long long)r->st.rays, (unsigned long long)r->st.records,
+            (size_t)r->st.records * r->st.record_bytes, r->st.cache_bytes, r->rmse, r->p99,
+            c->ref_noise, r->p999, r->maxe, r->over10);
     fflush(csv);
-    printf("  %-10s %5g %4ux%-4u %7.2f s, rel RMSE %.4f, p99 %.4f, records %llu, cache %.1f%% of thread time\n",
-           method, param, r->m, r->n, r->st.wall, r->rmse, r->p99, (unsigned long long)r->st.records,
-           100.0 * r->st.cache_s / (c->threads * r->st.wall));
+    printf("  %-10s %5g %4ux%-4u %7.2f s, rel RMSE %.4f, p99 %.4f, p99.9 %.4f, max %.4f, "
+           "%d px > 10%%, records %llu, cache %.1f%% of thread time\n",
+           method, param, r->m, r->n, r->st.wall, r->rmse, r->p99, r->p999, r->maxe, r->over10,
+           (unsigned long long)r->st.records, 100.0 * r->st.cache_s / (c->threads * r->st.wall));
     return 0;
 }
 
@@ -301,19 +310,21 @@ static void cell_time(FILE *f, const ctx *c, const char *method, double target, 
         fprintf(f, " %s%.2f s (%s%.1fx) |", bm ? "<= " : "", t, bm ? ">= " : "", tb / t);
 }
 
-#define NMETHODS 5
-static const char *const methods[NMETHODS] = {"brute", "none", "trans+rot", "vis", "sh"};
+#define NMETHODS 6
+static const char *const methods[NMETHODS] = {"brute", "none", "trans+rot", "vis", "hess", "sh"};
 static const char *const method_names[NMETHODS] = {
     "brute force", "cache, no gradients", "cache, translational + rotational",
-    "cache, visibility gradients", "cache, SH records L = 3 + gradients"};
+    "cache, visibility gradients", "cache, trans + rot, Hessian radii",
+    "cache, SH records L = 3 + gradients"};
 
 static void table(ctx *c, const bscene *b, FILE *md)
 {
     int m, i;
     fprintf(md, "\n**%s** (%dx%d; reference %d rays at every %dth pixel, noise %.4f)\n\n",
             b->name, c->w, c->h, c->ref_rays, c->stride, c->ref_noise);
-    fprintf(md, "| method | runs | best rel. RMSE | its p99 | time to 5%% (speedup) | "
-                "time to 2%% (speedup) | records at a = 0.2, 16x64 (their bytes) | cache share there |\n"
+    fprintf(md, "| method | runs | best rel. RMSE | its p99 / p99.9 / max, px > 10%% | "
+                "time to 5%% (speedup) | time to 2%% (speedup) | records at a = 0.2, 16x64 "
+                "(their bytes) | cache share there |\n"
                 "|---|---|---|---|---|---|---|---|\n");
     for (m = 0; m < NMETHODS; m++) {
         const run *best = NULL, *mid = NULL;
@@ -330,7 +341,8 @@ static void table(ctx *c, const bscene *b, FILE *md)
         }
         if (!n)
             continue;
-        fprintf(md, "| %s | %d | %.4f | %.4f |", method_names[m], n, best->rmse, best->p99);
+        fprintf(md, "| %s | %d | %.4f | %.4f / %.4f / %.3f, %d |", method_names[m], n, best->rmse,
+                best->p99, best->p999, best->maxe, best->over10);
         cell_time(md, c, methods[m], 0.05, m == 0);
         cell_time(md, c, methods[m], 0.02, m == 0);
         if (mid)
@@ -344,11 +356,11 @@ static void table(ctx *c, const bscene *b, FILE *md)
         if (!strcmp(c->runs[i].method, "trans+rot") && fabs(c->runs[i].param - 0.2) < 1e-6 &&
             c->runs[i].m == 16) {
             double rec = (double)c->runs[i].st.records, e0 = rmse_at(c, "none", rec),
-                   e1 = c->runs[i].rmse, e2 = rmse_at(c, "vis", rec);
+                   e1 = c->runs[i].rmse, e2 = rmse_at(c, "vis", rec), e3 = rmse_at(c, "hess", rec);
             fprintf(md, "\nAt %llu records (trans+rot, a = 0.2, 16x64), along the 16x64 sweeps: "
                         "relative RMSE no gradients %.4f, "
-                        "translational + rotational %.4f, visibility %.4f",
-                    (unsigned long long)rec, e0, e1, e2);
+                        "translational + rotational %.4f, visibility %.4f, Hessian radii %.4f",
+                    (unsigned long long)rec, e0, e1, e2, e3);
             if (e0 > 0.0 && e2 > 0.0)
                 fprintf(md, " (none / trans+rot = %.2f, trans+rot / visibility = %.2f)", e0 / e1,
                         e1 / e2);
@@ -398,6 +410,7 @@ static int sweep(ctx *c, const bscene *b, FILE *csv)
     static const uint32_t feats[NMETHODS] = {
         0, 0, IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION,
         IRC_FEATURE_VISIBILITY | IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION,
+        IRC_FEATURE_HESSIAN | IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION,
         IRC_FEATURE_SH | IRC_FEATURE_SH_GRADIENT};
     const int nb = c->quick ? 3 : 5, na = c->quick ? 3 : 5, ng = c->quick ? 1 : 2;
     const double *as = c->quick ? a_quick : a_full;
@@ -410,7 +423,7 @@ static int sweep(ctx *c, const bscene *b, FILE *csv)
             return -1;
     }
     for (m = 1; m < NMETHODS; m++)
-        for (g = 0; g < ng && (m < 4 || b->sh); g++)
+        for (g = 0; g < ng && (strcmp(methods[m], "sh") || b->sh); g++)
             for (i = 0; i < na; i++) {
                 render_opts o = base_opts(c);
                 o.mode = MODE_CACHE;
@@ -460,7 +473,8 @@ int main(int argc, char **argv)
         return 1;
     }
     fprintf(csv, "scene,method,param,strata,wall_s,trace_thread_s,cache_thread_s,rays,records,"
-                 "record_bytes_used,block_bytes,rel_rmse,p99_rel_err,ref_noise\n");
+                 "record_bytes_used,block_bytes,rel_rmse,p99_rel_err,ref_noise,p999_rel_err,max_rel_err,"
+                 "pixels_over_10pct\n");
     fprintf(md, "`make bench%s` on %s (%d threads), %s. One-bounce indirect light kd/pi E "
                 "only. Speedups are brute force's time to the same error over the method's, "
                 "interpolated along each curve (log-log); plots in `" OUT "/SCENE.png`.\n",

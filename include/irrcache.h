@@ -307,7 +307,11 @@ typedef struct irc_config {
                                 [0, IRC_RADIUS_CAP) (default 0) */
     float max_radius;        /* R_i <= max_radius; finite, in
                                 (min_radius, IRC_RADIUS_CAP] (default 0:
-                                IRC_RADIUS_CAP, no limit) */
+                                IRC_RADIUS_CAP, no limit).  Also the radius
+                                of a record whose rays all escaped (with
+                                the default, such a record has the
+                                smallest radius and serves only its own
+                                point: set max_radius for open scenes) */
     uint32_t strata_theta;   /* M rows in theta, 1..1024 (default 16) */
     uint32_t strata_phi;     /* N columns in phi, 1..4096 (default 64);
                                 M * N <= IRC_MAX_STRATA */
@@ -434,13 +438,22 @@ typedef struct irc_record {
     float p[3];          /* position */
     float n[3];          /* unit normal */
     float e[3];          /* RGB irradiance (see the units above) */
-    float radius;        /* R_i: harmonic mean hit distance, clamped by
-                            [min_radius, max_radius] and by E/|grad E| */
-    float mean_dist;     /* the harmonic mean hit distance before clamping
-                            (+inf if every ray escaped) */
+    float radius;        /* R_i: the harmonic mean distance of the rays
+                            that hit (escaped rays do not count: the
+                            distance to what the record saw), at most
+                            E/|grad E| per channel (with TRANSLATION and
+                            without HESSIAN), at most sqrt(2 E/|l|) (with
+                            HESSIAN), then clamped to [min_radius,
+                            max_radius]; max_radius, or else the smallest
+                            float, when no ray hit */
+    float mean_dist;     /* that harmonic mean before the other bounds */
     float grad_t[3][3];  /* grad_t[c] = dE_c/dp: irradiance per unit of the
                             host's length, along the surface (zero unless
-                            TRANSLATION) */
+                            TRANSLATION).  Stored scaled down where needed
+                            so that |grad_t[c]| radius <= e[c]: a radius
+                            lifted (min_radius, the host) keeps the
+                            extrapolation within e (1 +- a) at the edge of
+                            reach */
     float grad_r[3][3];  /* grad_r[c]: E_c(n') ~ e[c] + (n x n').grad_r[c],
                             irradiance per radian of normal rotation (zero
                             unless ROTATION) */

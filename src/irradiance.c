@@ -185,12 +185,36 @@ static double irc__hessian_radius(const irc_cache *c, const irc__sample *s, cons
     return r;
 }
 
+/* Ward's split-sphere radius, the harmonic mean hit distance, made safe
+ * without a scene size: over the rays that hit.  Ward's form counts an
+ * escaped ray as a hit at infinity, so a record that saw a blocker in a
+ * tenth of its rays and sky in the rest got ten times the blocker's
+ * distance, and one that saw only sky an infinite radius (a record 1000
+ * away then answered lookups under the blocker).  The distance to what the
+ * record saw is the scale at which what it saw changes.  A record that hit
+ * nothing has no scale: it takes the host's max_radius if the host set
+ * one, else the smallest radius (it then serves lookups at its own point
+ * only); open scenes want a max_radius. */
+static double irc__split_sphere(const irc_cache *c, const irc__sample *s)
+{
+    double inv = 0.0;
+    uint32_t i, hits = 0;
+    for (i = 0; i < c->strata; i++)
+        if (s[i].d == s[i].d && s[i].d < HUGE_VALF) {
+            hits++;
+            inv += 1.0 / (double)s[i].d;
+        }
+    if (hits == 0)
+        return c->cfg.max_radius < IRC__CAP ? (double)c->cfg.max_radius : 0.0;
+    return hits / inv;
+}
+
 static void irc__record_build(const irc_cache *c, const irc__sample *s,
                        const double n[3], const double t1[3],
                        const double t2[3], double gvis[3][3], irc_record *out)
 {
     const uint32_t total = c->strata;
-    double sum[3] = {0, 0, 0}, inv = 0.0, hm, r, g[3][3];
+    double sum[3] = {0, 0, 0}, hm, r, g[3][3];
     uint32_t i, used = 0;
     int ch, k;
 
@@ -198,7 +222,6 @@ static void irc__record_build(const irc_cache *c, const irc__sample *s,
         if (s[i].d != s[i].d)
             continue;
         used++;
-        inv += 1.0 / (double)s[i].d;
         for (ch = 0; ch < 3; ch++)
             sum[ch] += s[i].l[ch];
     }
@@ -208,7 +231,7 @@ static void irc__record_build(const irc_cache *c, const irc__sample *s,
         out->e[ch] = (float)(IRC_PI * sum[ch] / used);
         out->n[ch] = (float)n[ch];
     }
-    hm = inv > 0.0 ? used / inv : HUGE_VAL;
+    hm = irc__split_sphere(c, s);
     r = hm;
     if (c->cfg.features & IRC_FEATURE_TRANSLATION) {
         irc__grad_trans(c, s, t1, t2, g);
@@ -244,7 +267,7 @@ static void irc__record_build(const irc_cache *c, const irc__sample *s,
     if (r > c->cfg.max_radius) r = c->cfg.max_radius;
     if (r < FLT_MIN) r = FLT_MIN;
     out->radius = (float)r;
-    out->mean_dist = hm > FLT_MAX ? HUGE_VALF : (float)hm;
+    out->mean_dist = (float)hm;
     out->features = c->cfg.features;
     out->rays = total;
     out->rays_used = used;

@@ -65,12 +65,34 @@ static int irc__irr_check(const irc_cache *c, const void *rec, double un[3])
     return IRC_OK;
 }
 
+/* The translational gradient stays within the record's reach: whatever set
+ * the radius (the record's own estimate, min_radius, the host), |grad E_c|
+ * R <= E_c, so extrapolation changes E by at most a fraction a at the edge
+ * of reach a R (Radiance caps its gradients the same way).  A radius
+ * lifted past E/|grad E| would otherwise extrapolate far past E. */
+static void irc__grad_limit(const irc_record *in, float r, float g[3][3])
+{
+    int ch, k;
+    for (ch = 0; ch < 3; ch++) {
+        double len = 0.0;
+        for (k = 0; k < 3; k++) {
+            g[ch][k] = in->grad_t[ch][k];
+            len += (double)g[ch][k] * g[ch][k];
+        }
+        len = IRC_SQRT(len) * r;
+        if (len > in->e[ch])
+            for (k = 0; k < 3; k++)
+                g[ch][k] = (float)(g[ch][k] * (in->e[ch] / len));
+    }
+}
+
 static void irc__irr_pack(const irc_cache *c, const void *rec, const double un[3], void *dst)
 {
     const irc_record *in = (const irc_record *)rec;
     unsigned char *b = (unsigned char *)dst;
     irc__rec *r = (irc__rec *)dst;
     double t1[3], t2[3];
+    float g[3][3];
     int ch;
     IRC_MEMSET(dst, 0, c->rec_size);
     for (ch = 0; ch < 3; ch++) {
@@ -80,8 +102,10 @@ static void irc__irr_pack(const irc_cache *c, const void *rec, const double un[3
     r->r = in->radius < FLT_MIN ? FLT_MIN : in->radius > IRC__CAP ? IRC__CAP : in->radius;
     r->n = irc__oct_encode(un);
     irc__oct_frame(r->n, t1, t2);
-    if (c->off_t)
-        irc__grad_pack(in->grad_t, t1, t2, (irc__grad *)(void *)(b + c->off_t));
+    if (c->off_t) {
+        irc__grad_limit(in, r->r, g);
+        irc__grad_pack((const float(*)[3])g, t1, t2, (irc__grad *)(void *)(b + c->off_t));
+    }
     if (c->off_r)
         irc__grad_pack(in->grad_r, t1, t2, (irc__grad *)(void *)(b + c->off_r));
 }

@@ -23,6 +23,15 @@ void scene_sphere_plane(tscene *s)
     s->radius = 1.0;
 }
 
+void scene_disk_plane(tscene *s)
+{
+    scene_init(s);
+    s->sky_a[0] = s->sky_a[1] = s->sky_a[2] = 1.0f;
+    s->has_disk = 1;
+    s->disk_c[2] = 1.0;
+    s->disk_r = 0.8;
+}
+
 void scene_box_plane(tscene *s)
 {
     static const double lo[3] = {-0.5, -0.3, 1.0}, hi[3] = {1.1, 0.7, 1.8};

@@ -51,6 +51,9 @@ double scene_sky(const tscene *s, const double d[3], int c);
  * [-0.5, 1.1] x [-0.3, 0.7] x [1.0, 1.8] (box_plane_e). */
 void scene_sphere_plane(tscene *s);
 void scene_box_plane(tscene *s);
+/* Uniform sky L = 1 over z = 0 and a black disk of radius 0.8 at height 1
+ * centred over the origin (disk_plane_e). */
+void scene_disk_plane(tscene *s);
 int scene_trace(const irc_trace_args *a);
 
 /* E at a point on the plane z = 0 (normal +z) under a uniform sky L with a

@@ -98,11 +98,7 @@ TEST(test_hessian_closed_forms)
     printf("  sphere: worst magnitude error %.1f%%, worst major axis %.2f deg\n", 100.0 * w,
            worst_axis);
     CHECK(worst_axis < 3.0, "sphere: major axis off by %.2f deg", worst_axis);
-    scene_init(&s);
-    s.sky_a[0] = s.sky_a[1] = s.sky_a[2] = 1.0f;
-    s.has_disk = 1;
-    s.disk_c[2] = 1.0;
-    s.disk_r = 0.8;
+    scene_disk_plane(&s);
     w = worst_over(&s, disk_plane_e, dk, 3, 64, 256, "disk");
     CHECK(w < 0.05, "disk: worst %.2f%%", 100.0 * w);
 }
@@ -147,22 +143,19 @@ TEST(test_eigen2)
 
 
 /* The radius rule with gradients (irradiance.c, irc__hessian_radius):
- * R = sqrt(2 E/|l|), so that first-order extrapolation errs by a^2 E at
- * the edge of reach a R along the Hessian's major axis.  Checked against
- * the disk's closed form: the true error of the exact first-order
- * extrapolation there, where the Hessian and not the split sphere set R. */
+ * R_h = sqrt(2 E/|l|), so that first-order extrapolation errs by a^2 E at
+ * the edge of reach a R_h along the Hessian's major axis, and the record's
+ * radius is the smaller of R_h and the split sphere.  Checked against the
+ * disk's closed form: the true error of the exact first-order
+ * extrapolation at a R_h. */
 TEST(test_hessian_radius)
 {
     static const double pts[3][3] = {{0.3, 0, 0}, {1.2, 0, 0}, {-0.5, 1.0, 0}};
     tscene s;
     irc_config cfg;
     irc_cache *c;
-    int i, bound = 0;
-    scene_init(&s);
-    s.sky_a[0] = s.sky_a[1] = s.sky_a[2] = 1.0f;
-    s.has_disk = 1;
-    s.disk_c[2] = 1.0;
-    s.disk_r = 0.8;
+    int i;
+    scene_disk_plane(&s);
     cfg = scene_config(&s, IRC_FEATURE_TRANSLATION | IRC_FEATURE_HESSIAN, 64, 256);
     c = block_cache(&cfg, 16, 0);
     CHECK(c != NULL, "init");
@@ -170,18 +163,15 @@ TEST(test_hessian_radius)
     for (i = 0; i < 3; i++) {
         const float p[3] = {(float)pts[i][0], (float)pts[i][1], 0.0f}, nn[3] = {0, 0, 1};
         const double a = cfg.accuracy > 0.0f ? cfg.accuracy : 0.2, e = 1e-5;
-        double h[3], l0, l1, u[2], d, q[3], g[2], e0, err;
+        double l0, l1, u[2], d, q[3], g[2], e0, err, rh;
         irc_record r;
         CHECK(irc_record_compute(c, p, nn, &r, NULL) == IRC_OK, "compute");
         irc__eigen2(r.hessian[0][0], r.hessian[0][1], r.hessian[0][3], &l0, &l1, u);
-        if (fabs(r.radius - sqrt(2.0 * r.e[0] / fabs(l0))) > 1e-4 * r.radius) {
-            printf("  (%.1f, %.1f): R %.4f set by the split sphere (%.4f)\n", pts[i][0],
-                   pts[i][1], r.radius, r.mean_dist);
-            continue;
-        }
-        bound++;
+        rh = sqrt(2.0 * r.e[0] / fabs(l0));
+        CHECK(fabs(r.radius - (rh < r.mean_dist ? rh : r.mean_dist)) < 1e-4 * r.radius,
+              "R %g, want the smaller of %g (Hessian) and %g (split sphere)", r.radius, rh,
+              r.mean_dist);
         /* exact value and exact gradient of the closed form at p */
-        closed_hessian(&s, disk_plane_e, pts[i], h);
         e0 = disk_plane_e(&s, pts[i]);
         memcpy(q, pts[i], sizeof q);
         q[0] += e;
@@ -189,16 +179,122 @@ TEST(test_hessian_radius)
         q[0] -= e;
         q[1] += e;
         g[1] = (disk_plane_e(&s, q) - e0) / e;
-        d = a * r.radius;
+        d = a * rh;
         q[0] = pts[i][0] + d * u[0];
         q[1] = pts[i][1] + d * u[1];
         q[2] = 0.0;
         err = fabs(disk_plane_e(&s, q) - e0 - d * (g[0] * u[0] + g[1] * u[1])) / e0;
-        printf("  (%.1f, %.1f): R %.4f, first-order error at a R: %.5f (a^2 = %.4f)\n",
-               pts[i][0], pts[i][1], r.radius, err, a * a);
+        printf("  (%.1f, %.1f): R_h %.4f (split sphere %.4f), first-order error at a R_h: "
+               "%.5f (a^2 = %.4f)\n", pts[i][0], pts[i][1], rh, r.mean_dist, err, a * a);
         CHECK(err > 0.5 * a * a && err < 1.5 * a * a, "error %.5f at the edge, want ~%.4f", err,
               a * a);
     }
-    CHECK(bound >= 1, "no point had its radius set by the Hessian");
     block_free(&cfg);
+}
+
+/* A corner record (E = 1.55, |grad E| = 146, as a real render made one)
+ * whose radius something else lifted (min_radius, the host): the gradient
+ * is scaled down to the radius, so a lookup at the edge of reach stays
+ * within E (1 + a) instead of extrapolating to 36.6 (0.1 did). */
+TEST(test_gradient_within_reach)
+{
+    tscene s;
+    irc_config cfg;
+    irc_cache *c;
+    irc_record r, back;
+    const float q[3] = {0.24f, 0.0f, 0.0f}, n[3] = {0, 0, 1};
+    float rgb[3], w;
+    double g;
+    int st;
+    scene_init(&s);
+    cfg = scene_config(&s, IRC_FEATURE_TRANSLATION, 4, 4);
+    cfg.accuracy = 0.5f;
+    c = block_cache(&cfg, 4, 0);
+    CHECK(c != NULL, "init");
+    if (!c) return;
+    memset(&r, 0, sizeof r);
+    r.n[2] = 1.0f;
+    r.e[0] = r.e[1] = r.e[2] = 1.55f;
+    r.grad_t[0][0] = r.grad_t[1][0] = r.grad_t[2][0] = 146.0f;
+    r.radius = 0.5f; /* reach 0.25 */
+    CHECK(irc_cache_insert(c, &r) == IRC_OK, "insert");
+    st = irc_cache_lookup(c, q, n, rgb, &w);
+    printf("  lookup 0.24 from the record: %.3f (E 1.55, unclamped extrapolation %.2f)\n",
+           rgb[0], 1.55 + 146.0 * 0.24);
+    CHECK(st == IRC_OK && rgb[0] <= 1.55f * 1.5f + 1e-4f, "lookup %g", rgb[0]);
+    CHECK(irc_cache_record(c, 0, &back) == IRC_OK, "read");
+    g = sqrt((double)back.grad_t[0][0] * back.grad_t[0][0] + back.grad_t[0][1] * back.grad_t[0][1] +
+             back.grad_t[0][2] * back.grad_t[0][2]);
+    CHECK(fabs(g * 0.5 - 1.55) < 1e-3, "stored |grad| R = %g, want E", g * 0.5);
+    /* A gradient already within reach is kept. */
+    r.grad_t[0][0] = 2.0f;
+    r.p[0] = 10.0f;
+    CHECK(irc_cache_insert(c, &r) == IRC_OK && irc_cache_record(c, 1, &back) == IRC_OK, "second");
+    CHECK(fabs(back.grad_t[0][0] - 2.0f) < 1e-3f, "kept %g", back.grad_t[0][0]);
+    block_free(&cfg);
+}
+
+/* Safe defaults: with every radius field zero, the sphere-over-plane fill
+ * (the fill 0.1 got wrong by 9-17% with 1-2 records) errs less as a
+ * falls, no point stands far out from the fill's own error, and a record
+ * that saw nothing (x = 1000) answers no lookup under the sphere. */
+TEST(test_safe_defaults)
+{
+    static const float as[3] = {0.4f, 0.2f, 0.1f};
+    tscene s;
+    double last = 1e9;
+    int ai;
+    scene_sphere_plane(&s);
+    for (ai = 0; ai < 3; ai++) {
+        irc_config cfg = scene_config(&s, IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION, 0, 0);
+        irc_cache *c;
+        irc_stats st;
+        double se = 0.0, sw = 0.0, worst = 0.0;
+        int i, j, n = irc_t_quick ? 24 : 48;
+        cfg.accuracy = as[ai];
+        c = block_cache(&cfg, 20000, 0);
+        CHECK(c != NULL, "init");
+        if (!c) return;
+        for (i = 0; i < n; i++)
+            for (j = 0; j < n; j++) {
+                const float p[3] = {(float)(-3.0 + 6.0 * (i + 0.37) / n),
+                                    (float)(-3.0 + 6.0 * (j + 0.61) / n), 0.0f};
+                const float nn[3] = {0, 0, 1};
+                double q[3] = {p[0], p[1], 0.0}, want = sphere_plane_e(&s, q), err;
+                float rgb[3];
+                if (irc_cache_lookup_or_compute(c, p, nn, rgb, NULL, NULL) < 0) {
+                    CHECK(0, "lookup failed");
+                    continue;
+                }
+                err = fabs(rgb[0] - want) / want;
+                se += err * err;
+                sw += 1.0;
+                if (err > worst)
+                    worst = err;
+            }
+        irc_cache_stats(c, &st);
+        se = sqrt(se / sw);
+        printf("  a = %.1f: %llu records, relative RMSE %.4f, worst point %.4f (%.1fx)\n", as[ai],
+               (unsigned long long)st.records, se, worst, worst / se);
+        CHECK(se < last, "a = %.1f: RMSE %.4f not below %.4f", as[ai], se, last);
+        CHECK(worst < 8.0 * se, "a = %.1f: a point %.1fx the RMSE", as[ai], worst / se);
+        last = se;
+        if (ai == 0) {
+            /* a record that saw no geometry, far away, serves nothing here */
+            irc_cache *far;
+            irc_config fc = scene_config(&s, IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION, 0, 0);
+            const float at[3] = {1000.0f, 0.0f, 0.0f}, under[3] = {0.2f, 0.0f, 0.0f},
+                        nn[3] = {0, 0, 1};
+            irc_record r;
+            float rgb[3], w;
+            fc.accuracy = as[ai];
+            far = block_cache(&fc, 4, 0);
+            CHECK(far && irc_record_compute(far, at, nn, &r, NULL) == IRC_OK &&
+                      irc_cache_insert(far, &r) == IRC_OK, "far record");
+            CHECK(irc_cache_lookup(far, under, nn, rgb, &w) == IRC_MISS,
+                  "the far record answered under the sphere: %g (R %g)", rgb[0], r.radius);
+            block_free(&fc);
+        }
+        block_free(&cfg);
+    }
 }

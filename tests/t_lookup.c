@@ -78,10 +78,12 @@ TEST(test_extrapolation)
 {
     irc_config cfg = scene_config(&dummy, IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION, 4, 4);
     irc_cache *c;
-    irc_record r = flat_record(1, 2, 3, 1.0f, 10.0f);
+    /* |grad_t| R <= E for every channel (so stored as given), a reach of
+     * 2 for the green channel to extrapolate below zero */
+    irc_record r = flat_record(1, 2, 3, 1.0f, 0.2f);
     float p[3] = {1.5f, 1.75f, 3.0f}, n[3] = {0, 0, 1}, rgb[3], w;
     double th = 0.1, want;
-    cfg.accuracy = 1.0f;
+    cfg.accuracy = 10.0f;
     c = block_cache(&cfg, 8, 0);
     CHECK(c != NULL, "init");
     if (!c) return;

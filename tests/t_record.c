@@ -1,4 +1,5 @@
 /* t_record.c -- records against closed forms. */
+#include <float.h>
 #include <math.h>
 #include <string.h>
 
@@ -37,7 +38,19 @@ TEST(test_uniform_sky)
                 CHECK(len3(r.grad_t[ch]) <= 1e-5 * e, "grad_t %g", len3(r.grad_t[ch]));
                 CHECK(len3(r.grad_r[ch]) <= 1e-5 * e, "grad_r %g", len3(r.grad_r[ch]));
             }
-            CHECK(r.radius == IRC_RADIUS_CAP, "radius of an open sky %g", r.radius);
+            /* Nothing seen, no scale (irradiance.c, irc__split_sphere): the
+             * smallest radius unless the host set a max_radius. */
+            CHECK(r.radius == FLT_MIN, "radius of an open sky %g", r.radius);
+        }
+        block_free(&cfg);
+        cfg = scene_config(&s, IRC_FEATURE_TRANSLATION, strata[i][0], strata[i][1]);
+        cfg.max_radius = 3.5f;
+        c = block_cache(&cfg, 16, 0);
+        {
+            const float p[3] = {0.5f, -2.0f, 7.0f};
+            irc_record r;
+            CHECK(c && irc_record_compute(c, p, normals[0], &r, NULL) == IRC_OK &&
+                      r.radius == 3.5f, "open sky with a max_radius: %g", c ? r.radius : -1.0f);
         }
         block_free(&cfg);
     }
@@ -115,11 +128,7 @@ TEST(test_flat_blocker)
     irc_config cfg;
     irc_cache *c;
     int i;
-    scene_init(&s);
-    s.sky_a[0] = s.sky_a[1] = s.sky_a[2] = 1.0f;
-    s.has_disk = 1;
-    s.disk_c[2] = 1.0;
-    s.disk_r = 0.8;
+    scene_disk_plane(&s);
     cfg = scene_config(&s, IRC_FEATURE_TRANSLATION, 32, 128);
     c = block_cache(&cfg, 16, 0);
     CHECK(c != NULL, "init");
@@ -278,7 +287,7 @@ TEST(test_pack_roundtrip)
         for (k = 0; k < 3; k++) {
             r.p[k] = (float)(xrand(&st) * 10 - 5);
             r.n[k] = (float)(xrand(&st) * 2 - 1);
-            r.e[k] = (float)xrand(&st);
+            r.e[k] = (float)(1.0 + xrand(&st)); /* |grad_t| R < e: stored as given */
         }
         r.radius = 0.25f;
         {

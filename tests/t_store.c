@@ -125,7 +125,7 @@ TEST(test_gradient_channels)
     if (!c) return;
     memset(&r, 0, sizeof r);
     r.n[0] = 0.3f; r.n[1] = -0.5f; r.n[2] = 0.8f;
-    r.radius = 1.0f;
+    r.radius = 0.5f; /* |grad_t| R < e: stored as given */
     for (ch = 0; ch < 3; ch++) {
         r.e[ch] = (float)scale[ch];
         for (k = 0; k < 3; k++) {
