@@ -17,6 +17,7 @@ static const char usage[] =
     "  --cache                 irradiance from the cache (the default)\n"
     "  --reference N           brute force: N hemisphere rays per shading point\n"
     "  --features LIST         cache gradients: none, trans, rot, trans,rot (default),\n"
+    "                          any of these + \",hess\" (Hessian radii),\n"
     "                          vis, vis,rot (vis: translational from visibility),\n"
     "                          sh, sh,grad (SH records, L = 3, E by convolution)\n"
     "  --accuracy A            cache accuracy a (default 0.2)\n"

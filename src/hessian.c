@@ -77,25 +77,12 @@ typedef struct irc__vtx {
     const float *l;
 } irc__vtx;
 
-static void irc__triangle(const irc__vtx *a, const irc__vtx *b, const irc__vtx *c3,
-                          const double n[3], double floor_l, double h[3][6])
-{
-    const irc__vtx *far = a->d >= b->d && a->d >= c3->d ? a : b->d >= c3->d ? b : c3;
-    double l[3];
-    int ch;
-    for (ch = 0; ch < 3; ch++)
-        l[ch] = far->l[ch] + floor_l;
-    irc__edge_hessian(a->r, b->r, n, l, h);
-    irc__edge_hessian(b->r, c3->r, n, l, h);
-    irc__edge_hessian(c3->r, a->r, n, l, h);
-}
-
 /* The grid the vertices come from. */
 typedef struct irc__mesh {
     const irc__sample *s;
     const float *dirs, *nrm;
     uint32_t m, n;
-    double far, fill;
+    double far, fill, floor_l;
 } irc__mesh;
 
 static int irc__escaped_at(const irc__mesh *g, int64_t j, int64_t k)
@@ -163,6 +150,70 @@ static void irc__vertex(const irc__mesh *g, uint32_t j, uint32_t k, irc__vtx *v)
     v->l = g->s[i].l;
 }
 
+/* The radiance a triangle shines with: its farthest vertex's. */
+static const float *irc__shine(const irc__vtx *a, const irc__vtx *b, const irc__vtx *c)
+{
+    return (a->d >= b->d && a->d >= c->d ? a : b->d >= c->d ? b : c)->l;
+}
+
+/* Cell (j, k) of the grid, between rows j and j + 1 and columns k and
+ * k + 1, holds triangles T1 = (V(j,k), V(j,k+1), V(j+1,k)) and T2 =
+ * (V(j+1,k+1), V(j+1,k), V(j,k+1)); their radiances, or NULL outside. */
+static void irc__cell(const irc__mesh *g, int64_t j, uint32_t k, const float **l1,
+                      const float **l2)
+{
+    irc__vtx a, b, c, d;
+    uint32_t k1 = (k + 1) % g->n;
+    if (j < 0 || j + 1 >= (int64_t)g->m) {
+        *l1 = *l2 = NULL;
+        return;
+    }
+    irc__vertex(g, (uint32_t)j, k, &a);
+    irc__vertex(g, (uint32_t)j, k1, &b);
+    irc__vertex(g, (uint32_t)j + 1, k, &c);
+    irc__vertex(g, (uint32_t)j + 1, k1, &d);
+    *l1 = irc__shine(&a, &b, &c);
+    *l2 = irc__shine(&d, &c, &b);
+}
+
+/* An edge p0 -> p1 shared by a triangle that has it in this orientation
+ * (radiance la) and one that has it reversed (lb): sum_T L_T H F_T sums
+ * each edge once with weight la - lb, and edges inside a region of one
+ * radiance drop out. */
+static void irc__shared_edge(const irc__mesh *g, const irc__vtx *p0, const irc__vtx *p1,
+                             const float *la, const float *lb, const double n[3],
+                             double h[3][6])
+{
+    double l[3];
+    int ch, any = 0;
+    for (ch = 0; ch < 3; ch++) {
+        l[ch] = (la ? la[ch] + g->floor_l : 0.0) - (lb ? lb[ch] + g->floor_l : 0.0);
+        any |= l[ch] != 0.0;
+    }
+    if (any)
+        irc__edge_hessian(p0->r, p1->r, n, l, h);
+}
+
+/* The three edges vertex (j, k) starts: along its row to (j, k+1), the
+ * diagonal (j, k+1) -> (j+1, k), and down its column (j+1, k) -> (j, k). */
+static void irc__vertex_edges(const irc__mesh *g, uint32_t j, uint32_t k, const double n[3],
+                              double h[3][6])
+{
+    const float *l1, *l2, *up2, *left1, *left2, *dummy;
+    irc__vtx a, b, c;
+    irc__cell(g, j, k, &l1, &l2);
+    irc__cell(g, (int64_t)j - 1, k, &dummy, &up2);
+    irc__cell(g, j, (k + g->n - 1) % g->n, &left1, &left2);
+    irc__vertex(g, j, k, &a);
+    irc__vertex(g, j, (k + 1) % g->n, &b);
+    irc__shared_edge(g, &a, &b, l1, up2, n, h);
+    if (j + 1 < g->m) {
+        irc__vertex(g, j + 1, k, &c);
+        irc__shared_edge(g, &b, &c, l1, l2, n, h);
+        irc__shared_edge(g, &c, &a, l1, left2, n, h);
+    }
+}
+
 /* The Hessian of E at the record, per channel, packed xx xy xz yy yz zz in
  * world space, from the samples and directions of one hemisphere (failed
  * strata carry the mean radiance and the mean hit distance). */
@@ -192,18 +243,10 @@ void irc__hessian(const irc_cache *c, const irc__sample *s, const float *dirs,
     g.n = nphi;
     g.fill = hits / inv;
     g.far = far * IRC__FAR;
-    mean = IRC__FLOOR * mean / (m * nphi);
-    for (j = 0; j + 1 < m; j++)
-        for (k = 0; k < nphi; k++) {
-            uint32_t k1 = (k + 1) % nphi;
-            irc__vtx a, b, c0, d;
-            irc__vertex(&g, j, k, &a);
-            irc__vertex(&g, j, k1, &b);
-            irc__vertex(&g, j + 1, k, &c0);
-            irc__vertex(&g, j + 1, k1, &d);
-            irc__triangle(&a, &b, &c0, n, mean, h);
-            irc__triangle(&d, &c0, &b, n, mean, h);
-        }
+    g.floor_l = IRC__FLOOR * mean / (m * nphi);
+    for (j = 0; j < m; j++)
+        for (k = 0; k < nphi; k++)
+            irc__vertex_edges(&g, j, k, n, h);
 }
 
 /* Eigen-decomposition of the symmetric 2x2 [[a, b], [b, c]]: l0 >= l1 in
