@@ -34,11 +34,11 @@ static double irc__nearer(float a, float b)
 /* Translational gradient, the stratified form of Krivanek et al. 2005: the
  * radiance difference across every boundary between neighbouring strata
  * times the rate at which the boundary sweeps solid angle, using the nearer
- * of the two hit distances.  Rows: theta_j- = IRC_ASIN(IRC_SQRT(j/M)); a boundary
+ * of the two hit distances.  Rows: theta_j- = asin(sqrt(j/M)); a boundary
  * between rows j-1 and j in column k moves along u_k with weight
- * (2 pi/N) cos^2(theta_j-) IRC_SIN(theta_j-) / d.  Columns: the boundary at
+ * (2 pi/N) cos^2(theta_j-) sin(theta_j-) / d.  Columns: the boundary at
  * phi = 2 pi k/N moves along v_k- with weight
- * IRC_COS(theta_j) (cos theta_j- - cos theta_j+) / (IRC_SIN(theta_j) d), theta_j the
+ * cos(theta_j) (cos theta_j- - cos theta_j+) / (sin(theta_j) d), theta_j the
  * row's centre.  Unlike one open implementation, the boundary between rows
  * 0 and 1 is included. */
 static void irc__grad_trans(const irc_cache *c, const irc__sample *s,
@@ -103,9 +103,9 @@ static void irc__grad_trans(const irc_cache *c, const irc__sample *s,
 
 /* Rotational gradient (Ward-Heckbert 1992): grad_r = integral of
  * L(w) (n x w) dw, so that E(n') ~ E + (n x n').grad_r.  With n x w =
- * IRC_SIN(theta) v(phi), each stratum's share is integrated exactly over the
- * stratum instead of sampled with IRC_TAN(theta_j) as in the paper's estimator:
- * the horizon row's 1/IRC_COS(theta) otherwise gives the estimate a heavy tail.
+ * sin(theta) v(phi), each stratum's share is integrated exactly over the
+ * stratum instead of sampled with tan(theta_j) as in the paper's estimator:
+ * the horizon row's 1/cos(theta) otherwise gives the estimate a heavy tail.
  * Row weight W_j = integral of sin^2(theta) dtheta over row j; column vector
  * V_k = integral of v(phi) dphi = (cos phi_k+1 - cos phi_k, sin phi_k+1 -
  * sin phi_k), a fixed rotation-and-scale of (cos phi_k, sin phi_k), so the
@@ -120,7 +120,7 @@ static void irc__grad_rot(const irc_cache *c, const irc__sample *s,
     int ch, i;
     for (j = 0; j < m; j++) {
         double s1 = (double)(j + 1) / m, th1 = IRC_ASIN(IRC_SQRT(s1));
-        double sc1 = IRC_SQRT(s1 * (1.0 - s1)); /* IRC_SIN(2 theta)/2 */
+        double sc1 = IRC_SQRT(s1 * (1.0 - s1)); /* sin(2 theta)/2 */
         double w = 0.5 * (th1 - th0) - 0.5 * (sc1 - sc0), cp = 1.0, sp = 0.0;
         for (k = 0; k < nphi; k++) {
             const irc__sample *a = &s[j * nphi + k];

@@ -99,7 +99,7 @@ int irc__accept_hit(const irc_hit *h, irc__sample *s)
 
 /* In float: the ray is float, and sincosf costs half of sincos.  Rows are
  * Ward's cosine-weighted sin^2(theta) = (j + u)/M, or for SH records equal
- * solid angle, IRC_COS(theta) = 1 - (j + u)/M. */
+ * solid angle, cos(theta) = 1 - (j + u)/M. */
 void irc__direction(const irc__rng *rng, uint32_t j, uint32_t k,
                            uint32_t m, uint32_t nphi, int uniform, const double n[3],
                            const double t1[3], const double t2[3], float dir[3])

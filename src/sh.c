@@ -5,7 +5,7 @@
  * Q_l^m = P_l^m / (1 - z^2)^(m/2) and by (x + i y)^m for the azimuth.
  *
  * y_l0 = K_l0 Q_l^0, y_lm = sqrt2 K_lm Q_l^m Re (x+iy)^m, y_l-m = sqrt2 K_lm
- * Q_l^m Im (x+iy)^m, K_lm = IRC_SQRT((2l+1)/(4 pi) (l-m)!/(l+m)!), with the
+ * Q_l^m Im (x+iy)^m, K_lm = sqrt((2l+1)/(4 pi) (l-m)!/(l+m)!), with the
  * Condon-Shortley phase; coefficient index l^2 + l + m.
  *
  * Differentiating the recurrences gives the gradient of the polynomial
@@ -14,7 +14,7 @@
  */
 #include "cache.h"
 
-/* K_lm = IRC_SQRT((2l+1)/(4 pi) (l-m)!/(l+m)!), times sqrt2 for m > 0, for
+/* K_lm = sqrt((2l+1)/(4 pi) (l-m)!/(l+m)!), times sqrt2 for m > 0, for
  * l < 5 (a wrong digit fails test_sh's orthonormality check). */
 static const double irc__sh_k[IRC__SH_MAX_BANDS][IRC__SH_MAX_BANDS] = {
     {0.28209479177387814},

@@ -8,7 +8,7 @@
 
 /* The stratum grid the samples came from: one hemisphere (a surface
  * record) or two glued at the equator with the same azimuths (a free
- * point), rows of equal solid angle, IRC_COS(theta_j) = 1 - j/M. */
+ * point), rows of equal solid angle, cos(theta_j) = 1 - j/M. */
 typedef struct irc__grid {
     const irc__sample *s;
     const float *dir, *nrm;

@@ -7,12 +7,12 @@
  * region has unit outward normal nu (nu perpendicular to w, pointing to the
  * visible side), moves along nu at the rate -(m.nu)/D.  For a smooth blocker
  * nu is the blocker's normal at the tangent point (Eq. 44-46: its
- * alpha_u = -IRC_COS(alpha)/D and alpha_v = -(v.n)/(D c.n) are the two
+ * alpha_u = -cos(alpha)/D and alpha_v = -(v.n)/(D c.n) are the two
  * components of this motion in the (theta, phi) chart); for a polygon it is
  * the normal of the edge's image (Eq. 72).  Integrating over the silhouette
  * by arc length s,
  *
- *     grad E . m = integral (L_vis - L_blk) IRC_COS(theta) (m.nu) / D ds,
+ *     grad E . m = integral (L_vis - L_blk) cos(theta) (m.nu) / D ds,
  *
  * the sign of Eq. 35/37 (visible to blocked is positive) being the
  * orientation of nu.  In this form the weak singularity of the paper's
@@ -182,7 +182,7 @@ static int irc__bisect(irc__call *k, irc__sample *s, uint32_t count, int netvis)
 }
 
 /* What a segment's integrand needs at one end: the crossing point X, the
- * weight q = (L_vis - L_blk) IRC_COS(theta)/D per channel, and for a smooth
+ * weight q = (L_vis - L_blk) cos(theta)/D per channel, and for a smooth
  * blocker the silhouette's normal nu (its own normal there, n.X ~ 0). */
 typedef struct irc__end {
     double x[3], q[3], nu[3], e[3];
@@ -200,7 +200,7 @@ static void irc__end_of(const irc__cross *c, const double n[3], int netvis, irc_
         o->e[k] = (double)c->wb[k] - c->wa[k];
         nx += (double)c->na[k] * xf[k];
     }
-    /* Irradiance weighs by IRC_COS(theta); net visibility (Eq. 47) does not. */
+    /* Irradiance weighs by cos(theta); net visibility (Eq. 47) does not. */
     cs = netvis ? 1.0 : irc__dot3d(o->x, n);
     for (k = 0; k < 3; k++)
         o->q[k] = ((double)c->lb[k] - c->la[k]) * (cs > 0.0 ? cs : 0.0) / c->da;
@@ -375,7 +375,7 @@ int irc__grad_visibility(irc__call *k, int netvis, double g[3][3])
 
 /* Net visibility (Eq. 47, over 2 pi): each stratum's exact solid angle,
  * (2 pi/N)(cos theta_j- - cos theta_j+), weighs whether its ray escaped, so
- * no 1/IRC_COS(theta) weight from the cosine-weighted sampling enters. */
+ * no 1/cos(theta) weight from the cosine-weighted sampling enters. */
 static double irc__visible(const irc_cache *c, const irc__sample *s)
 {
     const uint32_t m = c->cfg.strata_theta, nphi = c->cfg.strata_phi;

@@ -11,7 +11,7 @@
 /* Cap on a weight: a query exactly on a record gives 1/0. */
 #define IRC__W_MAX 1e6
 
-/* Ward-Heckbert weight w = 1 / (|p - p_i|/R_i + IRC_SQRT(1 - n.n_i)), accepted
+/* Ward-Heckbert weight w = 1 / (|p - p_i|/R_i + sqrt(1 - n.n_i)), accepted
  * when w > 1/a.  n must be unit length.  Returns 1 and sets *w and the
  * record's decoded normal ni when the record counts, else 0. */
 int irc__weigh(const irc_cache *c, const irc__rec *r, const float p[3],
