@@ -328,6 +328,11 @@ typedef struct irc_config {
                                 waiting (default 0: wait through the port's
                                 yield) */
     uint32_t evict;          /* an irc_evict (default IRC_EVICT_NONE) */
+    uint32_t clamp_neighbours; /* 1: neighbour clamping (Krivanek et al.
+                                2006) at every insert: the new record's
+                                radius is at most R_j + |x - x_j| over the
+                                records j within it, and those are clamped
+                                back to R + |x - x_j| (default 0: off) */
     uint32_t sh_bands;       /* SH records: L, bands 0..L-1, L*L coefficients
                                 per channel; 1..IRC_SH_MAX_BANDS (default 3) */
     uint32_t sh_channels;    /* SH records: 3 (RGB, default) or 1 (the hit's

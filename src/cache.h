@@ -264,6 +264,8 @@ void irc__index_insert(irc_cache *c, uint32_t id);
 void irc__index_remove(irc_cache *c, uint32_t id);
 void irc__index_query(const irc_cache *c, const float p[3], irc__visit_fn fn,
                       void *ud);
+void irc__index_range(const irc_cache *c, const float p[3], double range, irc__visit_fn fn,
+                      void *ud);
 
 /* A visibility discontinuity on an edge between two neighbouring strata:
  * the bracket [wa, wb] around the silhouette, a on the blocker's side, b on

@@ -285,25 +285,49 @@ void irc__index_insert(irc_cache *c, uint32_t id)
         irc__split(c, n, &q);
 }
 
-void irc__index_remove(irc_cache *c, uint32_t id)
+/* Unlinks id from the first list on the path to its home that holds it:
+ * neighbour clamping may have shrunk its reach since it was placed, which
+ * only moves its home deeper along the same path. */
+static int irc__unlink(irc_cache *c, irc__node *n, uint32_t id)
 {
-    irc__cube q;
-    int depth;
-    irc__node *n = irc__home(c, irc__rec_at(c, id)->p, irc__reach(c, id), 0, &q, &depth);
     uint32_t *link = &n->head;
     while (*link != IRC__NIL && *link != id)
         link = &irc__next(c)[*link];
-    IRC_ASSERT(*link == id);
-    if (*link == id) {
-        *link = irc__next(c)[id];
-        n->count--;
+    if (*link != id)
+        return 0;
+    *link = irc__next(c)[id];
+    n->count--;
+    return 1;
+}
+
+void irc__index_remove(irc_cache *c, uint32_t id)
+{
+    const float *p = irc__rec_at(c, id)->p;
+    irc__node *n = &irc__nodes(c)[0];
+    irc__cube q;
+    int depth = 0, found;
+    irc__root_cube(c, &q);
+    while (!(found = irc__unlink(c, n, id)) && n->child && irc__inside(&q, p) &&
+           depth < IRC__DEPTH) {
+        int oct = irc__octant(&q, p);
+        irc__cube cq;
+        irc__child_cube(&q, oct, &cq);
+        q = cq;
+        n = &irc__nodes(c)[n->child + (uint32_t)oct];
+        depth++;
     }
+    IRC_ASSERT(found);
+    (void)found;
     /* Reaches are left as they are: an upper bound stays exact. */
 }
 
+/* Visits every list whose records may hold p within scale times their
+ * reach, or, with range >= 0, every list whose records may lie within
+ * range of p (a record lies inside its node's cube, the root's list
+ * excepted, which is always visited). */
 static void irc__query_node(const irc_cache *c, const irc__node *n,
-                            const irc__cube *q, const float p[3],
-                            irc__visit_fn fn, void *ud)
+                            const irc__cube *q, const float p[3], double range,
+                            double scale, irc__visit_fn fn, void *ud)
 {
     double part[3][2], hc = 0.5 * q->h, pad = hc * 1e-9;
     int oct, i, k;
@@ -325,11 +349,11 @@ static void irc__query_node(const irc_cache *c, const irc__node *n,
             continue;
         d2 = part[0][oct & 1] + part[1][oct >> 1 & 1] + part[2][oct >> 2 & 1];
         /* The pad covers the float rounding of the stored reach. */
-        r = (double)ch->reach * (1.0 + 1e-6) + pad;
+        r = (range >= 0.0 ? range : scale * (double)ch->reach * (1.0 + 1e-6)) + pad;
         if (d2 <= r * r) {
             irc__cube cq;
             irc__child_cube(q, oct, &cq);
-            irc__query_node(c, ch, &cq, p, fn, ud);
+            irc__query_node(c, ch, &cq, p, range, scale, fn, ud);
         }
     }
 }
@@ -341,5 +365,17 @@ void irc__index_query(const irc_cache *c, const float p[3], irc__visit_fn fn,
     if (!c->root_set)
         return;
     irc__root_cube(c, &q);
-    irc__query_node(c, &irc__nodes(c)[0], &q, p, fn, ud);
+    irc__query_node(c, &irc__nodes(c)[0], &q, p, -1.0, 1.0, fn, ud);
+}
+
+/* range >= 0: the lists of records within range of p; range < 0: of
+ * records whose radius R_i (reach / a) may hold p. */
+void irc__index_range(const irc_cache *c, const float p[3], double range, irc__visit_fn fn,
+                      void *ud)
+{
+    irc__cube q;
+    if (!c->root_set)
+        return;
+    irc__root_cube(c, &q);
+    irc__query_node(c, &irc__nodes(c)[0], &q, p, range, 1.0 / c->cfg.accuracy, fn, ud);
 }

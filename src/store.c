@@ -147,6 +147,47 @@ static uint32_t irc__clock_victim(irc_cache *c)
     }
 }
 
+/* Neighbour clamping (Krivanek et al. 2006): records j within the new
+ * record's radius R give R = min(R, R_j + |x - x_j|), then records whose
+ * radius holds x get R_j = min(R_j, R + |x - x_j|), so that radii change
+ * no faster than distance (only such pairs can break that).  Done
+ * under the write lock, after the insert can no longer fail; a shrunk
+ * R_j keeps every index bound an upper bound, and removal finds records
+ * whose home moved deeper (index.c). */
+typedef struct irc__near {
+    irc_cache *c;
+    irc__rec *r;
+    int back;
+} irc__near;
+
+static void irc__clamp_visit(void *ud, uint32_t id)
+{
+    irc__near *k = (irc__near *)ud;
+    const uint32_t *next = irc__next(k->c);
+    for (; id != IRC__NIL; id = next[id]) {
+        irc__rec *j = irc__rec_at(k->c, id);
+        double dx = (double)j->p[0] - k->r->p[0], dy = (double)j->p[1] - k->r->p[1],
+               dz = (double)j->p[2] - k->r->p[2], d = IRC_SQRT(dx * dx + dy * dy + dz * dz);
+        if (!k->back && d < k->r->r && j->r + d < k->r->r)
+            k->r->r = (float)(j->r + d);
+        else if (k->back && d < j->r && k->r->r + d < j->r)
+            j->r = (float)(k->r->r + d);
+    }
+}
+
+static void irc__clamp_neighbours(irc_cache *c, irc__rec *r)
+{
+    irc__near k;
+    k.c = c;
+    k.r = r;
+    k.back = 0;
+    irc__index_range(c, r->p, r->r, irc__clamp_visit, &k);
+    k.back = 1;
+    irc__index_range(c, r->p, -1.0, irc__clamp_visit, &k);
+    if (r->r < c->cfg.min_radius)
+        r->r = c->cfg.min_radius;
+}
+
 /* Stores a packed record (rec_size bytes, already checked) in a free slot,
  * or in CLOCK's victim. */
 static int irc__store(irc_cache *c, const void *packed)
@@ -165,6 +206,8 @@ static int irc__store(irc_cache *c, const void *packed)
         return IRC_ERR_FULL;
     }
     IRC_MEMCPY(irc__rec_at(c, id), packed, c->rec_size);
+    if (c->cfg.clamp_neighbours)
+        irc__clamp_neighbours(c, irc__rec_at(c, id));
     irc__index_insert(c, id);
     irc__count(c, IRC__C_INSERTS, 1);
     c->port->write_unlock(irc__lock(c));

@@ -199,3 +199,58 @@ TEST(test_index_scales)
     CHECK(found > 50, "found %u", found);
     block_free(&cfg);
 }
+
+/* Neighbour clamping (cfg.clamp_neighbours): radii by hand, then a random
+ * fill whose lookups still equal a scan of every record, and CLOCK
+ * eviction of records whose radius (so whose home in the tree) changed
+ * after they were placed. */
+TEST(test_index_clamped)
+{
+    irc_config cfg = scene_config(&dummy, 0, 4, 4);
+    unsigned long long st = 4242;
+    irc_cache *c;
+    irc_record r, back;
+    uint32_t found, i;
+    cfg.clamp_neighbours = 1;
+    c = block_cache(&cfg, 20000, 0);
+    CHECK(c != NULL, "init");
+    if (!c) return;
+    memset(&r, 0, sizeof r);
+    r.n[2] = 1.0f;
+    r.e[0] = r.e[1] = r.e[2] = 1.0f;
+    r.radius = 1.0f; /* A at the origin */
+    CHECK(irc_cache_insert(c, &r) == IRC_OK, "A");
+    r.p[0] = 0.5f;
+    r.radius = 5.0f; /* B: at most R_A + 0.5 */
+    CHECK(irc_cache_insert(c, &r) == IRC_OK, "B");
+    r.p[0] = 0.3f;
+    r.radius = 0.1f; /* C: clamps A to 0.4 and B to 0.3 */
+    CHECK(irc_cache_insert(c, &r) == IRC_OK, "C");
+    r.p[0] = 9.0f;
+    r.radius = 0.2f; /* D: far from all, changes nothing */
+    CHECK(irc_cache_insert(c, &r) == IRC_OK, "D");
+    {
+        static const float want[4] = {0.4f, 0.3f, 0.1f, 0.2f};
+        for (i = 0; i < 4; i++) {
+            CHECK(irc_cache_record(c, i, &back) == IRC_OK &&
+                      fabsf(back.radius - want[i]) < 1e-6f,
+                  "record %u: radius %g, want %g", i, back.radius, want[i]);
+        }
+    }
+    irc_cache_clear(c);
+    fill(c, 20000, 2, &st);
+    found = compare(c, irc_t_quick ? 2000u : 20000u, 2, &st);
+    CHECK(found > 100, "found %u", found);
+    block_free(&cfg);
+    /* eviction after clamping: every victim is found in the tree */
+    cfg = scene_config(&dummy, 0, 4, 4);
+    cfg.clamp_neighbours = 1;
+    cfg.evict = IRC_EVICT_CLOCK;
+    c = block_cache(&cfg, 300, 0);
+    CHECK(c != NULL, "init");
+    if (!c) return;
+    fill(c, 5000, 1, &st);
+    found = compare(c, 500, 1, &st);
+    CHECK(found > 20, "found %u", found);
+    block_free(&cfg);
+}
