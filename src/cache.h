@@ -99,9 +99,7 @@ typedef struct irc__call {
  * accumulate one kind of record (kind_irr.c, kind_sh.c).  The public
  * structs differ (irc_record, irc_sh); the store sees them as void. */
 typedef struct irc__kind {
-    uint32_t id;            /* stored in the block: kinds are found by id */
     int free_points;        /* queries may omit the normal */
-    size_t rec_bytes;       /* sizeof the public record struct */
     int (*compute)(irc__call *k, void *rec);
     int (*check)(const irc_cache *c, const void *rec, double un[3]);
     void (*pack)(const irc_cache *c, const void *rec, const double un[3], void *dst);
@@ -116,6 +114,8 @@ typedef struct irc__kind {
     void (*answer)(const irc_cache *c, const void *rec, void *out);
 } irc__kind;
 
+/* The block stores which kind it holds by number (a pointer to the table
+ * would not survive irc_attach in another process). */
 enum { IRC__KIND_IRR = 1, IRC__KIND_SH = 2 };
 extern const irc__kind irc__kind_irr, irc__kind_sh;
 

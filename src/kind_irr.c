@@ -182,7 +182,7 @@ static void irc__irr_answer(const irc_cache *c, const void *rec, void *out)
 }
 
 const irc__kind irc__kind_irr = {
-    IRC__KIND_IRR, 0, sizeof(irc_record), irc__irr_compute, irc__irr_check,
+    0, irc__irr_compute, irc__irr_check,
     irc__irr_pack, irc__irr_unpack, irc__irr_weigh, irc__irr_begin,
     irc__irr_accumulate, irc__irr_finish, irc__irr_answer};
 

@@ -235,7 +235,7 @@ static int irc__sh_compute(irc__call *k, void *rec)
 }
 
 const irc__kind irc__kind_sh = {
-    IRC__KIND_SH, 1, sizeof(irc_sh), irc__sh_compute, irc__sh_check,
+    1, irc__sh_compute, irc__sh_check,
     irc__sh_pack, irc__sh_unpack, irc__sh_weigh, irc__sh_begin,
     irc__sh_gather, irc__sh_end, irc__sh_answer};
 
