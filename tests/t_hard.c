@@ -52,17 +52,21 @@ static int scaled_record(uint32_t features, double scale, irc_record *r)
 TEST(test_hard_scale_invariance)
 {
     static const uint32_t feats[] = {IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION,
-                                     IRC_FEATURE_VISIBILITY | IRC_FEATURE_ROTATION};
+                                     IRC_FEATURE_VISIBILITY | IRC_FEATURE_ROTATION,
+                                     IRC_FEATURE_TRANSLATION | IRC_FEATURE_HESSIAN};
     static const double scales[] = {1e-6, 1e-4, 1e-2, 1e2, 1e4, 3e5};
     double worst = 0.0;
     int f, i, c, k;
-    for (f = 0; f < 2; f++) {
+    for (f = 0; f < 3; f++) {
         irc_record base, r;
-        double gb = 0.0;
+        double gb = 0.0, hb = 0.0;
         CHECK(scaled_record(feats[f], 1.0, &base) == IRC_OK && finite_record(&base), "base");
         for (c = 0; c < 3; c++)
             for (k = 0; k < 3; k++)
                 gb = fmax(gb, fabs(base.grad_t[c][k]));
+        for (c = 0; c < 3; c++)
+            for (k = 0; k < 6; k++)
+                hb = fmax(hb, fabs(base.hessian[c][k]));
         for (i = 0; i < 6; i++) {
             CHECK(scaled_record(feats[f], scales[i], &r) == IRC_OK && finite_record(&r),
                   "s = %g", scales[i]);
@@ -74,9 +78,17 @@ TEST(test_hard_scale_invariance)
                 }
             }
             worst = fmax(worst, fabs(r.radius / scales[i] - base.radius) / base.radius);
+            /* second derivatives go as 1/s^2 (the Hessian radius as s) */
+            for (c = 0; hb > 0.0 && c < 3; c++)
+                for (k = 0; k < 6; k++)
+                    worst = fmax(worst, fabs(r.hessian[c][k] * scales[i] * scales[i] -
+                                             base.hessian[c][k]) / hb);
         }
+        if (feats[f] & IRC_FEATURE_HESSIAN)
+            CHECK(hb > 0.0, "the Hessian case saw no curvature: the test proves little");
     }
-    printf("  scales 1e-6 .. 3e5, trans+rot and vis+rot: worst relative difference %.2e\n", worst);
+    printf("  scales 1e-6 .. 3e5, trans+rot, vis+rot and trans+Hessian: worst relative "
+           "difference %.2e\n", worst);
     CHECK(worst < 1e-4, "scale invariance %.3e", worst);
 }
 
