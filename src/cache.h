@@ -192,6 +192,7 @@ int irc__check_normal(const float n[3], double unit[3]);
 
 /* layout.c: the block's parts, and the config rules (config.c) */
 int irc__config_resolve(const irc_config *in, irc_config *out);
+int irc__port_ok(const irc_port *p);
 
 /* sampler.c */
 typedef struct irc__rng { uint64_t key; } irc__rng;

@@ -11,7 +11,7 @@
 #define IRC__DEF_POWER 2.0f
 #define IRC__LOCK_MAX 4096u
 
-static int irc__port_ok(const irc_port *p)
+int irc__port_ok(const irc_port *p)
 {
     return p->lock_init && p->lock_destroy && p->read_lock && p->read_unlock &&
            p->write_lock && p->write_unlock && p->load && p->store &&

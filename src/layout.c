@@ -232,7 +232,7 @@ int irc_attach(const irc_config *cfg, irc_cache **out)
     port = cfg->port ? cfg->port : irc_port_default;
     if ((st = irc__find(cfg, &was, &head)) < 0)
         return st;
-    if (!port->lock_init || !port->read_lock || port->lock_size > head.lock_bytes)
+    if (!irc__port_ok(port) || port->lock_size > head.lock_bytes)
         return IRC_ERR_CONFIG;
     pad = irc__pad(cfg->buffer);
     c = (irc_cache *)(void *)((unsigned char *)cfg->buffer + pad);

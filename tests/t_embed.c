@@ -129,6 +129,15 @@ TEST(test_relocate)
     cfg.buffer_size = 16;
     CHECK(irc_attach(&cfg, &c) == IRC_ERR_NOMEM, "tiny");
     CHECK(irc_attach(NULL, &c) == IRC_ERR_NULL, "NULL cfg");
+    {   /* a port missing an operation is refused as irc_init refuses it */
+        irc_config f = scene_config(&sphere, 0, 4, 4);
+        irc_port half = irc_port_none;
+        irc_cache *cache = block_cache(&f, 100, 0);
+        half.cas = NULL;
+        f.port = &half;
+        CHECK(cache && irc_attach(&f, &c) == IRC_ERR_CONFIG, "port without cas");
+        block_free(&f);
+    }
     cfg.buffer = NULL;
     CHECK(irc_attach(&cfg, &c) == IRC_ERR_NULL, "NULL buffer");
     {   /* a block cut short, and a closed one */
