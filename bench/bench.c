@@ -20,6 +20,9 @@
  * Writes build/bench/bench.csv, build/bench/table.md (the README's table),
  * one data file per scene and method and build/bench/plot.gp for gnuplot.
  *   bench [quick]
+ * BENCH_SCENES and BENCH_METHODS (comma-separated names) restrict a run to
+ * some scenes and methods, for experiments; such a run leaves README.md
+ * alone (bench.sh).
  */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
@@ -34,7 +37,7 @@
 #include "render.h"
 
 #define OUT "build/bench"
-#define MAX_RUNS 96
+#define MAX_RUNS 192
 
 typedef struct bscene {
     const char *name, *path;
@@ -368,6 +371,121 @@ static void table(ctx *c, const bscene *b, FILE *md)
         }
 }
 
+/* Whether NAME is in the comma-separated list in environment variable VAR
+ * (unset: everything is). */
+static int wanted(const char *var, const char *name)
+{
+    const char *l = getenv(var), *p;
+    size_t n = strlen(name);
+    if (!l || !*l)
+        return 1;
+    for (p = l; (p = strstr(p, name)) != NULL; p += n)
+        if ((p == l || p[-1] == ',') && (p[n] == ',' || p[n] == 0))
+            return 1;
+    return 0;
+}
+
+/* Equal record count (Cornell box, as Schwarzhaupt et al. compare radius
+ * rules): each radius rule's a is searched until the fill makes about
+ * `target` records (records go as 1/a^2), then the RMSE at exactly
+ * `target` is interpolated in log-log between the two runs that bracket
+ * it.  32x128 strata (4096 rays a record, their paper's count), so that
+ * record noise does not hide the placement. */
+#define NRULES 4
+static const char *const rules[NRULES] = {"split", "grad", "hess0", "hess"};
+static const char *const rule_names[NRULES] = {
+    "split sphere (no gradients)", "gradient-clamped (trans + rot)", "Hessian radii, no gradients",
+    "Hessian radii + trans + rot"};
+static const uint32_t rule_feats[NRULES] = {
+    0, IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION, IRC_FEATURE_HESSIAN,
+    IRC_FEATURE_HESSIAN | IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION};
+
+typedef struct eqrec {
+    double rmse, p99, maxe, a, records, cache_share;
+    int over10;
+} eqrec;
+
+static int equal_records(ctx *c, const bscene *b, int rule, double target, FILE *csv, eqrec *out)
+{
+    double a = 0.5, lo_rec = 0, hi_rec = 0;
+    const run *lo = NULL, *hi = NULL;
+    int it;
+    char name[32];
+    snprintf(name, sizeof name, "eq-%s", rules[rule]);
+    for (it = 0; it < 8 && !(lo && hi && hi_rec < 1.25 * lo_rec); it++) {
+        render_opts o = base_opts(c);
+        const run *r;
+        o.mode = MODE_CACHE;
+        o.features = rule_feats[rule];
+        o.accuracy = (float)a;
+        o.strata_m = 32;
+        o.strata_n = 128;
+        if (add_run(c, name, a, &o, b, csv) < 0)
+            return -1;
+        r = &c->runs[c->nruns - 1];
+        if ((double)r->st.records <= target && (!lo || r->st.records > lo_rec)) {
+            lo = r;
+            lo_rec = (double)r->st.records;
+        }
+        if ((double)r->st.records >= target && (!hi || r->st.records < hi_rec)) {
+            hi = r;
+            hi_rec = (double)r->st.records;
+        }
+        /* the next a from the nearest run, aiming a little past target on
+         * the side not yet bracketed */
+        a *= sqrt((double)r->st.records / (target * (lo ? 1.1 : 0.9)));
+        if (a > 4.0)
+            a = 4.0;
+    }
+    if (!lo || !hi)
+        return -1;
+    {
+        double u = hi_rec > lo_rec ? (log(target) - log(lo_rec)) / (log(hi_rec) - log(lo_rec)) : 0;
+        const run *near = u < 0.5 ? lo : hi;
+        out->rmse = exp(log(lo->rmse) + u * (log(hi->rmse) - log(lo->rmse)));
+        out->p99 = near->p99;
+        out->maxe = near->maxe;
+        out->over10 = near->over10;
+        out->a = near->param;
+        out->records = (double)near->st.records;
+        out->cache_share = 100.0 * near->st.cache_s / (c->threads * near->st.wall);
+    }
+    return 0;
+}
+
+static int equal_records_table(ctx *c, const bscene *b, FILE *csv, FILE *md)
+{
+    static const double targets[2] = {1700, 500};
+    eqrec e[2][NRULES];
+    int t, k;
+    for (t = 0; t < 2; t++)
+        for (k = 0; k < NRULES; k++)
+            if (!wanted("BENCH_RULES", rules[k]))
+                e[t][k].rmse = -1.0;
+            else if (equal_records(c, b, k, targets[t], csv, &e[t][k]) < 0)
+                return -1;
+    fprintf(md, "\n**%s at equal record count** (32x128 strata; RMSE interpolated to the "
+                "count; p99, max, px > 10%% and cache share from the nearest run)\n\n"
+                "| radius rule | 1700 records: rel. RMSE (vs split) | p99 / max, px > 10%% | "
+                "500 records: rel. RMSE (vs split) | p99 / max, px > 10%% |\n|---|---|---|---|---|\n",
+            b->name);
+    for (k = 0; k < NRULES; k++) {
+        if (e[0][k].rmse < 0.0)
+            continue;
+        fprintf(md, "| %s |", rule_names[k]);
+        for (t = 0; t < 2; t++)
+            fprintf(md, " %.4f (%.2fx) | %.4f / %.3f, %d |", e[t][k].rmse,
+                    e[t][0].rmse > 0.0 ? e[t][k].rmse / e[t][0].rmse : 0.0, e[t][k].p99,
+                    e[t][k].maxe, e[t][k].over10);
+        fprintf(md, "\n");
+        printf("  equal records: %-9s 1700: %.4f (a %.3f, %g rec, max/p99 %.1f)  500: %.4f (a %.3f, "
+               "%g rec, max/p99 %.1f)\n", rules[k], e[0][k].rmse, e[0][k].a, e[0][k].records,
+               e[0][k].maxe / e[0][k].p99, e[1][k].rmse, e[1][k].a, e[1][k].records,
+               e[1][k].maxe / e[1][k].p99);
+    }
+    return 0;
+}
+
 /* One data file per method for gnuplot: time, RMSE. */
 static void data_files(const ctx *c, const bscene *b, FILE *gp)
 {
@@ -415,7 +533,7 @@ static int sweep(ctx *c, const bscene *b, FILE *csv)
     const int nb = c->quick ? 3 : 5, na = c->quick ? 3 : 5, ng = c->quick ? 1 : 2;
     const double *as = c->quick ? a_quick : a_full;
     int i, m, g;
-    for (i = 0; i < nb; i++) {
+    for (i = 0; i < nb && wanted("BENCH_METHODS", "brute"); i++) {
         render_opts o = base_opts(c);
         o.mode = MODE_REFERENCE;
         o.ref_rays = brute[i];
@@ -423,7 +541,7 @@ static int sweep(ctx *c, const bscene *b, FILE *csv)
             return -1;
     }
     for (m = 1; m < NMETHODS; m++)
-        for (g = 0; g < ng && (strcmp(methods[m], "sh") || b->sh); g++)
+        for (g = 0; g < ng && (strcmp(methods[m], "sh") || b->sh) && wanted("BENCH_METHODS", methods[m]); g++)
             for (i = 0; i < na; i++) {
                 render_opts o = base_opts(c);
                 o.mode = MODE_CACHE;
@@ -484,6 +602,8 @@ int main(int argc, char **argv)
     for (k = 0; k < sizeof scenes / sizeof scenes[0]; k++) {
         const bscene *b = &scenes[k];
         char err[512];
+        if (!wanted("BENCH_SCENES", b->name))
+            continue;
         if (scene_load(b->path, &c.s, err, sizeof err) < 0) {
             fprintf(stderr, "%s\n", err);
             return 1;
@@ -497,6 +617,9 @@ int main(int argc, char **argv)
         if (reference(&c, b) < 0 || sweep(&c, b, csv) < 0)
             return 1;
         table(&c, b, md);
+        if (!strcmp(b->name, "cornell") && !c.quick && wanted("BENCH_METHODS", "equal") &&
+            equal_records_table(&c, b, csv, md) < 0)
+            return 1;
         data_files(&c, b, gp);
         free(c.ref);
         scene_free(&c.s);

@@ -4,6 +4,7 @@
 # with apt, as make test installs its tools; without it, CSV and table
 # only), then the table into README.md between its two marker lines (full
 # runs only: quick figures are not for the README).
+# BENCH_SCENES, BENCH_METHODS (see bench.c): partial runs leave the README.
 set -e
 driver=$1
 if [ "${BENCH_QUICK:-0}" = 1 ]; then "$driver" quick; else "$driver"; fi
@@ -18,7 +19,7 @@ else
     echo "gnuplot not found (apt-get install gnuplot-nox): CSV and table only"
 fi
 cat build/bench/table.md
-if [ "${BENCH_QUICK:-0}" != 1 ]; then
+if [ "${BENCH_QUICK:-0}" != 1 ] && [ -z "${BENCH_SCENES}${BENCH_METHODS}" ]; then
     awk -v table=build/bench/table.md '
         /<!-- bench:begin -->/ { print; while ((getline l < table) > 0) print l; skip = 1; next }
         /<!-- bench:end -->/ { skip = 0 }

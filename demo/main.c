@@ -24,6 +24,7 @@ static const char usage[] =
     "  --strata MxN            cache hemisphere strata (default 16x64)\n"
     "  --records N             cache capacity (default 200000; CLOCK eviction)\n"
     "  --min-radius R          cache minimum radius (scene units, default 0)\n"
+    "  --no-leak-guard         records keep no leak guard (irc_config.no_leak_guard)\n"
     "  --max-radius R          cache maximum radius (default 0.1 x the diagonal of\n"
     "                          what the camera sees; 0: no bound)\n"
     "  --threads T             render threads (default: the machine's cores)\n"
@@ -120,6 +121,7 @@ static int parse_args(int argc, char **argv, cli *c)
         else if (!strcmp(a, "--threads")) { NEED(parse_uint(n, 1, 64, &v)); c->o.threads = (int)v; }
         else if (!strcmp(a, "--size")) NEED(sscanf(n, "%dx%d", &c->width, &c->height) == 2 && c->width > 0 && c->height > 0 && c->width <= 16384 && c->height <= 16384);
         else if (!strcmp(a, "--indirect")) c->o.show = SHOW_INDIRECT;
+        else if (!strcmp(a, "--no-leak-guard")) c->o.no_leak_guard = 1;
         else if (!strcmp(a, "--light-samples")) { NEED(parse_uint(n, 0, 4096, &v)); c->o.light_samples = (int)v; }
         else if (!strcmp(a, "--seed")) { NEED(parse_uint(n, 0, 0x7fffffff, &v)); c->o.seed = (uint64_t)v; }
         else if (!strcmp(a, "--out")) { NEED(1); c->out = n; }

@@ -156,6 +156,7 @@ int renderer_init(renderer *r, const scene *s, const render_opts *o, char *err, 
         cfg.strata_theta = o->strata_m;
         cfg.strata_phi = o->strata_n;
         cfg.min_radius = o->min_radius;
+        cfg.no_leak_guard = (uint32_t)o->no_leak_guard;
         cfg.max_radius = o->max_radius;
         if (o->max_radius < 0.0f)
             cfg.max_radius = r->o.max_radius = visible_size(r);

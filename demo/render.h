@@ -28,6 +28,7 @@ typedef struct render_opts {
     uint32_t max_records;
     float min_radius, max_radius; /* max < 0: 0.1 x the diagonal of what
                                      the camera sees */
+    int no_leak_guard;    /* cache: irc_config.no_leak_guard */
     int threads;
     int show;             /* SHOW_FULL or SHOW_INDIRECT (kd/pi E only) */
     int light_samples;    /* at the camera ray's hit; 1 at secondary hits */

@@ -333,6 +333,9 @@ typedef struct irc_config {
                                 radius is at most R_j + |x - x_j| over the
                                 records j within it, and those are clamped
                                 back to R + |x - x_j| (default 0: off) */
+    uint32_t no_leak_guard;  /* 1: irradiance records keep no leak guard
+                                (irc_record.leak_guard) and save its 4
+                                bytes; default 0: the guard is on */
     uint32_t sh_bands;       /* SH records: L, bands 0..L-1, L*L coefficients
                                 per channel; 1..IRC_SH_MAX_BANDS (default 3) */
     uint32_t sh_channels;    /* SH records: 3 (RGB, default) or 1 (the hit's
@@ -355,6 +358,9 @@ typedef struct irc_config {
  * two, so that it compares equal to a stored radius in any float
  * evaluation (x87's excess precision included). */
 #define IRC_RADIUS_CAP 1267650600228229401496703205376.0f
+/* An ellipse's major radius is at most this multiple of its minor one
+ * (HESSIAN records; hand-built records are clamped to it when stored). */
+#define IRC_ANISOTROPY 4.0f
 #define IRC_SH_MAX_BANDS 5u
 #define IRC_SH_MAX_COEFFS 25u /* IRC_SH_MAX_BANDS squared */
 
@@ -370,7 +376,8 @@ typedef struct irc_config {
      (size_t)(t) * (128u + (size_t)(s) * (((features) & IRC_FEATURE_VISIBILITY) ? 320u : \
                                           ((features) & IRC_FEATURE_HESSIAN) ? 64u : 32u) + \
                     (size_t)(b) * 56u) + \
-     (size_t)(records) * (64u + 4u + 1u) + ((size_t)(records) / 8u + 16u) * 128u)
+     (size_t)(records) * (((features) & IRC_FEATURE_HESSIAN) ? 81u : 73u) +     \
+     ((size_t)(records) / 8u + 16u) * 128u)
 #define IRC_SH_FOOTPRINT_BOUND(records, bands, ch, s, t, b)                      \
     (8192u + (size_t)(t) * (128u + (size_t)(s) * 112u + (size_t)(b) * 56u) +     \
      (size_t)(records) * (32u + 16u * (size_t)(bands) * (bands) * (ch) + 4u + 1u) + \
@@ -443,14 +450,23 @@ typedef struct irc_record {
     float p[3];          /* position */
     float n[3];          /* unit normal */
     float e[3];          /* RGB irradiance (see the units above) */
-    float radius;        /* R_i: the harmonic mean distance of the rays
+    float radius;        /* R_i, the record's reach along axis (the major
+                            radius): the harmonic mean distance of the rays
                             that hit (escaped rays do not count: the
                             distance to what the record saw), at most
                             E/|grad E| per channel (with TRANSLATION and
-                            without HESSIAN), at most sqrt(2 E/|l|) (with
-                            HESSIAN), then clamped to [min_radius,
-                            max_radius]; max_radius, or else the smallest
-                            float, when no ray hit */
+                            without HESSIAN), the Hessian's radius along
+                            axis (with HESSIAN, see there), then clamped to
+                            [min_radius, max_radius]; max_radius, or else
+                            the smallest float, when no ray hit */
+    float minor_radius;  /* the reach across axis, in (0, radius]; 0 in a
+                            record a host builds means radius (a disk).
+                            Only caches with HESSIAN store ellipses;
+                            others store the disk of radius */
+    float axis[3];       /* unit tangent direction of radius when
+                            minor_radius < radius (a host's axis need not
+                            be unit length nor exactly tangent: it is
+                            projected on the tangent plane); else zero */
     float mean_dist;     /* that harmonic mean before the other bounds */
     float grad_t[3][3];  /* grad_t[c] = dE_c/dp: irradiance per unit of the
                             host's length, along the surface (zero unless
@@ -467,6 +483,20 @@ typedef struct irc_record {
                             moves along the surface are meaningful (zero
                             unless HESSIAN; not stored, zero when read
                             back) */
+    uint32_t leak_guard; /* what the record saw near it, so that a lookup
+                            from behind that geometry (a wall between two
+                            rooms) does not use it: 8 sectors of 45
+                            degrees counter-clockwise about n from t1 =
+                            (1 - s n_x^2/(s + n_z), -s n_x n_y/(s + n_z),
+                            -s n_x), s = +1 if n_z >= 0 else -1 (Duff et
+                            al. 2017's frame of n), 4 bits each (sector k in bits 4k..4k+3).  Nibble
+                            v: 0 = nothing seen within reach; else a hit at
+                            a grazing angle (more than 45 degrees from n)
+                            lies (15 - v)/15 of the reach away, and a
+                            lookup farther than that in the sector rejects
+                            the record.  Set by compute; a host's record
+                            may carry 0 (no guard).  Stored unless
+                            cfg.no_leak_guard */
     uint32_t features;   /* which gradients are valid */
     uint32_t rays;       /* rays cast, and how many were usable: */
     uint32_t rays_used;

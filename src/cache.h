@@ -17,7 +17,7 @@
 
 /* What a block must agree on to be re-attached (irc_attach): the layout's
  * version, pointer and size_t widths, byte order. */
-#define IRC__LAYOUT_VERSION 2u
+#define IRC__LAYOUT_VERSION 3u
 #define IRC__ABI                                                           \
     (IRC__LAYOUT_VERSION | (uint32_t)sizeof(void *) << 8 |                 \
      (uint32_t)sizeof(size_t) << 16 | (uint32_t)sizeof(double) << 24)
@@ -41,6 +41,24 @@ typedef struct irc__grad {
     int8_t ex[3];
     uint8_t unused;
 } irc__grad;
+
+/* An anisotropic record's ellipse (caches with IRC_FEATURE_HESSIAN): the
+ * major axis, octahedral like the normal, and minor/major in (0, 1]; the
+ * head's r is the major radius, so the index needs nothing else: 8 bytes. */
+typedef struct irc__aniso {
+    uint32_t axis;
+    float q;
+} irc__aniso;
+
+/* The sector (of 8, 45 degrees each, counter-clockwise from x) holding
+ * the tangent direction (x, y), from signs and one comparison: the leak
+ * guard's lookups need no trig. */
+static inline int irc__sector(double x, double y)
+{
+    if (y >= 0.0)
+        return x >= 0.0 ? (y < x ? 0 : 1) : (y > -x ? 2 : 3);
+    return x < 0.0 ? (-y < -x ? 4 : 5) : (-y > x ? 6 : 7);
+}
 
 /* Octree node.  Its cube is implied by the path from the root. */
 typedef struct irc__node {
@@ -134,6 +152,8 @@ struct irc_cache {
     const irc_port *port;    /* attached: cfg.port */
     uint32_t rec_size;       /* packed record bytes */
     uint32_t off_t, off_r;   /* byte offsets of the gradients, 0 = absent */
+    uint32_t off_a;          /* byte offset of the ellipse, 0 = absent */
+    uint32_t off_g;          /* byte offset of the leak guard, 0 = absent */
     uint32_t strata;         /* M * N */
     uint32_t slot_samples;   /* samples a scratch slot holds: M N, or 2 M N
                                 in an SH cache (free points: two hemispheres) */

@@ -73,7 +73,8 @@ static int irc__sampling_resolve(irc_config *out)
     if (out->max_batch > out->strata_theta * out->strata_phi)
         out->max_batch = out->strata_theta * out->strata_phi;
     if (out->threads == 0) out->threads = 1;
-    if (out->threads > IRC_MAX_THREADS || out->no_wait > 1u || out->clamp_neighbours > 1u)
+    if (out->threads > IRC_MAX_THREADS || out->no_wait > 1u || out->clamp_neighbours > 1u ||
+        out->no_leak_guard > 1u)
         return IRC_ERR_CONFIG;
     return IRC_OK;
 }

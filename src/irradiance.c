@@ -145,44 +145,87 @@ static void irc__grad_rot(const irc_cache *c, const irc__sample *s,
     }
 }
 
-/* With IRC_FEATURE_HESSIAN: the Hessian into out->hessian, and the radius
- * at which the second-order term reaches the accuracy target.  A record
- * extrapolated to first order errs by 1/2 |l| d^2 at distance d along an
- * eigen-axis of the tangent Hessian (eigenvalue l); a lookup reaches d =
- * a R, so R = sqrt(2 E / |l|) keeps that error at a^2 E at the edge of
- * reach (hessian.md's max-error variant, relative to E), per channel, the
- * largest |l| deciding.  Without a gradient the first-order term is
- * still there, and E/|grad E| (or the split sphere) bounds R as before. */
-static double irc__hessian_radius(const irc_cache *c, const irc__sample *s, const double n[3],
-                                  const double t1[3], const double t2[3], irc_record *out)
+/* The second-order radius law: R = hm^(1 - 2P) R_h^(2P), R_h the
+ * max-error radius below and hm the record's harmonic mean hit distance,
+ * which gives the law its length scale.  P = 1/2 is R_h itself. */
+#ifndef IRC__HESS_P
+#define IRC__HESS_P 0.5
+#endif
+#ifndef IRC__HESS_CAP
+#define IRC__HESS_CAP 1.0
+#endif
+
+/* One channel's Hessian on the tangent plane, t^T H t', from the packed
+ * xx xy xz yy yz zz: a = t1 H t1, b = t1 H t2, d = t2 H t2. */
+static void irc__tangent_hessian(const double h[6], const double t1[3], const double t2[3],
+                                 double *a, double *b, double *d)
 {
-    double h[3][6], r = HUGE_VAL;
-    int ch, i;
+    static const int ix[3][3] = {{0, 1, 2}, {1, 3, 4}, {2, 4, 5}};
+    int x, y;
+    *a = *b = *d = 0.0;
+    for (x = 0; x < 3; x++)
+        for (y = 0; y < 3; y++) {
+            *a += t1[x] * h[ix[x][y]] * t1[y];
+            *b += t1[x] * h[ix[x][y]] * t2[y];
+            *d += t2[x] * h[ix[x][y]] * t2[y];
+        }
+}
+
+/* With IRC_FEATURE_HESSIAN: the Hessian into out->hessian, and the ellipse
+ * at whose edge the second-order term reaches the accuracy target.  A
+ * record extrapolated to first order errs by 1/2 |k| d^2 at distance d
+ * along a tangent direction of curvature k = t^T H t; a lookup reaches
+ * d = a R, so R = sqrt(2 E / |k|) keeps that error at a^2 E at the edge of
+ * reach (hessian.md's max-error variant, relative to E).  The axes are the
+ * eigenvectors of the channel whose larger eigenvalue relative to its E is
+ * largest (1/2 atan2, signed entries: no division by a vanishing
+ * off-diagonal); each radius is the smallest over channels of that
+ * channel's curvature along the axis.  rad[0] is the minor radius (across
+ * the axis of strongest curvature), rad[1] the major, along axis. */
+static void irc__hessian_radii(const irc_cache *c, const irc__sample *s, const double n[3],
+                               const double t1[3], const double t2[3], irc_record *out,
+                               double rad[2], double axis[3])
+{
+    double h[3][6], tq[3][3], best = -1.0, u[2] = {1.0, 0.0}, v[2];
+    int ch, i, k;
     irc__hessian(c, s, irc__slot_dirs(c, s), n, h);
     for (ch = 0; ch < 3; ch++) {
-        /* t^T H t' from the packed xx xy xz yy yz zz */
-        static const int ix[3][3] = {{0, 1, 2}, {1, 3, 4}, {2, 4, 5}};
-        double q[3][2], a = 0.0, b = 0.0, d = 0.0, l0, l1, u[2];
-        int x, y;
+        double l0, l1, w[2];
         for (i = 0; i < 6; i++)
             out->hessian[ch][i] = (float)h[ch][i];
-        for (x = 0; x < 3; x++) {
-            q[x][0] = q[x][1] = 0.0;
-            for (y = 0; y < 3; y++) {
-                q[x][0] += h[ch][ix[x][y]] * t1[y];
-                q[x][1] += h[ch][ix[x][y]] * t2[y];
-            }
+        irc__tangent_hessian(h[ch], t1, t2, &tq[ch][0], &tq[ch][1], &tq[ch][2]);
+        irc__eigen2(tq[ch][0], tq[ch][1], tq[ch][2], &l0, &l1, w);
+        if (out->e[ch] > 0.0f && IRC_FABS(l0) / out->e[ch] > best) {
+            best = IRC_FABS(l0) / out->e[ch];
+            u[0] = w[0];
+            u[1] = w[1];
         }
-        for (x = 0; x < 3; x++) {
-            a += t1[x] * q[x][0];
-            b += t1[x] * q[x][1];
-            d += t2[x] * q[x][1];
-        }
-        irc__eigen2(a, b, d, &l0, &l1, u);
-        if (IRC_FABS(l0) > 0.0 && IRC_SQRT(2.0 * out->e[ch] / IRC_FABS(l0)) < r)
-            r = IRC_SQRT(2.0 * out->e[ch] / IRC_FABS(l0));
     }
-    return r;
+    v[0] = -u[1];
+    v[1] = u[0];
+    rad[0] = rad[1] = HUGE_VAL;
+    for (ch = 0; ch < 3; ch++) {
+        const double *t = tq[ch], *dir[2];
+        dir[0] = u;
+        dir[1] = v;
+        for (k = 0; k < 2; k++) {
+            double cu = IRC_FABS(t[0] * dir[k][0] * dir[k][0] +
+                                 2.0 * t[1] * dir[k][0] * dir[k][1] +
+                                 t[2] * dir[k][1] * dir[k][1]);
+            if (out->e[ch] > 0.0f && cu > 0.0 && IRC_SQRT(2.0 * out->e[ch] / cu) < rad[k])
+                rad[k] = IRC_SQRT(2.0 * out->e[ch] / cu);
+        }
+    }
+    /* Another channel may curve more along v than the chosen one along u. */
+    if (rad[1] < rad[0]) {
+        double t = rad[0];
+        rad[0] = rad[1];
+        rad[1] = t;
+        v[0] = u[0];
+        v[1] = u[1];
+    }
+    for (i = 0; i < 3; i++)
+        axis[i] = v[0] * t1[i] + v[1] * t2[i];
 }
 
 /* Ward's split-sphere radius, the harmonic mean hit distance, made safe
@@ -209,12 +252,58 @@ static double irc__split_sphere(const irc_cache *c, const irc__sample *s)
     return hits / inv;
 }
 
+/* The leak guard (irc_record.leak_guard): per sector of the stored
+ * normal's frame, the nearest hit seen at a grazing angle (rows with
+ * sin^2 theta >= 1/2, cosine-weighted strata: a wall, not a ceiling), as
+ * its horizontal distance d sin(theta) over the reach a R(phi) in that
+ * direction (the ellipse's).  Row and column centres stand for the
+ * jittered directions; the distance is rounded down, the safe way. */
+static uint32_t irc__leak_guard(const irc_cache *c, const irc__sample *s, const double un[3],
+                                const double t1[3], const double t2[3], const irc_record *rec)
+{
+    const uint32_t m = c->cfg.strata_theta, nphi = c->cfg.strata_phi;
+    double o1[3], o2[3], near[8], ax[2] = {0.0, 0.0}, q = 1.0, w[3];
+    uint32_t j, k, mask = 0;
+    int i;
+    irc__oct_frame(irc__oct_encode(un), o1, o2);
+    for (i = 0; i < 8; i++)
+        near[i] = 1.0;
+    if (rec->minor_radius < rec->radius) {
+        double a3[3] = {rec->axis[0], rec->axis[1], rec->axis[2]};
+        q = (double)rec->minor_radius / rec->radius;
+        ax[0] = irc__dot3d(a3, o1);
+        ax[1] = irc__dot3d(a3, o2);
+    }
+    for (k = 0; k < nphi; k++) {
+        double ph = 2.0 * IRC_PI * (k + 0.5) / nphi, x, y, cu, reach;
+        for (i = 0; i < 3; i++)
+            w[i] = IRC_COS(ph) * t1[i] + IRC_SIN(ph) * t2[i];
+        x = irc__dot3d(w, o1);
+        y = irc__dot3d(w, o2);
+        cu = x * ax[0] + y * ax[1];
+        reach = c->cfg.accuracy * rec->radius / IRC_SQRT(cu * cu + (1.0 - cu * cu) / (q * q));
+        for (j = m / 2; j < m; j++) {
+            const irc__sample *a = &s[j * nphi + k];
+            double f;
+            if (!(a->d < HUGE_VALF)) /* escaped or failed */
+                continue;
+            f = a->d * IRC_SQRT((j + 0.5) / m) / reach;
+            if (f < near[irc__sector(x, y)])
+                near[irc__sector(x, y)] = f;
+        }
+    }
+    for (i = 0; i < 8; i++)
+        if (near[i] < 1.0)
+            mask |= (uint32_t)(15 - (int)IRC_FLOOR(15.0 * near[i])) << (4 * i);
+    return mask;
+}
+
 static void irc__record_build(const irc_cache *c, const irc__sample *s,
                        const double n[3], const double t1[3],
                        const double t2[3], double gvis[3][3], irc_record *out)
 {
     const uint32_t total = c->strata;
-    double sum[3] = {0, 0, 0}, hm, r, g[3][3];
+    double sum[3] = {0, 0, 0}, hm, r, g[3][3], rad[2], axis[3];
     uint32_t i, used = 0;
     int ch, k;
 
@@ -254,19 +343,36 @@ static void irc__record_build(const irc_cache *c, const irc__sample *s,
             for (k = 0; k < 3; k++)
                 out->grad_r[ch][k] = (float)g[ch][k];
     }
+    rad[0] = rad[1] = r;
     if (c->cfg.features & IRC_FEATURE_HESSIAN) {
-        double rh = irc__hessian_radius(c, s, n, t1, t2, out);
-        /* With a gradient the second-order term decides alone; the split
-         * sphere still bounds it from what the record saw. */
-        if (c->cfg.features & IRC_FEATURE_TRANSLATION)
-            r = hm;
-        if (rh < r)
-            r = rh;
+        /* With a gradient the second-order term decides alone (E/|grad E|
+         * is dropped); the split sphere still bounds it from what the
+         * record saw. */
+        double cap = c->cfg.features & IRC_FEATURE_TRANSLATION ? hm : r;
+        irc__hessian_radii(c, s, n, t1, t2, out, rad, axis);
+        for (k = 0; k < 2; k++) {
+            if (rad[k] < HUGE_VAL)
+                rad[k] = IRC_POW(hm, 1.0 - 2.0 * IRC__HESS_P) * IRC_POW(rad[k], 2.0 * IRC__HESS_P);
+            if (rad[k] > IRC__HESS_CAP * cap)
+                rad[k] = IRC__HESS_CAP * cap;
+        }
+        if (rad[1] > IRC_ANISOTROPY * rad[0])
+            rad[1] = IRC_ANISOTROPY * rad[0];
     }
-    if (r < c->cfg.min_radius) r = c->cfg.min_radius;
-    if (r > c->cfg.max_radius) r = c->cfg.max_radius;
-    if (r < FLT_MIN) r = FLT_MIN;
-    out->radius = (float)r;
+    for (k = 0; k < 2; k++) {
+        if (rad[k] < c->cfg.min_radius) rad[k] = c->cfg.min_radius;
+        if (rad[k] > c->cfg.max_radius) rad[k] = c->cfg.max_radius;
+        if (rad[k] < FLT_MIN) rad[k] = FLT_MIN;
+    }
+    out->radius = (float)rad[1];
+    out->minor_radius = (float)rad[0];
+    if (out->minor_radius < out->radius)
+        for (k = 0; k < 3; k++)
+            out->axis[k] = (float)axis[k];
+    else
+        out->minor_radius = out->radius;
+    if (c->off_g)
+        out->leak_guard = irc__leak_guard(c, s, n, t1, t2, out);
     out->mean_dist = (float)hm;
     out->features = c->cfg.features;
     out->rays = total;

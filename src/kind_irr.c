@@ -48,38 +48,72 @@ static void irc__grad_unpack(const irc__grad *in, const double t1[3], const doub
     }
 }
 
+/* A host's ellipse: minor/major in (0, 1] and the major axis projected on
+ * the tangent plane; q = 1 (a disk) when minor_radius is 0 or not below
+ * radius.  Returns 0, or -1 when the axis has no tangent direction. */
+static int irc__ellipse(const irc_record *r, const double un[3], double *q, double axis[3])
+{
+    double len;
+    int k;
+    *q = 1.0;
+    axis[0] = axis[1] = axis[2] = 0.0;
+    if (!(r->minor_radius > 0.0f) || !(r->minor_radius < r->radius))
+        return 0;
+    *q = (double)r->minor_radius / r->radius;
+    if (*q < 1.0 / IRC_ANISOTROPY)
+        *q = 1.0 / IRC_ANISOTROPY;
+    for (k = 0; k < 3; k++)
+        axis[k] = r->axis[k];
+    len = irc__dot3d(axis, un);
+    for (k = 0; k < 3; k++)
+        axis[k] -= len * un[k];
+    len = IRC_SQRT(irc__dot3d(axis, axis));
+    if (!(len > 1e-6 * (IRC_FABS(r->axis[0]) + IRC_FABS(r->axis[1]) + IRC_FABS(r->axis[2]))))
+        return -1;
+    for (k = 0; k < 3; k++)
+        axis[k] /= len;
+    return 0;
+}
+
 static int irc__irr_check(const irc_cache *c, const void *rec, double un[3])
 {
     const irc_record *r = (const irc_record *)rec;
+    double q, axis[3];
     int st, ch;
     (void)c;
     if ((st = irc__check_vec(r->p)) < 0 || (st = irc__check_normal(r->n, un)) < 0)
         return st;
-    if (!irc__finite3(r->e) || !irc__finite(r->radius))
+    if (!irc__finite3(r->e) || !irc__finite(r->radius) || !irc__finite(r->minor_radius) ||
+        !irc__finite3(r->axis))
         return IRC_ERR_NONFINITE;
     for (ch = 0; ch < 3; ch++)
         if (!irc__finite3(r->grad_t[ch]) || !irc__finite3(r->grad_r[ch]))
             return IRC_ERR_NONFINITE;
-    if (!(r->radius > 0.0f) || r->e[0] < 0.0f || r->e[1] < 0.0f || r->e[2] < 0.0f)
+    if (!(r->radius > 0.0f) || r->minor_radius < 0.0f || r->e[0] < 0.0f || r->e[1] < 0.0f ||
+        r->e[2] < 0.0f || irc__ellipse(r, un, &q, axis) < 0)
         return IRC_ERR_RANGE;
     return IRC_OK;
 }
 
 /* The translational gradient stays within the record's reach: whatever set
- * the radius (the record's own estimate, min_radius, the host), |grad E_c|
- * R <= E_c, so extrapolation changes E by at most a fraction a at the edge
- * of reach a R (Radiance caps its gradients the same way).  A radius
- * lifted past E/|grad E| would otherwise extrapolate far past E. */
-static void irc__grad_limit(const irc_record *in, float r, float g[3][3])
+ * the radius (the record's own estimate, min_radius, the host), the
+ * largest change over the ellipse, sqrt((g.u)^2 R^2 + |g - (g.u)u|^2 (q
+ * R)^2) for major axis u, stays within e[c], so extrapolation changes E by
+ * at most a fraction a at the edge of reach (Radiance caps its gradients
+ * the same way).  A radius lifted past E/|grad E| would otherwise
+ * extrapolate far past E. */
+static void irc__grad_limit(const irc_record *in, float r, double q, const double u[3],
+                            float g[3][3])
 {
     int ch, k;
     for (ch = 0; ch < 3; ch++) {
-        double len = 0.0;
+        double len = 0.0, gu = 0.0;
         for (k = 0; k < 3; k++) {
             g[ch][k] = in->grad_t[ch][k];
             len += (double)g[ch][k] * g[ch][k];
+            gu += (double)g[ch][k] * u[k];
         }
-        len = IRC_SQRT(len) * r;
+        len = IRC_SQRT(gu * gu + (len - gu * gu) * q * q) * r;
         if (len > in->e[ch])
             for (k = 0; k < 3; k++)
                 g[ch][k] = (float)(g[ch][k] * (in->e[ch] / len));
@@ -91,7 +125,7 @@ static void irc__irr_pack(const irc_cache *c, const void *rec, const double un[3
     const irc_record *in = (const irc_record *)rec;
     unsigned char *b = (unsigned char *)dst;
     irc__rec *r = (irc__rec *)dst;
-    double t1[3], t2[3];
+    double t1[3], t2[3], q, axis[3];
     float g[3][3];
     int ch;
     IRC_MEMSET(dst, 0, c->rec_size);
@@ -102,8 +136,18 @@ static void irc__irr_pack(const irc_cache *c, const void *rec, const double un[3
     r->r = in->radius < FLT_MIN ? FLT_MIN : in->radius > IRC__CAP ? IRC__CAP : in->radius;
     r->n = irc__oct_encode(un);
     irc__oct_frame(r->n, t1, t2);
+    (void)irc__ellipse(in, un, &q, axis); /* checked */
+    if (!c->off_a)
+        q = 1.0;
+    else {
+        irc__aniso *a = (irc__aniso *)(void *)(b + c->off_a);
+        a->q = (float)q;
+        a->axis = q < 1.0 ? irc__oct_encode(axis) : 0u;
+    }
+    if (c->off_g)
+        IRC_MEMCPY(b + c->off_g, &in->leak_guard, sizeof in->leak_guard);
     if (c->off_t) {
-        irc__grad_limit(in, r->r, g);
+        irc__grad_limit(in, r->r, q, axis, g);
         irc__grad_pack((const float(*)[3])g, t1, t2, (irc__grad *)(void *)(b + c->off_t));
     }
     if (c->off_r)
@@ -122,7 +166,16 @@ static void irc__irr_unpack(const irc_cache *c, const void *src, void *rec)
         out->p[ch] = r->p[ch];
         out->e[ch] = r->e[ch];
     }
-    out->radius = r->r;
+    out->radius = out->minor_radius = r->r;
+    if (c->off_a) {
+        const irc__aniso *a = (const irc__aniso *)(const void *)(b + c->off_a);
+        if (a->q < 1.0f) {
+            out->minor_radius = a->q * r->r;
+            irc__oct_decode(a->axis, out->axis);
+        }
+    }
+    if (c->off_g)
+        IRC_MEMCPY(&out->leak_guard, b + c->off_g, sizeof out->leak_guard);
     out->mean_dist = NAN; /* not stored */
     irc__oct_decode(r->n, out->n);
     irc__oct_frame(r->n, t1, t2);

@@ -16,7 +16,7 @@
 typedef struct irc__layout {
     uint64_t lock, scratch, records, next, nodes, used, total;
     uint64_t slot_bytes, lock_bytes;
-    uint32_t rec_size, off_t, off_r, off_sh, off_shg, node_cap, samples;
+    uint32_t rec_size, off_t, off_r, off_a, off_g, off_sh, off_shg, node_cap, samples;
 } irc__layout;
 
 static uint64_t irc__up(uint64_t x)
@@ -39,7 +39,7 @@ static uint32_t irc__node_cap(uint32_t capacity)
 static void irc__record_layout(const irc_config *cfg, irc__layout *l)
 {
     l->rec_size = (uint32_t)sizeof(irc__rec);
-    l->off_t = l->off_r = l->off_sh = l->off_shg = 0;
+    l->off_t = l->off_r = l->off_a = l->off_g = l->off_sh = l->off_shg = 0;
     if (cfg->features & IRC_FEATURE_TRANSLATION) {
         l->off_t = l->rec_size;
         l->rec_size += (uint32_t)sizeof(irc__grad);
@@ -47,6 +47,14 @@ static void irc__record_layout(const irc_config *cfg, irc__layout *l)
     if (cfg->features & IRC_FEATURE_ROTATION) {
         l->off_r = l->rec_size;
         l->rec_size += (uint32_t)sizeof(irc__grad);
+    }
+    if (cfg->features & IRC_FEATURE_HESSIAN) {
+        l->off_a = l->rec_size;
+        l->rec_size += (uint32_t)sizeof(irc__aniso);
+    }
+    if (!(cfg->features & IRC_FEATURE_SH) && !cfg->no_leak_guard) {
+        l->off_g = l->rec_size;
+        l->rec_size += (uint32_t)sizeof(uint32_t);
     }
     if (cfg->features & IRC_FEATURE_SH) {
         uint32_t k = cfg->sh_bands * cfg->sh_bands * cfg->sh_channels;
@@ -144,6 +152,8 @@ static void irc__set_parts(irc_cache *c, const irc__layout *l)
     c->rec_size = l->rec_size;
     c->off_t = l->off_t;
     c->off_r = l->off_r;
+    c->off_a = l->off_a;
+    c->off_g = l->off_g;
     c->off_sh = l->off_sh;
     c->off_shg = l->off_shg;
     c->slot_samples = l->samples;

@@ -11,6 +11,25 @@
 /* Cap on a weight: a query exactly on a record gives 1/0. */
 #define IRC__W_MAX 1e6
 
+/* Whether the leak guard rejects a lookup at offset (dx, dy, dz) and t of
+ * the reach from the record: the sector's nibble v says geometry lies at
+ * (15 - v)/15 of the reach in that direction. */
+static int irc__guarded(const irc__rec *r, uint32_t off, const float ni[3], double dx,
+                        double dy, double dz, double t)
+{
+    uint32_t g, v;
+    double nd[3], t1[3], t2[3], x, y;
+    IRC_MEMCPY(&g, (const unsigned char *)r + off, sizeof g);
+    if (!g || t <= 0.0)
+        return 0;
+    nd[0] = ni[0]; nd[1] = ni[1]; nd[2] = ni[2];
+    irc__frame(nd, t1, t2);
+    x = dx * t1[0] + dy * t1[1] + dz * t1[2];
+    y = dx * t2[0] + dy * t2[1] + dz * t2[2];
+    v = g >> (4 * irc__sector(x, y)) & 15u;
+    return v && t * 15.0 > 15.0 - v;
+}
+
 /* Ward-Heckbert weight w = 1 / (|p - p_i|/R_i + sqrt(1 - n.n_i)), accepted
  * when w > 1/a.  n must be unit length.  Returns 1 and sets *w and the
  * record's decoded normal ni when the record counts, else 0. */
@@ -30,7 +49,26 @@ int irc__weigh(const irc_cache *c, const irc__rec *r, const float p[3],
     if (0.5 * (dx * (n[0] + ni[0]) + dy * (n[1] + ni[1]) + dz * (n[2] + ni[2])) <
         -IRC__BEHIND_TOL * rad)
         return 0;
-    e = IRC_SQRT(d2) / rad + IRC_SQRT(nn < 1.0 ? 1.0 - nn : 0.0);
+    if (c->off_a) {
+        /* An ellipse (Schwarzhaupt et al. 2012): the distance along the
+         * major axis u over R, the rest over the minor radius q R, so a
+         * disk (q = 1) is the plain distance. */
+        const irc__aniso *an = (const irc__aniso *)(const void *)((const unsigned char *)r +
+                                                                  c->off_a);
+        if (an->q < 1.0f) {
+            float u[3];
+            double du;
+            irc__oct_decode(an->axis, u);
+            du = dx * u[0] + dy * u[1] + dz * u[2];
+            d2 = du * du + (d2 - du * du) / ((double)an->q * an->q);
+            if (d2 >= a * a * rad * rad)
+                return 0;
+        }
+    }
+    e = IRC_SQRT(d2) / rad;
+    if (c->off_g && irc__guarded(r, c->off_g, ni, dx, dy, dz, e / a))
+        return 0;
+    e += IRC_SQRT(nn < 1.0 ? 1.0 - nn : 0.0);
     if (!(e < a))
         return 0;
     *w = e > 1.0 / IRC__W_MAX ? 1.0 / e : IRC__W_MAX;

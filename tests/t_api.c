@@ -85,18 +85,26 @@ TEST(test_config_checks)
     CHECK(strcmp(irc_strerror(1000), irc_strerror(-1000)) != 0, "unknown positive status");
 }
 
-/* A cache pays only for what it enables; the compile-time bound holds. */
+/* A cache pays only for what it enables; the compile-time bound holds.
+ * Bytes: 32 head, 16 per gradient, 8 for the Hessian's ellipse, 4 for the
+ * leak guard unless cfg.no_leak_guard. */
 TEST(test_footprints)
 {
-    static const uint32_t feats[] = {0, IRC_FEATURE_TRANSLATION, IRC_FEATURE_ROTATION,
-                                     IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION};
-    static const size_t want[] = {32, 48, 48, 64};
+    static const uint32_t feats[] = {
+        0, IRC_FEATURE_TRANSLATION, IRC_FEATURE_ROTATION,
+        IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION,
+        IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION | IRC_FEATURE_HESSIAN, 0,
+        IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION | IRC_FEATURE_HESSIAN};
+    static const int noguard[] = {0, 0, 0, 0, 0, 1, 1};
+    static const size_t want[] = {36, 52, 52, 68, 76, 32, 72};
     size_t i, b0, b1;
     sky_init();
-    for (i = 0; i < 4; i++) {
+    for (i = 0; i < sizeof want / sizeof want[0]; i++) {
         irc_config cfg = scene_config(&sky, feats[i], 8, 16);
-        irc_cache *c = block_cache(&cfg, 1000, 0);
+        irc_cache *c;
         irc_stats st;
+        cfg.no_leak_guard = (uint32_t)noguard[i];
+        c = block_cache(&cfg, 1000, 0);
         CHECK(c && irc_cache_stats(c, &st) == IRC_OK, "stats");
         CHECK(st.record_bytes == want[i], "record bytes %zu, want %zu", st.record_bytes, want[i]);
         CHECK(st.bytes_total <= cfg.buffer_size, "total %zu of %zu", st.bytes_total, cfg.buffer_size);

@@ -111,6 +111,7 @@ TEST(test_bvh_shipped_scenes)
     bvh_vs_brute("demo/scenes/fig5.scene");
     bvh_vs_brute("demo/scenes/fig15.scene");
     bvh_vs_brute("demo/scenes/sh.scene");
+    bvh_vs_brute("demo/scenes/leak.scene");
 }
 
 /* The demo's brute-force irradiance (--reference N) on the core tests'
@@ -171,7 +172,94 @@ TEST(test_reference_sphere_plane)
     renderer_free(&r);
 }
 
-#define TESTS(X) X(test_bvh_soup) X(test_bvh_shipped_scenes) X(test_reference_sphere_plane)
+/* Renders leak.scene's indirect term at 128 x 80; returns 0 or -1. */
+static int leak_render(scene *s, const render_opts *o, float *img)
+{
+    renderer r;
+    render_stats st;
+    char err[256];
+    int e;
+    if (renderer_init(&r, s, o, err, sizeof err) < 0) {
+        CHECK(0, "%s", err);
+        return -1;
+    }
+    e = render_image(&r, img, &st);
+    renderer_free(&r);
+    CHECK(e == 0, "render");
+    return e;
+}
+
+/* The leak scene (a lit room beside a dark one, a single-polygon wall
+ * between): no path carries light into the dark room, so its reference
+ * pixels are exactly 0 (no noise) and any light the cache puts there
+ * leaked through the wall.  With records reaching far (a = 0.6; Hessian
+ * radii at a = 0.5; min_radius 0.4) the cache must still show none; without the guard the
+ * same renders do leak, so the scene can catch it. */
+TEST(test_leak_scene)
+{
+    static const struct { float a, min_r; uint32_t f; } cases[3] = {
+        {0.6f, 0.0f, IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION},
+        {0.5f, 0.0f, IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION | IRC_FEATURE_HESSIAN},
+        {0.3f, 0.4f, IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION}};
+    scene s;
+    render_opts o;
+    char err[512];
+    const int w = 128, h = 80, n = w * h;
+    float *ref = malloc(sizeof(float) * 3 * n), *img = malloc(sizeof(float) * 3 * n);
+    int k, g, i;
+    if (!ref || !img || scene_load("demo/scenes/leak.scene", &s, err, sizeof err) < 0) {
+        CHECK(0, "%s", err);
+        free(ref);
+        free(img);
+        return;
+    }
+    s.cam.width = w;
+    s.cam.height = h;
+    memset(&o, 0, sizeof o);
+    o.mode = MODE_REFERENCE;
+    o.ref_rays = 64;
+    o.threads = 1; /* records in a fixed order: the same render every run */
+    o.seed = 5;
+    o.show = SHOW_INDIRECT;
+    o.light_samples = 1;
+    o.max_radius = -1.0f;
+    if (leak_render(&s, &o, ref) == 0)
+        for (k = 0; k < 3; k++)
+            for (g = 0; g < 2; g++) {
+                int dark = 0, lit = 0;
+                double worst = 0.0;
+                o.mode = MODE_CACHE;
+                o.accuracy = cases[k].a;
+                o.min_radius = cases[k].min_r;
+                o.features = cases[k].f;
+                o.strata_m = 16;
+                o.strata_n = 64;
+                o.max_records = 100000;
+                o.no_leak_guard = g;
+                if (leak_render(&s, &o, img) < 0)
+                    break;
+                for (i = 0; i < n; i++)
+                    if (ref[3 * i] + ref[3 * i + 1] + ref[3 * i + 2] == 0.0f) {
+                        double v = (double)img[3 * i] + img[3 * i + 1] + img[3 * i + 2];
+                        dark++;
+                        lit += v > 0.0;
+                        worst = v > worst ? v : worst;
+                    }
+                printf("  a %.1f, min_radius %.1f, features %u, %s: %d of %d dark-room pixels lit, brightest "
+                       "%.4f\n", cases[k].a, cases[k].min_r, cases[k].f, g ? "no guard" : "guard", lit, dark,
+                       worst);
+                CHECK(dark > n / 4, "the dark room covers %d pixels", dark);
+                if (g)
+                    CHECK(lit > 0, "without the guard the scene should leak");
+                else
+                    CHECK(lit == 0, "%d dark pixels lit through the wall", lit);
+            }
+    free(ref);
+    free(img);
+    scene_free(&s);
+}
+
+#define TESTS(X) X(test_bvh_soup) X(test_bvh_shipped_scenes) X(test_reference_sphere_plane) X(test_leak_scene)
 TESTS(TEST_DECL)
 
 int main(int argc, char **argv)

@@ -234,6 +234,80 @@ TEST(test_gradient_within_reach)
     block_free(&cfg);
 }
 
+/* Ellipses a host builds (major radius 1 along x, minor 0.25, a = 0.5):
+ * the weight is 1/e with e the distance on the ellipse, a lookup 0.4 along
+ * the major axis is served and 0.2 across is not (a disk of 1 would take
+ * both); read back gives the ellipse; a bad axis or minor radius is refused
+ * and leaves the cache as it was; minor/major below 1/IRC_ANISOTROPY is
+ * stored at 1/IRC_ANISOTROPY; the gradient is limited on the ellipse. */
+TEST(test_ellipse_records)
+{
+    tscene s;
+    irc_config cfg;
+    irc_cache *c;
+    irc_record r, back;
+    irc_stats st;
+    const float n[3] = {0, 0, 1}, along[3] = {0.4f, 0.0f, 0.0f}, across[3] = {0.0f, 0.2f, 0.0f},
+                near[3] = {0.0f, 0.1f, 0.0f}, diag[3] = {0.2f, 0.08f, 0.0f};
+    float rgb[3], w;
+    scene_init(&s);
+    cfg = scene_config(&s, IRC_FEATURE_TRANSLATION | IRC_FEATURE_HESSIAN, 4, 4);
+    cfg.accuracy = 0.5f;
+    c = block_cache(&cfg, 8, 0);
+    CHECK(c != NULL, "init");
+    if (!c) return;
+    memset(&r, 0, sizeof r);
+    r.n[2] = 1.0f;
+    r.e[0] = r.e[1] = r.e[2] = 1.0f;
+    r.radius = 1.0f;
+    r.minor_radius = 0.25f;
+    r.axis[0] = 2.0f;   /* not unit, and tilted out of the plane: projected */
+    r.axis[2] = 0.5f;
+    CHECK(irc_cache_insert(c, &r) == IRC_OK, "insert");
+    CHECK(irc_cache_lookup(c, along, n, rgb, &w) == IRC_OK && fabs(w - 1.0 / 0.4) < 1e-3,
+          "along the major axis: weight %g, want %g", w, 1.0 / 0.4);
+    CHECK(irc_cache_lookup(c, near, n, rgb, &w) == IRC_OK && fabs(w - 0.25 / 0.1) < 1e-3,
+          "across: weight %g, want %g", w, 0.25 / 0.1);
+    /* (0.2/1)^2 + (0.08/0.25)^2 = 0.1424: e = 0.3774 */
+    CHECK(irc_cache_lookup(c, diag, n, rgb, &w) == IRC_OK &&
+              fabs(w - 1.0 / sqrt(0.04 + 0.1024)) < 1e-3,
+          "oblique: weight %g, want %g", w, 1.0 / sqrt(0.04 + 0.1024));
+    CHECK(irc_cache_lookup(c, across, n, rgb, &w) == IRC_MISS, "0.2 across is beyond 0.5 x 0.25");
+    CHECK(irc_cache_record(c, 0, &back) == IRC_OK, "read");
+    CHECK(fabs(back.radius - 1.0f) < 1e-6f && fabs(back.minor_radius - 0.25f) < 1e-6f &&
+              fabs(back.axis[0] - 1.0f) < 1e-3f && fabs(back.axis[1]) < 1e-3f &&
+              fabs(back.axis[2]) < 1e-3f,
+          "read back R %g r %g axis %g %g %g", back.radius, back.minor_radius, back.axis[0],
+          back.axis[1], back.axis[2]);
+    /* Refused, nothing stored: an axis along the normal, a negative or
+     * non-finite minor radius, a non-finite axis. */
+    r.p[0] = 5.0f;
+    r.axis[0] = 0.0f;
+    CHECK(irc_cache_insert(c, &r) == IRC_ERR_RANGE, "axis along n");
+    r.axis[0] = 1.0f;
+    r.minor_radius = -0.5f;
+    CHECK(irc_cache_insert(c, &r) == IRC_ERR_RANGE, "negative minor radius");
+    r.minor_radius = NAN;
+    CHECK(irc_cache_insert(c, &r) == IRC_ERR_NONFINITE, "NaN minor radius");
+    r.minor_radius = 0.25f;
+    r.axis[1] = INFINITY;
+    CHECK(irc_cache_insert(c, &r) == IRC_ERR_NONFINITE, "infinite axis");
+    CHECK(irc_cache_stats(c, &st) == IRC_OK && st.records == 1, "%llu records after refusals",
+          (unsigned long long)st.records);
+    /* minor/major 0.01 is stored as 1/IRC_ANISOTROPY; the gradient along
+     * the minor axis (y) may reach E over the minor radius only */
+    r.axis[1] = 0.0f;
+    r.minor_radius = 0.01f;
+    r.grad_t[0][1] = 8.0f; /* 8 x 0.25 = 2 > E = 1: scaled to 4 */
+    r.grad_t[1][0] = 0.8f; /* along the major axis: 0.8 x 1 <= 1, kept */
+    CHECK(irc_cache_insert(c, &r) == IRC_OK && irc_cache_record(c, 1, &back) == IRC_OK, "second");
+    CHECK(fabs(back.minor_radius - 1.0f / IRC_ANISOTROPY) < 1e-6f, "minor %g, want %g",
+          back.minor_radius, 1.0 / IRC_ANISOTROPY);
+    CHECK(fabs(back.grad_t[0][1] - 4.0f) < 1e-3f && fabs(back.grad_t[1][0] - 0.8f) < 1e-4f,
+          "gradients %g (want 4), %g (want 0.8)", back.grad_t[0][1], back.grad_t[1][0]);
+    block_free(&cfg);
+}
+
 /* Safe defaults: with every radius field zero, the sphere-over-plane fill
  * (the fill 0.1 got wrong by 9-17% with 1-2 records) errs less as a
  * falls, no point stands far out from the fill's own error, and a record

@@ -21,7 +21,8 @@ TEST(test_footprint_bounds)
     static const uint32_t feats[] = {
         0, IRC_FEATURE_TRANSLATION, IRC_FEATURE_ROTATION,
         IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION, IRC_FEATURE_VISIBILITY,
-        IRC_FEATURE_VISIBILITY | IRC_FEATURE_ROTATION, IRC_FEATURE_SH,
+        IRC_FEATURE_VISIBILITY | IRC_FEATURE_ROTATION,
+        IRC_FEATURE_HESSIAN | IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION, IRC_FEATURE_SH,
         IRC_FEATURE_SH | IRC_FEATURE_SH_GRADIENT};
     static const uint32_t strata[][2] = {{1, 1}, {2, 3}, {16, 64}, {32, 128}, {64, 256}, {1024, 4096}};
     static const uint32_t threads[] = {1, 3, 64}, batches[] = {1, 7, 4096}, recs[] = {1, 17, 100000};
