@@ -312,6 +312,15 @@ typedef struct irc_config {
                                 the default, such a record has the
                                 smallest radius and serves only its own
                                 point: set max_radius for open scenes) */
+    float min_pixels;        /* screen-space bounds (pbrt's and Mitsuba's
+                                min/max pixel spacing): a record computed by
+                                irc_cache_lookup_or_compute_px with a
+                                footprint f > 0 gets R_i in [min_pixels f,
+                                max_pixels f], then [min_radius,
+                                max_radius]; finite, >= 0, 0 = that side
+                                unbounded, max_pixels >= min_pixels when both
+                                are set (default 0, 0) */
+    float max_pixels;        /* see min_pixels */
     uint32_t strata_theta;   /* M rows in theta, 1..1024 (default 16) */
     uint32_t strata_phi;     /* N columns in phi, 1..4096 (default 64);
                                 M * N <= IRC_MAX_STRATA */
@@ -567,6 +576,22 @@ IRC_API int irc_cache_lookup(irc_cache *cache, const float p[3], const float n[3
 IRC_API int irc_cache_lookup_or_compute(irc_cache *cache, const float p[3],
                                         const float n[3], float rgb[3], float *weight,
                                         void *host);
+
+/*
+ * irc_cache_lookup_or_compute with a screen-space bound: footprint is the
+ * width, in the host's length unit, of one pixel at p (from ray
+ * differentials, or distance x pixel angle), and a record computed here
+ * gets a radius in [cfg.min_pixels, cfg.max_pixels] x footprint before the
+ * world bounds [min_radius, max_radius] (its gradient is then limited to
+ * that radius, as always).  footprint 0 is the plain call.  A host that
+ * computes with irc_record_compute and inserts itself sets the radius
+ * (and minor_radius) of the record the same way before irc_cache_insert.
+ * Returns as irc_cache_lookup_or_compute; IRC_ERR_RANGE (nothing done)
+ * when footprint is negative, IRC_ERR_NONFINITE when it is not finite.
+ */
+IRC_API int irc_cache_lookup_or_compute_px(irc_cache *cache, const float p[3],
+                                           const float n[3], float footprint, float rgb[3],
+                                           float *weight, void *host);
 
 /*
  * The ids (slot numbers) of the records a lookup at (p, n) would use, in no

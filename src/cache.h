@@ -111,6 +111,7 @@ typedef struct irc__call {
     void *host;
     irc__query q;
     uint32_t rays;
+    float footprint;  /* a pixel's width at the query, 0 = none */
 } irc__call;
 
 /* A record kind: what the store needs to check, pack, weigh and
@@ -272,7 +273,7 @@ int irc__compute(irc_cache *c, const irc__kind *want, const float p[3], const fl
 int irc__insert(irc_cache *c, const irc__kind *want, const void *rec);
 int irc__lookup(irc_cache *c, const irc__kind *want, const float p[3], const float n[3],
                 void *out, float *weight);
-int irc__lookup_or_compute(irc_cache *c, const irc__kind *want, const float p[3],
+int irc__lookup_or_compute(irc_cache *c, const irc__kind *want, float footprint, const float p[3],
                            const float n[3], void *out, float *weight, void *host);
 int irc__record_get(irc_cache *c, const irc__kind *want, uint32_t id, void *out);
 void irc__count(irc_cache *c, int which, uint64_t v);

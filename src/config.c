@@ -57,6 +57,10 @@ static int irc__radii_resolve(irc_config *out)
     if (!(out->min_radius >= 0.0f && out->min_radius < IRC__CAP) ||
         !(out->max_radius > out->min_radius && out->max_radius <= IRC__CAP))
         return IRC_ERR_CONFIG;
+    if (!(out->min_pixels >= 0.0f && out->min_pixels < IRC__CAP) ||
+        !(out->max_pixels >= 0.0f && out->max_pixels < IRC__CAP) ||
+        (out->max_pixels > 0.0f && out->max_pixels < out->min_pixels))
+        return IRC_ERR_CONFIG;
     return IRC_OK;
 }
 

@@ -300,7 +300,7 @@ static uint32_t irc__leak_guard(const irc_cache *c, const irc__sample *s, const 
 
 static void irc__record_build(const irc_cache *c, const irc__sample *s,
                        const double n[3], const double t1[3],
-                       const double t2[3], double gvis[3][3], irc_record *out)
+                       const double t2[3], double gvis[3][3], float fp, irc_record *out)
 {
     const uint32_t total = c->strata;
     double sum[3] = {0, 0, 0}, hm, r, g[3][3], rad[2], axis[3];
@@ -360,6 +360,9 @@ static void irc__record_build(const irc_cache *c, const irc__sample *s,
             rad[1] = IRC_ANISOTROPY * rad[0];
     }
     for (k = 0; k < 2; k++) {
+        if (rad[k] < (double)c->cfg.min_pixels * fp) rad[k] = (double)c->cfg.min_pixels * fp;
+        if (c->cfg.max_pixels > 0.0f && fp > 0.0f && rad[k] > (double)c->cfg.max_pixels * fp)
+            rad[k] = (double)c->cfg.max_pixels * fp;
         if (rad[k] < c->cfg.min_radius) rad[k] = c->cfg.min_radius;
         if (rad[k] > c->cfg.max_radius) rad[k] = c->cfg.max_radius;
         if (rad[k] < FLT_MIN) rad[k] = FLT_MIN;
@@ -400,7 +403,7 @@ int irc__irr_compute(irc__call *k, void *rec)
         (vis && (st = irc__grad_visibility(k, 0, gvis)) < 0))
         return st;
     irc__record_build(c, (const irc__sample *)(void *)k->slot, k->q.un, t1, t2,
-                      vis ? gvis : NULL, out);
+                      vis ? gvis : NULL, k->footprint, out);
 
     out->rays = k->rays;
     out->p[0] = k->q.p[0];

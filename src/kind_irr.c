@@ -259,7 +259,13 @@ int irc_cache_lookup(irc_cache *c, const float p[3], const float n[3], float rgb
 int irc_cache_lookup_or_compute(irc_cache *c, const float p[3], const float n[3],
                                 float rgb[3], float *weight, void *host)
 {
-    return irc__lookup_or_compute(c, &irc__kind_irr, p, n, rgb, weight, host);
+    return irc__lookup_or_compute(c, &irc__kind_irr, 0.0f, p, n, rgb, weight, host);
+}
+
+int irc_cache_lookup_or_compute_px(irc_cache *c, const float p[3], const float n[3],
+                                   float footprint, float rgb[3], float *weight, void *host)
+{
+    return irc__lookup_or_compute(c, &irc__kind_irr, footprint, p, n, rgb, weight, host);
 }
 
 int irc_cache_record(irc_cache *c, uint32_t id, irc_record *out)

@@ -124,6 +124,7 @@ int irc__compute(irc_cache *c, const irc__kind *want, const float p[3], const fl
     irc__call k;
     uint32_t t;
     int st, waited = 0;
+    k.footprint = 0.0f;
     if ((st = irc__open(c, want, out, p, n, &k.q)) < 0 ||
         (st = irc__slot_claim(c, &t, &waited)) < 0 ||
         (st = irc__run(c, &k, t, host, fn, out)) < 0)
@@ -342,8 +343,9 @@ static int irc__keep(irc_cache *c, const void *rec, void *out, float *weight)
     return st == IRC_ERR_FULL ? IRC_NOT_STORED : IRC_OK;
 }
 
-int irc__lookup_or_compute(irc_cache *c, const irc__kind *want, const float p[3],
-                           const float n[3], void *out, float *weight, void *host)
+int irc__lookup_or_compute(irc_cache *c, const irc__kind *want, float footprint,
+                           const float p[3], const float n[3], void *out, float *weight,
+                           void *host)
 {
     union { irc_record irr; irc_sh sh; } rec;
     irc__call k;
@@ -351,6 +353,11 @@ int irc__lookup_or_compute(irc_cache *c, const irc__kind *want, const float p[3]
     int st, waited = 0;
     if ((st = irc__open(c, want, out, p, n, &k.q)) < 0)
         return st;
+    if (!irc__finite(footprint))
+        return IRC_ERR_NONFINITE;
+    if (footprint < 0.0f)
+        return IRC_ERR_RANGE;
+    k.footprint = footprint;
     if ((st = irc__lookup_once(c, &k.q, out, weight)) != IRC_MISS)
         return irc__count_lookup(c, st);
     if ((st = irc__slot_claim(c, &t, &waited)) < 0)

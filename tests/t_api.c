@@ -53,6 +53,14 @@ TEST(test_config_checks)
     CASE(cfg.accuracy = NAN, IRC_ERR_CONFIG);
     CASE(cfg.min_radius = -1.0f, IRC_ERR_CONFIG);
     CASE((cfg.min_radius = 2.0f, cfg.max_radius = 1.0f), IRC_ERR_CONFIG);
+    CASE(cfg.min_pixels = -1.0f, IRC_ERR_CONFIG);
+    CASE(cfg.max_pixels = NAN, IRC_ERR_CONFIG);
+    CASE(cfg.min_pixels = INFINITY, IRC_ERR_CONFIG);
+    CASE((cfg.min_pixels = 4.0f, cfg.max_pixels = 2.0f), IRC_ERR_CONFIG);
+    CASE((cfg.min_pixels = 4.0f, cfg.max_pixels = 0.0f), IRC_OK);
+    CASE((cfg.min_pixels = 2.5f, cfg.max_pixels = 15.0f), IRC_OK);
+    CASE(cfg.no_leak_guard = 2, IRC_ERR_CONFIG);
+    CASE(cfg.no_leak_guard = 1, IRC_OK);
     CASE(cfg.no_wait = 2, IRC_ERR_CONFIG);
     CASE(cfg.no_wait = 1, IRC_OK);
     CASE(cfg.strata_theta = 2000, IRC_ERR_CONFIG);

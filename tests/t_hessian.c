@@ -308,6 +308,86 @@ TEST(test_ellipse_records)
     block_free(&cfg);
 }
 
+/* The screen-space bound: with a footprint f, computed records have both
+ * radii in [min_pixels f, max_pixels f] (here [10 f, 20 f] for f = 0.05
+ * and 0.2: the floor's own radii, 1.2 under the sphere and more away from
+ * it, meet both bounds), a lifted record's gradient stays within reach, footprint 0
+ * is the plain call, and a bad footprint is refused with the cache as it
+ * was. */
+TEST(test_screen_bound)
+{
+    tscene s;
+    irc_config cfg;
+    irc_cache *c;
+    irc_stats st0, st1;
+    irc_record r;
+    const float n[3] = {0, 0, 1};
+    float rgb[3], w;
+    uint32_t i, lifted = 0, capped = 0, free_r = 0;
+    scene_sphere_plane(&s);
+    cfg = scene_config(&s, IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION | IRC_FEATURE_HESSIAN,
+                       8, 32);
+    cfg.min_pixels = 10.0f;
+    cfg.max_pixels = 20.0f;
+    c = block_cache(&cfg, 4096, 0);
+    CHECK(c != NULL, "init");
+    if (!c) return;
+    for (i = 0; i < 400; i++) {
+        const float p[3] = {(float)(i % 20) * 0.3f - 3.0f, (float)(i / 20) * 0.3f - 3.0f, 0.0f};
+        const float fp = i < 200 ? 0.05f : 0.2f;
+        CHECK(irc_cache_lookup_or_compute_px(c, p, n, fp, rgb, &w, NULL) >= 0, "query %u", i);
+    }
+    CHECK(irc_cache_stats(c, &st0) == IRC_OK && st0.records > 10, "records %llu",
+          (unsigned long long)st0.records);
+    for (i = 0; i < st0.records; i++) {
+        double lo, hi, g;
+        int ch;
+        CHECK(irc_cache_record(c, i, &r) == IRC_OK, "read %u", i);
+        /* which footprint made it: the lower rows used 0.05 */
+        lo = (r.p[1] < 0.0f ? 0.05 : 0.2) * 10.0;
+        hi = 2.0 * lo;
+        if (r.p[1] > -0.05f && r.p[1] < 0.05f)
+            continue; /* the row at y = 0 was made by either */
+        CHECK(r.minor_radius >= lo * (1 - 1e-6) && r.radius <= hi * (1 + 1e-6),
+              "record %u at y %.2f: radii %g, %g outside [%g, %g]", i, r.p[1], r.minor_radius,
+              r.radius, lo, hi);
+        lifted += r.minor_radius <= lo * (1 + 1e-6);
+        capped += r.radius >= hi * (1 - 1e-6);
+        for (ch = 0; ch < 3; ch++) {
+            g = sqrt((double)r.grad_t[ch][0] * r.grad_t[ch][0] + r.grad_t[ch][1] * r.grad_t[ch][1] +
+                     r.grad_t[ch][2] * r.grad_t[ch][2]);
+            CHECK(g * r.minor_radius <= r.e[ch] * (1 + 1e-3) + 1e-6, "|grad| r %g > E %g",
+                  g * r.minor_radius, r.e[ch]);
+        }
+    }
+    printf("  %llu records: %u lifted to min_pixels, %u capped at max_pixels\n",
+           (unsigned long long)st0.records, lifted, capped);
+    CHECK(lifted > 0 && capped > 0, "both bounds should bind on this floor");
+    /* footprint 0: no pixel bound (a record under the sphere is smaller
+     * than 10 x 0.2) */
+    {
+        const float p[3] = {0.05f, 0.05f, 0.0f};
+        CHECK(irc_cache_clear(c) == IRC_OK &&
+                  irc_cache_lookup_or_compute_px(c, p, n, 0.0f, rgb, &w, NULL) >= 0 &&
+                  irc_cache_stats(c, &st0) == IRC_OK && irc_cache_record(c, 0, &r) == IRC_OK,
+              "plain record");
+        free_r = r.minor_radius < 2.0f;
+        printf("  plain record under the sphere: radii %g, %g\n", r.minor_radius, r.radius);
+        CHECK(free_r, "without a footprint the record keeps its own radius %g", r.minor_radius);
+    }
+    {
+        const float p[3] = {7.0f, 7.0f, 0.0f};
+        CHECK(irc_cache_lookup_or_compute_px(c, p, n, -1.0f, rgb, &w, NULL) == IRC_ERR_RANGE,
+              "negative footprint");
+        CHECK(irc_cache_lookup_or_compute_px(c, p, n, NAN, rgb, &w, NULL) == IRC_ERR_NONFINITE,
+              "NaN footprint");
+        CHECK(irc_cache_stats(c, &st1) == IRC_OK && st1.records == st0.records &&
+                  st1.computes == st0.computes,
+              "refused calls changed the cache");
+    }
+    block_free(&cfg);
+}
+
 /* Safe defaults: with every radius field zero, the sphere-over-plane fill
  * (the fill 0.1 got wrong by 9-17% with 1-2 records) errs less as a
  * falls, no point stands far out from the fill's own error, and a record
