@@ -343,7 +343,7 @@ typedef struct irc_config {
                                 records j within it, and those are clamped
                                 back to R + |x - x_j| (default 0: off) */
     uint32_t no_leak_guard;  /* 1: irradiance records keep no leak guard
-                                (irc_record.leak_guard) and save its 4
+                                (irc_record.leak_guard) and save its 8
                                 bytes; default 0: the guard is on */
     uint32_t sh_bands;       /* SH records: L, bands 0..L-1, L*L coefficients
                                 per channel; 1..IRC_SH_MAX_BANDS (default 3) */
@@ -385,7 +385,7 @@ typedef struct irc_config {
      (size_t)(t) * (128u + (size_t)(s) * (((features) & IRC_FEATURE_VISIBILITY) ? 320u : \
                                           ((features) & IRC_FEATURE_HESSIAN) ? 64u : 32u) + \
                     (size_t)(b) * 56u) + \
-     (size_t)(records) * (((features) & IRC_FEATURE_HESSIAN) ? 81u : 73u) +     \
+     (size_t)(records) * (((features) & IRC_FEATURE_HESSIAN) ? 85u : 77u) +     \
      ((size_t)(records) / 8u + 16u) * 128u)
 #define IRC_SH_FOOTPRINT_BOUND(records, bands, ch, s, t, b)                      \
     (8192u + (size_t)(t) * (128u + (size_t)(s) * 112u + (size_t)(b) * 56u) +     \
@@ -492,9 +492,9 @@ typedef struct irc_record {
                             moves along the surface are meaningful (zero
                             unless HESSIAN; not stored, zero when read
                             back) */
-    uint32_t leak_guard; /* what the record saw near it, so that a lookup
+    uint64_t leak_guard; /* what the record saw near it, so that a lookup
                             from behind that geometry (a wall between two
-                            rooms) does not use it: 8 sectors of 45
+                            rooms) does not use it: 16 sectors of 22.5
                             degrees counter-clockwise about n from t1 =
                             (1 - s n_x^2/(s + n_z), -s n_x n_y/(s + n_z),
                             -s n_x), s = +1 if n_z >= 0 else -1 (Duff et
@@ -505,7 +505,7 @@ typedef struct irc_record {
                             lookup farther than that in the sector rejects
                             the record.  Set by compute; a host's record
                             may carry 0 (no guard).  Stored unless
-                            cfg.no_leak_guard */
+                            cfg.no_leak_guard (8 bytes) */
     uint32_t features;   /* which gradients are valid */
     uint32_t rays;       /* rays cast, and how many were usable: */
     uint32_t rays_used;

@@ -50,14 +50,16 @@ typedef struct irc__aniso {
     float q;
 } irc__aniso;
 
-/* The sector (of 8, 45 degrees each, counter-clockwise from x) holding
- * the tangent direction (x, y), from signs and one comparison: the leak
- * guard's lookups need no trig. */
+/* The sector (of 16, 22.5 degrees each, counter-clockwise from x) holding
+ * the tangent direction (x, y), from signs and comparisons with tan(22.5
+ * degrees): the leak guard's lookups need no trig. */
 static inline int irc__sector(double x, double y)
 {
+    const double t = 0.41421356237309503, ax = x < 0.0 ? -x : x, ay = y < 0.0 ? -y : y;
+    int sub = ay < t * ax ? 0 : ay < ax ? 1 : ax > t * ay ? 2 : 3;
     if (y >= 0.0)
-        return x >= 0.0 ? (y < x ? 0 : 1) : (y > -x ? 2 : 3);
-    return x < 0.0 ? (-y < -x ? 4 : 5) : (-y > x ? 6 : 7);
+        return x >= 0.0 ? sub : 7 - sub;
+    return x < 0.0 ? 8 + sub : 15 - sub;
 }
 
 /* Octree node.  Its cube is implied by the path from the root. */

@@ -258,15 +258,16 @@ static double irc__split_sphere(const irc_cache *c, const irc__sample *s)
  * its horizontal distance d sin(theta) over the reach a R(phi) in that
  * direction (the ellipse's).  Row and column centres stand for the
  * jittered directions; the distance is rounded down, the safe way. */
-static uint32_t irc__leak_guard(const irc_cache *c, const irc__sample *s, const double un[3],
+static uint64_t irc__leak_guard(const irc_cache *c, const irc__sample *s, const double un[3],
                                 const double t1[3], const double t2[3], const irc_record *rec)
 {
     const uint32_t m = c->cfg.strata_theta, nphi = c->cfg.strata_phi;
-    double o1[3], o2[3], near[8], ax[2] = {0.0, 0.0}, q = 1.0, w[3];
-    uint32_t j, k, mask = 0;
+    double o1[3], o2[3], near[16], ax[2] = {0.0, 0.0}, q = 1.0, w[3];
+    uint32_t j, k;
+    uint64_t mask = 0;
     int i;
     irc__oct_frame(irc__oct_encode(un), o1, o2);
-    for (i = 0; i < 8; i++)
+    for (i = 0; i < 16; i++)
         near[i] = 1.0;
     if (rec->minor_radius < rec->radius) {
         double a3[3] = {rec->axis[0], rec->axis[1], rec->axis[2]};
@@ -292,9 +293,9 @@ static uint32_t irc__leak_guard(const irc_cache *c, const irc__sample *s, const 
                 near[irc__sector(x, y)] = f;
         }
     }
-    for (i = 0; i < 8; i++)
+    for (i = 0; i < 16; i++)
         if (near[i] < 1.0)
-            mask |= (uint32_t)(15 - (int)IRC_FLOOR(15.0 * near[i])) << (4 * i);
+            mask |= (uint64_t)(15 - (int)IRC_FLOOR(15.0 * near[i])) << (4 * i);
     return mask;
 }
 

@@ -54,7 +54,7 @@ static void irc__record_layout(const irc_config *cfg, irc__layout *l)
     }
     if (!(cfg->features & IRC_FEATURE_SH) && !cfg->no_leak_guard) {
         l->off_g = l->rec_size;
-        l->rec_size += (uint32_t)sizeof(uint32_t);
+        l->rec_size += (uint32_t)sizeof(uint64_t);
     }
     if (cfg->features & IRC_FEATURE_SH) {
         uint32_t k = cfg->sh_bands * cfg->sh_bands * cfg->sh_channels;

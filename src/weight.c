@@ -17,7 +17,8 @@
 static int irc__guarded(const irc__rec *r, uint32_t off, const float ni[3], double dx,
                         double dy, double dz, double t)
 {
-    uint32_t g, v;
+    uint64_t g;
+    uint32_t v;
     double nd[3], t1[3], t2[3], x, y;
     IRC_MEMCPY(&g, (const unsigned char *)r + off, sizeof g);
     if (!g || t <= 0.0)
@@ -26,7 +27,7 @@ static int irc__guarded(const irc__rec *r, uint32_t off, const float ni[3], doub
     irc__frame(nd, t1, t2);
     x = dx * t1[0] + dy * t1[1] + dz * t1[2];
     y = dx * t2[0] + dy * t2[1] + dz * t2[2];
-    v = g >> (4 * irc__sector(x, y)) & 15u;
+    v = (uint32_t)(g >> (4 * irc__sector(x, y))) & 15u;
     return v && t * 15.0 > 15.0 - v;
 }
 

@@ -308,6 +308,53 @@ TEST(test_ellipse_records)
     block_free(&cfg);
 }
 
+/* The leak guard by hand: irc__sector against atan2 away from sector
+ * edges; a record (R 1, a 0.5: reach 0.5, n = z so t1 = x) whose sector 0
+ * says geometry at 5/15 of the reach (nibble 10) serves lookups nearer
+ * than 0.1667 in that sector and any in the others, and rejects the rest
+ * (points off the sector edges: y = 0 is one). */
+TEST(test_leak_guard_by_hand)
+{
+    static const struct { float x, y; int ok; } q[] = {
+        {0.1f, 0.01f, 1}, {0.2f, 0.02f, 0}, {0.4f, 0.03f, 0}, {-0.2f, 0.01f, 1},
+        {0.2f, 0.05f, 0}, {0.2f, 0.15f, 1}, {0.2f, -0.05f, 1}, {0.0f, 0.3f, 1}};
+    tscene s;
+    irc_config cfg;
+    irc_cache *c;
+    irc_record r, back;
+    const float n[3] = {0, 0, 1};
+    float rgb[3], w;
+    unsigned long long rng = 12345;
+    int i, bad = 0;
+    for (i = 0; i < 100000; i++) {
+        double ang = 2.0 * TPI * xrand(&rng), pos = ang / (TPI / 8.0);
+        if (fabs(pos - floor(pos + 0.5)) < 1e-6)
+            continue;
+        bad += irc__sector(cos(ang), sin(ang)) != (int)floor(pos) % 16;
+    }
+    CHECK(bad == 0, "%d directions in the wrong sector", bad);
+    scene_init(&s);
+    cfg = scene_config(&s, IRC_FEATURE_TRANSLATION, 4, 4);
+    cfg.accuracy = 0.5f;
+    c = block_cache(&cfg, 4, 0);
+    CHECK(c != NULL, "init");
+    if (!c) return;
+    memset(&r, 0, sizeof r);
+    r.n[2] = 1.0f;
+    r.e[0] = r.e[1] = r.e[2] = 1.0f;
+    r.radius = 1.0f;
+    r.leak_guard = 10u; /* sector 0 */
+    CHECK(irc_cache_insert(c, &r) == IRC_OK && irc_cache_record(c, 0, &back) == IRC_OK &&
+              back.leak_guard == 10u, "guard stored");
+    for (i = 0; i < (int)(sizeof q / sizeof q[0]); i++) {
+        const float p[3] = {q[i].x, q[i].y, 0.0f};
+        int st = irc_cache_lookup(c, p, n, rgb, &w);
+        CHECK(st == (q[i].ok ? IRC_OK : IRC_MISS), "lookup at (%g, %g): %d, want %s", q[i].x,
+              q[i].y, st, q[i].ok ? "served" : "rejected");
+    }
+    block_free(&cfg);
+}
+
 /* The screen-space bound: with a footprint f, computed records have both
  * radii in [min_pixels f, max_pixels f] (here [10 f, 20 f] for f = 0.05
  * and 0.2: the floor's own radii, 1.2 under the sphere and more away from
