@@ -498,14 +498,20 @@ typedef struct irc_record {
                             degrees counter-clockwise about n from t1 =
                             (1 - s n_x^2/(s + n_z), -s n_x n_y/(s + n_z),
                             -s n_x), s = +1 if n_z >= 0 else -1 (Duff et
-                            al. 2017's frame of n), 4 bits each (sector k in bits 4k..4k+3).  Nibble
-                            v: 0 = nothing seen within reach; else a hit at
-                            a grazing angle (more than 45 degrees from n)
-                            lies (15 - v)/15 of the reach away, and a
-                            lookup farther than that in the sector rejects
-                            the record.  Set by compute; a host's record
-                            may carry 0 (no guard).  Stored unless
-                            cfg.no_leak_guard (8 bytes) */
+                            al. 2017's frame of n), 4 bits each, sector k
+                            in bits 4k..4k+3.  Nibble v: 0 = nothing seen
+                            within reach; else the nearest hit at a
+                            grazing angle (more than 45 degrees from n) in
+                            the sector lies (15 - v)/15 of the reach away
+                            (rounded down).  A lookup at t of the reach in
+                            a direction between two sector centres is
+                            rejected when t times the inverse distance,
+                            interpolated linearly in angle between those
+                            centres, exceeds 1 (a straight wall's inverse
+                            distance is a cosine; v = 15 counts as 1/30).
+                            Set by compute; a host's record may carry 0
+                            (no guard).  Stored unless cfg.no_leak_guard
+                            (8 bytes) */
     uint32_t features;   /* which gradients are valid */
     uint32_t rays;       /* rays cast, and how many were usable: */
     uint32_t rays_used;

@@ -300,6 +300,10 @@ typedef struct irc__cross {
     float la[3], lb[3];    /* radiances */
     float na[3];           /* the blocker's unit normal at a */
     float dnear, dfar;     /* the two strata's original distances */
+    float wp[3], np[3], dp;/* the blocker side before a: direction, normal,
+                              depth; dp NaN until a moves */
+    float ws[3], ds;       /* the silhouette's direction and depth, once
+                              the rounds are done */
     int ok;                /* a silhouette (not a continuous surface) */
 } irc__cross;
 

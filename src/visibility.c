@@ -30,8 +30,11 @@
  */
 #include "cache.h"
 
-#define IRC__BISECT 14        /* rounds: a bracket shrinks 2^14-fold; at 16 it reaches float
-                                 precision and hits near tangency turn random */
+#define IRC__BISECT 14        /* rounds at most: a bracket shrinks 2^14-fold; at 16 it reaches
+                                 float precision and hits near tangency turn random */
+#ifndef IRC__VIS_BUDGET
+#define IRC__VIS_BUDGET 0.3   /* extra rays (zenith and bisection) per stratum at most */
+#endif
 #define IRC__DEPTH_JUMP 1.25  /* a depth ratio above this may be an edge */
 #define IRC__CONTINUOUS 0.02  /* final brackets closer than this are one surface */
 #define IRC__SMOOTH 0.2       /* |n.w| below this: a smooth silhouette */
@@ -58,12 +61,14 @@ static irc__pt irc__stratum(const irc_cache *c, const irc__sample *s, uint32_t i
 
 /* Starts a crossing on the edge between a and b if it brackets a
  * silhouette: one side escapes, or the far side lies IRC__DEPTH_JUMP times
- * deeper.  Returns its index, or -1. */
-static int32_t irc__edge(irc_cache *c, irc__sample *s, irc__pt a, irc__pt b, int netvis,
-                         uint32_t *count)
+ * deeper.  ia, ib: the strata beyond a and b on the same grid line (s
+ * NULL: none), the blocker's first hit before its side of the bracket.
+ * Returns its index, or -1. */
+static int32_t irc__edge(irc_cache *c, irc__sample *s, irc__pt a, irc__pt b, irc__pt ia,
+                         irc__pt ib, int netvis, uint32_t *count)
 {
     irc__cross *x;
-    irc__pt blk, vis;
+    irc__pt blk, vis, in;
     int k;
     if (a.s->d != a.s->d || b.s->d != b.s->d)
         return -1; /* a failed ray */
@@ -71,6 +76,7 @@ static int32_t irc__edge(irc_cache *c, irc__sample *s, irc__pt a, irc__pt b, int
         return -1;
     blk = a.s->d <= b.s->d ? a : b;
     vis = blk.s == a.s ? b : a;
+    in = blk.s == a.s ? ia : ib;
     if (!irc__escaped(vis.s) && (netvis || vis.s->d < IRC__DEPTH_JUMP * blk.s->d))
         return -1; /* for net visibility every hit blocks */
     if (*count >= 2u * c->strata + c->cfg.strata_phi)
@@ -85,6 +91,12 @@ static int32_t irc__edge(irc_cache *c, irc__sample *s, irc__pt a, irc__pt b, int
     }
     x->da = x->dnear = blk.s->d;
     x->db = x->dfar = vis.s->d;
+    x->dp = NAN;
+    if (in.s && in.s->d < blk.s->d && in.s->d > 0.0f)
+        for (k = 0, x->dp = in.s->d; k < 3; k++) {
+            x->wp[k] = in.dir[k];
+            x->np[k] = in.nrm[k];
+        }
     x->ok = 1;
     return (int32_t)(*count)++;
 }
@@ -96,17 +108,25 @@ static uint32_t irc__find_edges(irc_cache *c, irc__sample *s, irc__pt zenith, in
     const uint32_t m = c->cfg.strata_theta, nphi = c->cfg.strata_phi;
     int32_t *h = irc__slot_edges(c, s), *v = h + c->strata, *z = v + c->strata;
     uint32_t j, k, count = 0;
+    irc__pt none;
+    none.s = NULL;
     for (j = 0; j < m; j++)
         for (k = 0; k < nphi; k++) {
             uint32_t i = j * nphi + k;
             irc__pt here = irc__stratum(c, s, i);
-            h[i] = irc__edge(c, s, here, irc__stratum(c, s, j * nphi + (k + 1) % nphi), netvis,
-                            &count);
-            v[i] = j + 1 < m ? irc__edge(c, s, here, irc__stratum(c, s, i + nphi), netvis, &count)
+            h[i] = irc__edge(c, s, here, irc__stratum(c, s, j * nphi + (k + 1) % nphi),
+                            irc__stratum(c, s, j * nphi + (k + nphi - 1) % nphi),
+                            irc__stratum(c, s, j * nphi + (k + 2) % nphi), netvis, &count);
+            v[i] = j + 1 < m ? irc__edge(c, s, here, irc__stratum(c, s, i + nphi),
+                                         j > 0 ? irc__stratum(c, s, i - nphi) : none,
+                                         j + 2 < m ? irc__stratum(c, s, i + 2 * nphi) : none,
+                                         netvis, &count)
                              : -1;
         }
     for (k = 0; k < nphi; k++)
-        z[k] = zenith.s ? irc__edge(c, s, zenith, irc__stratum(c, s, k), netvis, &count) : -1;
+        z[k] = zenith.s ? irc__edge(c, s, zenith, irc__stratum(c, s, k), none,
+                                    m > 1 ? irc__stratum(c, s, nphi + k) : none, netvis, &count)
+                        : -1;
     return count;
 }
 
@@ -132,6 +152,11 @@ static void irc__narrow(irc__cross *x, const irc_ray *r, const irc_hit *h, int n
         double v[3];
         irc__check_normal(h->normal, v);
         for (k = 0; k < 3; k++) {
+            x->wp[k] = x->wa[k];
+            x->np[k] = x->na[k];
+        }
+        x->dp = x->da;
+        for (k = 0; k < 3; k++) {
             x->wa[k] = r->dir[k];
             x->la[k] = netvis ? 0.0f : h->radiance[k];
             x->na[k] = (float)v[k];
@@ -146,16 +171,66 @@ static void irc__narrow(irc__cross *x, const irc_ray *r, const irc_hit *h, int n
     }
 }
 
-/* IRC__BISECT rounds over every crossing, batched through the callback.
- * Hits are checked as the sampler checks them. */
+/* Where the silhouette lies in a crossing's final bracket, and its depth.
+ * At a smooth blocker the depth falls short of the silhouette's as D_s -
+ * c sqrt(eps) and |n.w| goes as sqrt(eps), eps the angle inside it, so the
+ * depth is linear in |n.w| and |n.w|^2 linear in the angle: the last two
+ * blocker-side hits extrapolate both to |n.w| = 0, which a wide bracket
+ * (few rounds) needs; the depth may grow by half at most.  A surface is
+ * taken as curved there when its normal turns faster than the view
+ * between the two hits (a flat face seen edge-on has small |n.w| too, but
+ * a fixed normal).  Otherwise the bracket's middle and the blocker's hit
+ * depth. */
+static void irc__silhouette(irc__cross *x)
+{
+    double nw = 0.0, np = 0.0, ab = 0.0, pa = 0.0, dn = 0.0, t;
+    int k;
+    irc__mid(x->wa, x->wb, x->ws);
+    x->ds = x->da;
+    if (x->dp != x->dp)
+        return;
+    for (k = 0; k < 3; k++) {
+        nw += (double)x->na[k] * x->wa[k];
+        np += (double)x->np[k] * x->wp[k];
+        ab += ((double)x->wb[k] - x->wa[k]) * ((double)x->wb[k] - x->wa[k]);
+        pa += ((double)x->wa[k] - x->wp[k]) * ((double)x->wa[k] - x->wp[k]);
+        dn += ((double)x->na[k] - x->np[k]) * ((double)x->na[k] - x->np[k]);
+    }
+    nw = IRC_FABS(nw);
+    np = IRC_FABS(np);
+    if (!(nw < IRC__SMOOTH) || !(np > nw) || !(x->dp < x->da) || !(dn > pa))
+        return;
+    x->ds = (float)(x->da + (x->da - x->dp) * nw / (np - nw));
+    if (x->ds > 1.5f * x->da)
+        x->ds = 1.5f * x->da;
+    /* nw^2 = K (eps_s - eps), eps along wp -> wa -> wb (chords for angles) */
+    t = nw * nw * IRC_SQRT(pa) / (np * np - nw * nw);
+    if (t > IRC_SQRT(ab))
+        t = IRC_SQRT(ab);
+    {
+        float w[3];
+        for (k = 0; k < 3; k++)
+            w[k] = (float)(x->wa[k] + ((double)x->wb[k] - x->wa[k]) * t / IRC_SQRT(ab));
+        irc__mid(w, w, x->ws);
+    }
+}
+
+/* Rounds over every crossing, batched through the callback: as many as
+ * the budget of IRC__VIS_BUDGET rays a stratum allows (the zenith ray
+ * taken), IRC__BISECT at most.  Hits are checked as the sampler checks
+ * them. */
 static int irc__bisect(irc__call *k, irc__sample *s, uint32_t count, int netvis)
 {
+    const double budget = IRC__VIS_BUDGET * k->c->strata - 1.0;
+    const uint32_t rounds = count == 0 || budget < count ? 0u
+                            : budget >= (double)IRC__BISECT * count ? IRC__BISECT
+                                                                    : (uint32_t)(budget / count);
     const irc_cache *c = k->c;
     irc__cross *x = irc__slot_cross(c, s);
     irc_ray *rb = irc__slot_rays(c, k->slot);
     irc_hit *hb = (irc_hit *)(void *)(rb + c->cfg.max_batch);
     uint32_t round, i0, i;
-    for (round = 0; round < IRC__BISECT; round++)
+    for (round = 0; round < rounds; round++)
         for (i0 = 0; i0 < count; i0 += c->cfg.max_batch) {
             uint32_t cnt = count - i0 < c->cfg.max_batch ? count - i0 : c->cfg.max_batch;
             int st;
@@ -175,9 +250,11 @@ static int irc__bisect(irc__call *k, irc__sample *s, uint32_t count, int netvis)
             }
         }
     /* Both sides on one surface after all: a steep but continuous one. */
-    for (i = 0; i < count; i++)
+    for (i = 0; i < count; i++) {
         if (x[i].db < HUGE_VALF && x[i].db < x[i].da * (1.0f + IRC__CONTINUOUS))
             x[i].ok = 0;
+        irc__silhouette(&x[i]);
+    }
     return IRC_OK;
 }
 
@@ -194,7 +271,8 @@ static void irc__end_of(const irc__cross *c, const double n[3], int netvis, irc_
     float xf[3];
     double cs, nx = 0.0, len = 0.0, orient = 0.0;
     int k;
-    irc__mid(c->wa, c->wb, xf);
+    for (k = 0; k < 3; k++)
+        xf[k] = c->ws[k];
     for (k = 0; k < 3; k++) {
         o->x[k] = xf[k];
         o->e[k] = (double)c->wb[k] - c->wa[k];
@@ -203,7 +281,7 @@ static void irc__end_of(const irc__cross *c, const double n[3], int netvis, irc_
     /* Irradiance weighs by cos(theta); net visibility (Eq. 47) does not. */
     cs = netvis ? 1.0 : irc__dot3d(o->x, n);
     for (k = 0; k < 3; k++)
-        o->q[k] = ((double)c->lb[k] - c->la[k]) * (cs > 0.0 ? cs : 0.0) / c->da;
+        o->q[k] = ((double)c->lb[k] - c->la[k]) * (cs > 0.0 ? cs : 0.0) / c->ds;
     o->smooth = IRC_FABS(nx) < IRC__SMOOTH;
     for (k = 0; k < 3; k++) {
         o->nu[k] = c->na[k] - nx * o->x[k];

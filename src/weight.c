@@ -11,15 +11,27 @@
 /* Cap on a weight: a query exactly on a record gives 1/0. */
 #define IRC__W_MAX 1e6
 
+/* A guard nibble as the inverse of the distance it records, in reaches:
+ * 0 for nothing seen, 15/(15 - v) else (v = 15, a hit at the record
+ * itself, as 1/30 of the reach). */
+static double irc__guard_inv(uint64_t g, int sector)
+{
+    uint32_t v = (uint32_t)(g >> (4 * sector)) & 15u;
+    return v == 0 ? 0.0 : v == 15 ? 30.0 : 15.0 / (15.0 - v);
+}
+
 /* Whether the leak guard rejects a lookup at offset (dx, dy, dz) and t of
- * the reach from the record: the sector's nibble v says geometry lies at
- * (15 - v)/15 of the reach in that direction. */
+ * the reach from the record.  Each sector's nibble stands for the
+ * direction at its centre, and the inverse distance is interpolated
+ * between the two nearest centres: a straight wall's is a cosine of the
+ * angle, which the sectors' minimum would cut short along the wall (a
+ * record 10 from a wall would serve only 26 along it). */
 static int irc__guarded(const irc__rec *r, uint32_t off, const float ni[3], double dx,
                         double dy, double dz, double t)
 {
     uint64_t g;
-    uint32_t v;
-    double nd[3], t1[3], t2[3], x, y;
+    double nd[3], t1[3], t2[3], x, y, u, f;
+    int i0;
     IRC_MEMCPY(&g, (const unsigned char *)r + off, sizeof g);
     if (!g || t <= 0.0)
         return 0;
@@ -27,8 +39,11 @@ static int irc__guarded(const irc__rec *r, uint32_t off, const float ni[3], doub
     irc__frame(nd, t1, t2);
     x = dx * t1[0] + dy * t1[1] + dz * t1[2];
     y = dx * t2[0] + dy * t2[1] + dz * t2[2];
-    v = (uint32_t)(g >> (4 * irc__sector(x, y))) & 15u;
-    return v && t * 15.0 > 15.0 - v;
+    u = IRC_ATAN2(y, x) * (8.0 / IRC_PI) + 15.5; /* sector centres at whole u */
+    i0 = (int)u;
+    f = u - i0;
+    return t * ((1.0 - f) * irc__guard_inv(g, i0 % 16) + f * irc__guard_inv(g, (i0 + 1) % 16)) >
+           1.0;
 }
 
 /* Ward-Heckbert weight w = 1 / (|p - p_i|/R_i + sqrt(1 - n.n_i)), accepted

@@ -309,15 +309,24 @@ TEST(test_ellipse_records)
 }
 
 /* The leak guard by hand: irc__sector against atan2 away from sector
- * edges; a record (R 1, a 0.5: reach 0.5, n = z so t1 = x) whose sector 0
- * says geometry at 5/15 of the reach (nibble 10) serves lookups nearer
- * than 0.1667 in that sector and any in the others, and rejects the rest
- * (points off the sector edges: y = 0 is one). */
+ * edges; a record (R 1, a 0.5: reach 0.5, n = z so t1 = x) whose sectors
+ * 15, 0 and 1 (-22.5 to 45 degrees) say geometry at 5/15 of the reach
+ * (nibble 10: inverse distance 3 reaches) serves a lookup when t times the
+ * inverse distance, interpolated between the two nearest sector centres
+ * (11.25 + 22.5 k degrees), stays within 1, t = distance / reach. */
 TEST(test_leak_guard_by_hand)
 {
-    static const struct { float x, y; int ok; } q[] = {
-        {0.1f, 0.01f, 1}, {0.2f, 0.02f, 0}, {0.4f, 0.03f, 0}, {-0.2f, 0.01f, 1},
-        {0.2f, 0.05f, 0}, {0.2f, 0.15f, 1}, {0.2f, -0.05f, 1}, {0.0f, 0.3f, 1}};
+    static const struct { double deg, dist; int ok; } q[] = {
+        {11.25, 0.15, 1},  /* centre of 0: 0.3 x 3 = 0.9 */
+        {11.25, 0.18, 0},  /* 0.36 x 3 = 1.08 */
+        {0.0, 0.2, 0},     /* between 15 and 0, both 3: 1.2 */
+        {33.75, 0.18, 0},  /* centre of 1: 1.08 */
+        {45.0, 0.18, 1},   /* halfway to sector 2 (nothing): 0.36 x 1.5 */
+        {56.25, 0.45, 1},  /* centre of 2 */
+        {-11.25, 0.15, 1}, /* centre of 15: 0.9 */
+        {-11.25, 0.2, 0},
+        {-33.75, 0.2, 1},  /* centre of 14: nothing */
+        {180.0, 0.4, 1}};
     tscene s;
     irc_config cfg;
     irc_cache *c;
@@ -343,14 +352,15 @@ TEST(test_leak_guard_by_hand)
     r.n[2] = 1.0f;
     r.e[0] = r.e[1] = r.e[2] = 1.0f;
     r.radius = 1.0f;
-    r.leak_guard = 10u; /* sector 0 */
+    r.leak_guard = 10ull | 10ull << 4 | 10ull << 60;
     CHECK(irc_cache_insert(c, &r) == IRC_OK && irc_cache_record(c, 0, &back) == IRC_OK &&
-              back.leak_guard == 10u, "guard stored");
+              back.leak_guard == r.leak_guard, "guard stored");
     for (i = 0; i < (int)(sizeof q / sizeof q[0]); i++) {
-        const float p[3] = {q[i].x, q[i].y, 0.0f};
+        const double rad = q[i].deg * TPI / 180.0;
+        const float p[3] = {(float)(q[i].dist * cos(rad)), (float)(q[i].dist * sin(rad)), 0.0f};
         int st = irc_cache_lookup(c, p, n, rgb, &w);
-        CHECK(st == (q[i].ok ? IRC_OK : IRC_MISS), "lookup at (%g, %g): %d, want %s", q[i].x,
-              q[i].y, st, q[i].ok ? "served" : "rejected");
+        CHECK(st == (q[i].ok ? IRC_OK : IRC_MISS), "lookup at %g degrees, %g: %d, want %s",
+              q[i].deg, q[i].dist, st, q[i].ok ? "served" : "rejected");
     }
     block_free(&cfg);
 }

@@ -33,7 +33,8 @@ static int both(tscene *s, const double pd[3], uint32_t m, uint32_t n, irc_recor
  * and its analytic gradient.  Twenty points at distances 0.25 to 6.5 from
  * the sphere's foot, in two directions each, at 32 x 128 strata.  Every
  * visibility gradient must be within 1/255 of the largest analytic
- * gradient among them. */
+ * gradient among them, with at most 1.3 x the strata's rays (the
+ * bisection's budget; the silhouette's depth extrapolated). */
 TEST(test_visibility_sphere)
 {
     static const double rad[10] = {0.25, 0.5, 0.8, 1.2, 1.7, 2.3, 3.0, 4.0, 5.0, 6.5};
@@ -61,6 +62,8 @@ TEST(test_visibility_sphere)
         printf("  (%6.3f, %6.3f): |grad| %.5f; visibility error %.6f (%u rays), Krivanek %.6f\n",
                pts[i][0], pts[i][1], hypot(g[i][0], g[i][1]), ev, v[i].rays, ew);
         CHECK(ev <= big / 255.0, "point %d: error %g > %g", i, ev, big / 255.0);
+        CHECK(v[i].rays <= 13u * 32u * 128u / 10u, "point %d: %u rays, over 1.3 x the strata", i,
+              v[i].rays);
         CHECK(ev < ew, "point %d: visibility %g not better than Krivanek %g", i, ev, ew);
     }
     printf("  worst visibility error %.6f = 1/%.0f of the largest gradient %.5f\n", worst,
@@ -105,6 +108,8 @@ TEST(test_visibility_box)
         printf("  (%5.2f, %5.2f): |grad| %.5f; visibility error %.2f%% (%u rays), Krivanek %.2f%%\n",
                p[0], p[1], gm, 100.0 * ev / gm, v.rays, 100.0 * ew / gm);
         CHECK(ev <= 0.02 * gm, "point %d: %.2f%% off", i, 100.0 * ev / gm);
+        CHECK(v.rays <= 13u * 64u * 256u / 10u, "point %d: %u rays, over 1.3 x the strata", i,
+              v.rays);
         CHECK(ev < ew, "point %d: visibility %g not better than Krivanek %g", i, ev, ew);
     }
 }
