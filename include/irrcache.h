@@ -271,16 +271,20 @@ enum irc_feature {
                                           occlusion-aware Hessian of E from
                                           the rays already cast (Schwarzhaupt
                                           et al. 2012), in irc_record.hessian,
-                                          and the radius it implies: R <=
-                                          sqrt(2 E/|l|), l the tangent
-                                          Hessian's larger eigenvalue, so
-                                          first-order extrapolation errs by
-                                          about a^2 E at the edge of reach;
-                                          with TRANSLATION this bound replaces
-                                          E/|grad E| (the split sphere still
-                                          bounds R).  No extra rays, 24
-                                          scratch bytes a stratum, no record
-                                          bytes */
+                                          and the ellipse it implies: along
+                                          each eigen-axis of the tangent
+                                          Hessian (curvature k) the radius
+                                          is sqrt(2 E/|k|), where first-order
+                                          extrapolation errs by about a^2 E
+                                          at the edge of reach; the major
+                                          radius at most IRC_ANISOTROPY x the
+                                          minor.  With TRANSLATION these
+                                          radii replace E/|grad E| and the
+                                          split sphere, bounded by the
+                                          farthest hit; without it the split
+                                          sphere still bounds them.  No extra
+                                          rays, 24 scratch bytes a stratum,
+                                          8 record bytes (the ellipse) */
 };
 
 /* What insert does when the record pool is full. */
@@ -382,7 +386,7 @@ typedef struct irc_config {
  */
 #define IRC_FOOTPRINT_BOUND(features, records, s, t, b)                          \
     (8192u +                                                                     \
-     (size_t)(t) * (128u + (size_t)(s) * (((features) & IRC_FEATURE_VISIBILITY) ? 320u : \
+     (size_t)(t) * (128u + (size_t)(s) * (((features) & IRC_FEATURE_VISIBILITY) ? 400u : \
                                           ((features) & IRC_FEATURE_HESSIAN) ? 64u : 32u) + \
                     (size_t)(b) * 56u) + \
      (size_t)(records) * (((features) & IRC_FEATURE_HESSIAN) ? 85u : 77u) +     \
@@ -466,6 +470,8 @@ typedef struct irc_record {
                             E/|grad E| per channel (with TRANSLATION and
                             without HESSIAN), the Hessian's radius along
                             axis (with HESSIAN, see there), then clamped to
+                            [min_pixels, max_pixels] x the footprint
+                            (irc_cache_lookup_or_compute_px) and to
                             [min_radius, max_radius]; max_radius, or else
                             the smallest float, when no ray hit */
     float minor_radius;  /* the reach across axis, in (0, radius]; 0 in a
@@ -558,9 +564,12 @@ IRC_API int irc_cache_insert(irc_cache *cache, const irc_record *rec);
 /*
  * Interpolate irradiance at (p, n): every record with Ward-Heckbert weight
  * w_i = 1 / (|p - p_i|/R_i + sqrt(1 - n.n_i)) > 1/a that is not in front of p
- * ((p - p_i).(n + n_i)/2 >= -0.05 R_i) is extrapolated with its gradients,
+ * ((p - p_i).(n + n_i)/2 >= -0.05 R_i) and that its leak guard does not
+ * reject (irc_record.leak_guard) is extrapolated with its gradients,
  * E_i + (p - p_i).grad_t + (n_i x n).grad_r, clamped at 0 per channel, and
- * averaged with weights w_i (w_i is capped at 1e6).  Records facing away
+ * averaged with weights w_i (w_i is capped at 1e6).  For an ellipse,
+ * |p - p_i|/R_i reads sqrt(d_u^2 + |d - d_u u|^2/q^2)/R_i, d = p - p_i,
+ * u the major axis, d_u = d.u, q = minor/major.  Records facing away
  * (n.n_i <= 0) never count.  rgb gets the average and *weight (optional) the
  * summed weight.  Returns IRC_OK, IRC_MISS (rgb = 0, weight = 0) when no
  * record counts, IRC_ERR_NONFINITE when the extrapolated value overflows
