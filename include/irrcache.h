@@ -382,11 +382,13 @@ typedef struct irc_config {
  * than what irc_footprint() asks for the same numbers (make test checks a
  * grid of configs).  features: the irradiance cache's IRC_FEATURE_* bits;
  * records: max_records; s: strata M * N; t: cfg.threads; b: cfg.max_batch;
- * for SH caches, bands L and channels ch.
+ * for SH caches, bands L and channels ch.  The arithmetic is size_t's: on a
+ * 32-bit target a bound above 4 GiB wraps (no static block is that large
+ * there).
  */
 #define IRC_FOOTPRINT_BOUND(features, records, s, t, b)                          \
     (8192u +                                                                     \
-     (size_t)(t) * (128u + (size_t)(s) * (((features) & IRC_FEATURE_VISIBILITY) ? 400u : \
+     (size_t)(t) * (128u + (size_t)(s) * (((features) & IRC_FEATURE_VISIBILITY) ? 432u : \
                                           ((features) & IRC_FEATURE_HESSIAN) ? 64u : 32u) + \
                     (size_t)(b) * 56u) + \
      (size_t)(records) * (((features) & IRC_FEATURE_HESSIAN) ? 85u : 77u) +     \
