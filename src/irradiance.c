@@ -292,12 +292,56 @@ static uint64_t irc__leak_guard(const irc_cache *c, const irc__sample *s, const 
     return mask;
 }
 
+/* The record's radii: r (the split sphere, or E/|grad E|) for a disk, or
+ * with HESSIAN the ellipse; then the screen-space bound (footprint fp) and
+ * the host's world bounds. */
+static void irc__radii(const irc_cache *c, const irc__sample *s, const double n[3],
+                       const double t1[3], const double t2[3], double r, double far, float fp,
+                       irc_record *out)
+{
+    double rad[2], axis[3];
+    int k;
+    rad[0] = rad[1] = r;
+    if (c->cfg.features & IRC_FEATURE_HESSIAN) {
+        /* With a gradient the second-order term decides alone: E/|grad E|
+         * and the split sphere are dropped, and the farthest hit (the
+         * scale of what the record saw) bounds both radii.  Without one,
+         * the first-order error is still there and the split sphere
+         * bounds them as before.  (At equal record counts on the Cornell
+         * box the split-sphere bound cost 1.7x in RMSE, 4 x the harmonic
+         * mean 1.1x; the max-error law sqrt(2E/|l|) beat laws in |l|^-1/3
+         * and |l|^-1/4, and ellipses beat disks by 1.14-1.31x.) */
+        const double cap = c->cfg.features & IRC_FEATURE_TRANSLATION ? far : r;
+        irc__hessian_radii(c, s, n, t1, t2, out, rad, axis);
+        for (k = 0; k < 2; k++)
+            if (rad[k] > cap)
+                rad[k] = cap;
+        if (rad[1] > IRC_ANISOTROPY * rad[0])
+            rad[1] = IRC_ANISOTROPY * rad[0];
+    }
+    for (k = 0; k < 2; k++) {
+        if (rad[k] < (double)c->cfg.min_pixels * fp) rad[k] = (double)c->cfg.min_pixels * fp;
+        if (c->cfg.max_pixels > 0.0f && fp > 0.0f && rad[k] > (double)c->cfg.max_pixels * fp)
+            rad[k] = (double)c->cfg.max_pixels * fp;
+        if (rad[k] < c->cfg.min_radius) rad[k] = c->cfg.min_radius;
+        if (rad[k] > c->cfg.max_radius) rad[k] = c->cfg.max_radius;
+        if (rad[k] < FLT_MIN) rad[k] = FLT_MIN;
+    }
+    out->radius = (float)rad[1];
+    out->minor_radius = (float)rad[0];
+    if (out->minor_radius < out->radius)
+        for (k = 0; k < 3; k++)
+            out->axis[k] = (float)axis[k];
+    else
+        out->minor_radius = out->radius;
+}
+
 static void irc__record_build(const irc_cache *c, const irc__sample *s,
                        const double n[3], const double t1[3],
                        const double t2[3], double gvis[3][3], float fp, irc_record *out)
 {
     const uint32_t total = c->strata;
-    double sum[3] = {0, 0, 0}, hm, far, r, g[3][3], rad[2], axis[3];
+    double sum[3] = {0, 0, 0}, hm, far, r, g[3][3];
     uint32_t i, used = 0;
     int ch, k;
 
@@ -337,39 +381,7 @@ static void irc__record_build(const irc_cache *c, const irc__sample *s,
             for (k = 0; k < 3; k++)
                 out->grad_r[ch][k] = (float)g[ch][k];
     }
-    rad[0] = rad[1] = r;
-    if (c->cfg.features & IRC_FEATURE_HESSIAN) {
-        /* With a gradient the second-order term decides alone: E/|grad E|
-         * and the split sphere are dropped, and the farthest hit (the
-         * scale of what the record saw) bounds both radii.  Without one,
-         * the first-order error is still there and the split sphere
-         * bounds them as before.  (At equal record counts on the Cornell
-         * box the split-sphere bound cost 1.7x in RMSE, 4 x the harmonic
-         * mean 1.1x; the max-error law sqrt(2E/|l|) beat laws in |l|^-1/3
-         * and |l|^-1/4, and ellipses beat disks by 1.14-1.31x.) */
-        const double cap = c->cfg.features & IRC_FEATURE_TRANSLATION ? far : r;
-        irc__hessian_radii(c, s, n, t1, t2, out, rad, axis);
-        for (k = 0; k < 2; k++)
-            if (rad[k] > cap)
-                rad[k] = cap;
-        if (rad[1] > IRC_ANISOTROPY * rad[0])
-            rad[1] = IRC_ANISOTROPY * rad[0];
-    }
-    for (k = 0; k < 2; k++) {
-        if (rad[k] < (double)c->cfg.min_pixels * fp) rad[k] = (double)c->cfg.min_pixels * fp;
-        if (c->cfg.max_pixels > 0.0f && fp > 0.0f && rad[k] > (double)c->cfg.max_pixels * fp)
-            rad[k] = (double)c->cfg.max_pixels * fp;
-        if (rad[k] < c->cfg.min_radius) rad[k] = c->cfg.min_radius;
-        if (rad[k] > c->cfg.max_radius) rad[k] = c->cfg.max_radius;
-        if (rad[k] < FLT_MIN) rad[k] = FLT_MIN;
-    }
-    out->radius = (float)rad[1];
-    out->minor_radius = (float)rad[0];
-    if (out->minor_radius < out->radius)
-        for (k = 0; k < 3; k++)
-            out->axis[k] = (float)axis[k];
-    else
-        out->minor_radius = out->radius;
+    irc__radii(c, s, n, t1, t2, r, far, fp, out);
     if (c->off_g)
         out->leak_guard = irc__leak_guard(c, s, n, t1, t2, out);
     out->mean_dist = (float)hm;
