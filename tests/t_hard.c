@@ -29,7 +29,8 @@ static int finite_record(const irc_record *r)
  * origin (so the query's random numbers do not change with s): E is the
  * same and the gradients scale as 1/s, within 1e-4 relative, from s =
  * 1e-6 to 3e5 (hit distances from 1e-6 to 1e6), with translational and
- * with visibility gradients. */
+ * with visibility gradients; the Hessian's ellipse (both radii as s, the
+ * same axis) and the leak guard (fractions of the reach) alike. */
 static int scaled_record(uint32_t features, double scale, irc_record *r)
 {
     const float p[3] = {0, 0, 0}, n[3] = {0, 0, 1};
@@ -78,6 +79,12 @@ TEST(test_hard_scale_invariance)
                 }
             }
             worst = fmax(worst, fabs(r.radius / scales[i] - base.radius) / base.radius);
+            worst = fmax(worst, fabs(r.minor_radius / scales[i] - base.minor_radius) /
+                                    base.minor_radius);
+            for (k = 0; k < 3; k++)
+                worst = fmax(worst, fabs(r.axis[k] - base.axis[k]));
+            CHECK(r.leak_guard == base.leak_guard, "leak guard %llx at s = %g, %llx at 1",
+                  (unsigned long long)r.leak_guard, scales[i], (unsigned long long)base.leak_guard);
             /* second derivatives go as 1/s^2 (the Hessian radius as s) */
             for (c = 0; hb > 0.0 && c < 3; c++)
                 for (k = 0; k < 6; k++)
