@@ -207,14 +207,16 @@ int main(void)
 {
     static const struct { uint32_t f; const char *name; } sets[] = {
         {0, "none"}, {IRC_FEATURE_TRANSLATION, "trans"}, {IRC_FEATURE_ROTATION, "rot"},
-        {IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION, "trans+rot"}};
+        {IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION, "trans+rot"},
+        {IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION | IRC_FEATURE_HESSIAN, "trans+rot+hess"}};
+    const size_t nsets = sizeof sets / sizeof sets[0];
     static const uint32_t sizes[] = {100000, 1000000};
     const irc_port *ports[] = {&irc_port_posix, &irc_port_none};
     /* BENCH_ORDER=random|coherent measures one query order only. */
     const char *only = getenv("BENCH_ORDER");
     size_t i, k, pi;
     printf("metric,features,records,port,order,value,unit\n");
-    for (i = 0; i < 4; i++) {
+    for (i = 0; i < nsets; i++) {
         irc_config cfg;
         irc_cache *c;
         irc_stats st;
@@ -230,7 +232,7 @@ int main(void)
     }
     for (k = 0; k < 2; k++) {
         static const uint32_t strata[2][2] = {{16, 64}, {32, 128}};
-        for (i = 0; i < 4; i++)
+        for (i = 0; i < nsets; i++)
             printf("record_us_library,%s,,,%ux%u,%.2f,us\n", sets[i].name, strata[k][0],
                    strata[k][1], record_cost(sets[i].f, strata[k][0], strata[k][1]));
     }

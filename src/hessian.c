@@ -42,9 +42,18 @@ static void irc__edge_hessian(const double r0[3], const double r1[3], const doub
         return;
     er0 = irc__dot3d(e, r0);
     er1 = irc__dot3d(e, r1);
-    cs = irc__dot3d(r0, r1) / IRC_SQRT(d00 * d11);
-    cs = cs > 1.0 ? 1.0 : cs < -1.0 ? -1.0 : cs;
-    i1 = IRC_ACOS(cs) / IRC_SQRT(cc);
+    /* I1 = angle(r0, r1)/|c| = atan(x)/(x r0.r1), x = |c|/(r0.r1): the
+     * grid's edges span a few degrees, where the series in x^2 is exact
+     * to 1e-8 (x < 1/4) and needs no square root or arc function; wider
+     * ones take atan2, which stays accurate where acos of the cosine
+     * loses half its digits. */
+    cs = irc__dot3d(r0, r1);
+    if (cs > 0.0 && cc < 0.0625 * cs * cs) {
+        double x2 = cc / (cs * cs);
+        i1 = (1.0 - x2 * (1.0 / 3 - x2 * (1.0 / 5 - x2 * (1.0 / 7 - x2 * (1.0 / 9 -
+              x2 * (1.0 / 11 - x2 / 13)))))) / cs;
+    } else
+        i1 = IRC_ATAN2(IRC_SQRT(cc), cs) / IRC_SQRT(cc);
     i2 = (er1 / d11 - er0 / d00 + ee * i1) / (2.0 * cc);
     j2 = (0.5 * (1.0 / d00 - 1.0 / d11) - er0 * i2) / ee;
     i3 = (er1 / (d11 * d11) - er0 / (d00 * d00) + 3.0 * ee * i2) / (4.0 * cc);
