@@ -71,10 +71,15 @@ static void read_config(fuzz_in *in, irc_config *cfg, host *h, uint32_t *cap)
     memset(cfg, 0, sizeof *cfg);
     cfg->trace = trace;
     cfg->context = h;
-    cfg->features = fz_u8(in) & 31u;
+    cfg->features = fz_u8(in) & 63u;
     cfg->accuracy = fz_float(in);
     cfg->min_radius = fz_u8(in) & 1 ? fz_float(in) : 0.0f;
     cfg->max_radius = fz_u8(in) & 1 ? fz_float(in) : 0.0f;
+    k = fz_u8(in);
+    cfg->min_pixels = k & 1 ? fz_float(in) : 0.0f;
+    cfg->max_pixels = k & 2 ? fz_float(in) : 0.0f;
+    cfg->no_leak_guard = (uint32_t)(k >> 2) % 3u;
+    cfg->clamp_neighbours = (uint32_t)(k >> 4) & 1u;
     cfg->strata_theta = strata[s & 7][0];
     cfg->strata_phi = strata[s & 7][1];
     cfg->max_batch = (uint32_t)(fz_u8(in) % 70);
@@ -165,12 +170,19 @@ static int call(fuzz_in *in, irc_cache *c, uint32_t cap)
         memcpy(rec.n, n, sizeof n);
         read_vec(in, rec.e);
         rec.radius = fz_float(in);
+        if (fz_u8(in) & 1) {
+            rec.minor_radius = fz_float(in);
+            read_vec(in, rec.axis);
+            rec.leak_guard = (uint64_t)fz_u32(in) << 32 | fz_u32(in);
+        }
         read_vec(in, rec.grad_t[fz_u8(in) % 3]);
         read_vec(in, rec.grad_r[fz_u8(in) % 3]);
         return irc_cache_insert(c, &rec);
     case 2:
     case 3:
-        s = op == 2 ? irc_cache_lookup(c, p, n, rgb, &w) : irc_cache_lookup_or_compute(c, p, n, rgb, &w, NULL);
+        s = op == 2            ? irc_cache_lookup(c, p, n, rgb, &w)
+            : fz_u8(in) & 1    ? irc_cache_lookup_or_compute(c, p, n, rgb, &w, NULL)
+                               : irc_cache_lookup_or_compute_px(c, p, n, fz_float(in), rgb, &w, NULL);
         if (s >= 0)
             for (k = 0; k < 3; k++)
                 check(rgb[k] >= 0.0f && rgb[k] <= 3.4028235e38f);
