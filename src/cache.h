@@ -346,6 +346,14 @@ static inline irc__cross *irc__slot_cross(const irc_cache *c, const irc__sample 
     return (irc__cross *)(void *)(irc__slot_edges(c, s) + 2u * c->strata + c->cfg.strata_phi);
 }
 
+/* With HESSIAN, a depth per stratum after everything else. */
+static inline float *irc__slot_depths(const irc_cache *c, const irc__sample *s)
+{
+    if (c->cfg.features & IRC_FEATURE_VISIBILITY)
+        return (float *)(void *)(irc__slot_cross(c, s) + 2u * c->strata + c->cfg.strata_phi);
+    return irc__slot_normals(c, s) + 3u * c->slot_samples;
+}
+
 /* The first test of irc__weigh, inlined where records are scanned: most
  * candidates fail it, and it needs only the record's first 16 bytes. */
 static inline int irc__within_reach(const irc_cache *c, const irc__rec *r, const float p[3])

@@ -80,16 +80,16 @@ static void irc__edge_hessian(const double r0[3], const double r1[3], const doub
             h[ch][i] -= IRC_PI * l[ch] * f[i];
 }
 
-/* A vertex of the grid: its hit point relative to x and its radiance. */
+/* A vertex of the grid: its hit point relative to x. */
 typedef struct irc__vtx {
-    double r[3], d;
-    const float *l;
+    double r[3];
 } irc__vtx;
 
 /* The grid the vertices come from. */
 typedef struct irc__mesh {
     const irc__sample *s;
     const float *dirs, *nrm;
+    float *depth;           /* each vertex's depth, once (irc__depths) */
     uint32_t m, n;
     double far, fill, floor_l;
 } irc__mesh;
@@ -140,29 +140,41 @@ static double irc__silhouette(const irc__mesh *g, uint32_t j, uint32_t k, double
 }
 
 /* Escaped strata lie at far, failed ones at the harmonic mean distance. */
+/* Every vertex's depth, once: each vertex is read by the three edges it
+ * starts and the cells around it, some fifteen times. */
+static void irc__depths(const irc__mesh *g)
+{
+    uint32_t j, k;
+    for (j = 0; j < g->m; j++)
+        for (k = 0; k < g->n; k++) {
+            double d = g->s[j * g->n + k].d;
+            if (d != d)
+                d = g->fill;
+            else if (!(d < HUGE_VALF))
+                d = g->far;
+            else {
+                double x = irc__silhouette(g, j, k, d);
+                d = x < d ? d : x > 2.0 * d ? 2.0 * d : x;
+            }
+            g->depth[j * g->n + k] = (float)d;
+        }
+}
+
 static void irc__vertex(const irc__mesh *g, uint32_t j, uint32_t k, irc__vtx *v)
 {
     uint32_t i = j * g->n + k;
-    double d = g->s[i].d;
+    double d = g->depth[i];
     int q;
-    if (d != d)
-        d = g->fill;
-    else if (!(d < HUGE_VALF))
-        d = g->far;
-    else {
-        double x = irc__silhouette(g, j, k, d);
-        d = x < d ? d : x > 2.0 * d ? 2.0 * d : x;
-    }
     for (q = 0; q < 3; q++)
         v->r[q] = d * g->dirs[3 * i + q];
-    v->d = d;
-    v->l = g->s[i].l;
 }
 
-/* The radiance a triangle shines with: its farthest vertex's. */
-static const float *irc__shine(const irc__vtx *a, const irc__vtx *b, const irc__vtx *c)
+/* The radiance a triangle of strata a, b, c shines with: its farthest
+ * vertex's. */
+static const float *irc__shine(const irc__mesh *g, uint32_t a, uint32_t b, uint32_t c)
 {
-    return (a->d >= b->d && a->d >= c->d ? a : b->d >= c->d ? b : c)->l;
+    const float *d = g->depth;
+    return g->s[d[a] >= d[b] && d[a] >= d[c] ? a : d[b] >= d[c] ? b : c].l;
 }
 
 /* Cell (j, k) of the grid, between rows j and j + 1 and columns k and
@@ -171,18 +183,17 @@ static const float *irc__shine(const irc__vtx *a, const irc__vtx *b, const irc__
 static void irc__cell(const irc__mesh *g, int64_t j, uint32_t k, const float **l1,
                       const float **l2)
 {
-    irc__vtx a, b, c, d;
-    uint32_t k1 = (k + 1) % g->n;
+    uint32_t a, b, c, d;
     if (j < 0 || j + 1 >= (int64_t)g->m) {
         *l1 = *l2 = NULL;
         return;
     }
-    irc__vertex(g, (uint32_t)j, k, &a);
-    irc__vertex(g, (uint32_t)j, k1, &b);
-    irc__vertex(g, (uint32_t)j + 1, k, &c);
-    irc__vertex(g, (uint32_t)j + 1, k1, &d);
-    *l1 = irc__shine(&a, &b, &c);
-    *l2 = irc__shine(&d, &c, &b);
+    a = (uint32_t)j * g->n + k;
+    b = (uint32_t)j * g->n + (k + 1) % g->n;
+    c = a + g->n;
+    d = b + g->n;
+    *l1 = irc__shine(g, a, b, c);
+    *l2 = irc__shine(g, d, c, b);
 }
 
 /* An edge p0 -> p1 shared by a triangle that has it in this orientation
@@ -253,6 +264,8 @@ void irc__hessian(const irc_cache *c, const irc__sample *s, const float *dirs,
     g.fill = hits / inv;
     g.far = far * IRC__FAR;
     g.floor_l = IRC__FLOOR * mean / (m * nphi);
+    g.depth = irc__slot_depths(c, s);
+    irc__depths(&g);
     for (j = 0; j < m; j++)
         for (k = 0; k < nphi; k++)
             irc__vertex_edges(&g, j, k, n, h);

@@ -82,6 +82,8 @@ static uint64_t irc__slot_layout(const irc_config *cfg, irc__layout *l)
         geom = (uint64_t)l->samples * (6u * sizeof(float) + 2u * sizeof(int32_t) +
                                        2u * sizeof(irc__cross)) +
                (uint64_t)cfg->strata_phi * (sizeof(int32_t) + sizeof(irc__cross));
+    if (cfg->features & IRC_FEATURE_HESSIAN) /* irc__slot_depths */
+        geom += (uint64_t)l->samples * sizeof(float);
     return irc__up((uint64_t)l->samples * sizeof(irc__sample) +
                    (uint64_t)cfg->max_batch * (sizeof(irc_ray) + sizeof(irc_hit)) +
                    (uint64_t)cfg->strata_theta * 2u * sizeof(double) + geom);
