@@ -32,8 +32,15 @@ static int irc__guarded(const irc__rec *r, uint32_t off, const float ni[3], doub
     uint64_t g;
     double nd[3], t1[3], t2[3], x, y, u, f;
     int i0;
+    uint64_t top = 0;
     IRC_MEMCPY(&g, (const unsigned char *)r + off, sizeof g);
     if (!g || t <= 0.0)
+        return 0;
+    /* Most lookups lie well inside the nearest hit: no frame, no atan2. */
+    for (i0 = 0; i0 < 16; i0++)
+        if ((g >> (4 * i0) & 15u) > top)
+            top = g >> (4 * i0) & 15u;
+    if (t * irc__guard_inv(top, 0) <= 1.0)
         return 0;
     nd[0] = ni[0]; nd[1] = ni[1]; nd[2] = ni[2];
     irc__frame(nd, t1, t2);
