@@ -229,6 +229,23 @@ TEST(test_hessian_radius)
     block_free(&cfg);
 }
 
+/* A cache for records built by hand (a = 0.5, 4 x 4 strata that no test
+ * casts), and a record at the origin facing +z with E e and radius rad. */
+static irc_cache *hand_cache(tscene *s, irc_config *cfg, uint32_t features, irc_record *r,
+                             float e, float rad)
+{
+    irc_cache *c;
+    scene_init(s);
+    *cfg = scene_config(s, features, 4, 4);
+    cfg->accuracy = 0.5f;
+    c = block_cache(cfg, 8, 0);
+    memset(r, 0, sizeof *r);
+    r->n[2] = 1.0f;
+    r->e[0] = r->e[1] = r->e[2] = e;
+    r->radius = rad;
+    return c;
+}
+
 /* A corner record (E = 1.55, |grad E| = 146, as a real render made one)
  * whose radius something else lifted (min_radius, the host): the gradient
  * is scaled down to the radius, so a lookup at the edge of reach stays
@@ -243,17 +260,10 @@ TEST(test_gradient_within_reach)
     float rgb[3], w;
     double g;
     int st;
-    scene_init(&s);
-    cfg = scene_config(&s, IRC_FEATURE_TRANSLATION, 4, 4);
-    cfg.accuracy = 0.5f;
-    c = block_cache(&cfg, 4, 0);
+    c = hand_cache(&s, &cfg, IRC_FEATURE_TRANSLATION, &r, 1.55f, 0.5f); /* reach 0.25 */
     CHECK(c != NULL, "init");
     if (!c) return;
-    memset(&r, 0, sizeof r);
-    r.n[2] = 1.0f;
-    r.e[0] = r.e[1] = r.e[2] = 1.55f;
     r.grad_t[0][0] = r.grad_t[1][0] = r.grad_t[2][0] = 146.0f;
-    r.radius = 0.5f; /* reach 0.25 */
     CHECK(irc_cache_insert(c, &r) == IRC_OK, "insert");
     st = irc_cache_lookup(c, q, n, rgb, &w);
     printf("  lookup 0.24 from the record: %.3f (E 1.55, unclamped extrapolation %.2f)\n",
@@ -287,16 +297,9 @@ TEST(test_ellipse_records)
     const float n[3] = {0, 0, 1}, along[3] = {0.4f, 0.0f, 0.0f}, across[3] = {0.0f, 0.2f, 0.0f},
                 near[3] = {0.0f, 0.1f, 0.0f}, diag[3] = {0.2f, 0.08f, 0.0f};
     float rgb[3], w;
-    scene_init(&s);
-    cfg = scene_config(&s, IRC_FEATURE_TRANSLATION | IRC_FEATURE_HESSIAN, 4, 4);
-    cfg.accuracy = 0.5f;
-    c = block_cache(&cfg, 8, 0);
+    c = hand_cache(&s, &cfg, IRC_FEATURE_TRANSLATION | IRC_FEATURE_HESSIAN, &r, 1.0f, 1.0f);
     CHECK(c != NULL, "init");
     if (!c) return;
-    memset(&r, 0, sizeof r);
-    r.n[2] = 1.0f;
-    r.e[0] = r.e[1] = r.e[2] = 1.0f;
-    r.radius = 1.0f;
     r.minor_radius = 0.25f;
     r.axis[0] = 2.0f;   /* not unit, and tilted out of the plane: projected */
     r.axis[2] = 0.5f;
@@ -379,16 +382,9 @@ TEST(test_leak_guard_by_hand)
         bad += irc__sector(cos(ang), sin(ang)) != (int)floor(pos) % 16;
     }
     CHECK(bad == 0, "%d directions in the wrong sector", bad);
-    scene_init(&s);
-    cfg = scene_config(&s, IRC_FEATURE_TRANSLATION, 4, 4);
-    cfg.accuracy = 0.5f;
-    c = block_cache(&cfg, 4, 0);
+    c = hand_cache(&s, &cfg, IRC_FEATURE_TRANSLATION, &r, 1.0f, 1.0f);
     CHECK(c != NULL, "init");
     if (!c) return;
-    memset(&r, 0, sizeof r);
-    r.n[2] = 1.0f;
-    r.e[0] = r.e[1] = r.e[2] = 1.0f;
-    r.radius = 1.0f;
     r.leak_guard = 10ull | 10ull << 4 | 10ull << 60;
     CHECK(irc_cache_insert(c, &r) == IRC_OK && irc_cache_record(c, 0, &back) == IRC_OK &&
               back.leak_guard == r.leak_guard, "guard stored");
