@@ -18,9 +18,9 @@
  *     after irc_attach() (same build of the library, same ABI).
  *   - Thread safety: with a locking port (the default of this build is
  *     POSIX threads), every call below may run concurrently from any
- *     threads on one cache, except irc_init, irc_attach, irc_cache_clear and
- *     irc_fini, which must not run concurrently with anything else on that
- *     cache.  Lookups take the port's read lock; inserts (and the insert of
+ *     threads on one cache, except irc_init, irc_attach, irc_cache_clear,
+ *     irc_snapshot_read and irc_fini, which must not run concurrently with
+ *     anything else on that cache.  Lookups take the port's read lock; inserts (and the insert of
  *     lookup_or_compute) its write lock; the trace callback runs with no
  *     lock held.  With irc_port_none, one thread at a time.
  *   - Determinism: a record is a pure function of (p, n, config, seed).  Its
@@ -135,7 +135,16 @@ typedef enum irc_status {
                                  negative irradiance, SH bands or channels
                                  that do not match the cache, a lobe exponent
                                  out of [0, 1e4] */
-    IRC_ERR_LAST = -12        /* the most negative code the library returns */
+    IRC_ERR_TRUNCATED = -13,  /* a snapshot shorter than its header says */
+    IRC_ERR_CORRUPT = -14,    /* a snapshot whose magic, checksums, length or
+                                 decoded values are wrong */
+    IRC_ERR_VERSION = -15,    /* a snapshot of another format version */
+    IRC_ERR_MISMATCH = -16,   /* a snapshot of another record kind, feature
+                                 set, record size, SH bands or channels,
+                                 accuracy or strata than the cache's */
+    IRC_ERR_FINGERPRINT = -17,/* a snapshot made for another scene (its
+                                 fingerprint differs from the one given) */
+    IRC_ERR_LAST = -17        /* the most negative code the library returns */
 } irc_status;
 
 /* A one-line English description of any status code (never NULL).  Thread
@@ -632,6 +641,51 @@ IRC_API int irc_cache_record(irc_cache *cache, uint32_t id, irc_record *out);
  * code on failure. */
 IRC_API int irc_cache_clear(irc_cache *cache);
 
+
+
+/* ------------------------------------------------------------------------ */
+/* Snapshots: a cache's records as portable bytes (the README defines the  */
+/* format byte by byte), to save a cache and load it in another process.   */
+
+/*
+ * A writer for streamed snapshots: takes count bytes; returns 0, or a
+ * nonzero value to stop (a negative one is passed through, a positive one
+ * becomes IRC_ERR_CALLBACK).  Called with the cache's read lock held: it
+ * must not call the cache's writers.
+ */
+typedef int (*irc_write_fn)(void *context, const void *bytes, size_t count);
+
+/* The bytes irc_snapshot_write would write now (48 + records x record
+ * bytes + 4).  Returns IRC_OK, IRC_ERR_NOMEM when that exceeds size_t, or
+ * a negative error code. */
+IRC_API int irc_snapshot_size(irc_cache *cache, size_t *bytes);
+
+/*
+ * Writes every stored record, with a header carrying the host's 64-bit
+ * scene fingerprint, either into buffer (write NULL; size at least
+ * irc_snapshot_size, else IRC_ERR_NOMEM and nothing written) or through
+ * write(context, ...) in pieces (buffer ignored).  *written (optional)
+ * gets the bytes produced.  The cache is not changed.  Returns IRC_OK or a
+ * negative error code.
+ */
+IRC_API int irc_snapshot_write(irc_cache *cache, uint64_t fingerprint, void *buffer,
+                               size_t size, irc_write_fn write, void *context,
+                               size_t *written);
+
+/*
+ * Replaces the cache's records with a snapshot's.  Checks everything before
+ * it touches the cache: IRC_ERR_TRUNCATED, IRC_ERR_CORRUPT (bad magic,
+ * either checksum, trailing bytes, a record value no cache makes),
+ * IRC_ERR_VERSION, IRC_ERR_FINGERPRINT (not the fingerprint given),
+ * IRC_ERR_MISMATCH (kind, features, record size, SH bands or channels,
+ * accuracy or strata differ from the cache's config), IRC_ERR_FULL (more
+ * records than the cache holds); on any of them the cache is as it was.
+ * Lookups then answer as the written cache did, bit for bit.  Like
+ * irc_cache_clear, not concurrently with other calls on the cache.
+ * Returns IRC_OK or a negative error code.
+ */
+IRC_API int irc_snapshot_read(irc_cache *cache, uint64_t fingerprint, const void *data,
+                              size_t size);
 /* ------------------------------------------------------------------------ */
 /* SH records (IRC_FEATURE_SH).                                              */
 /*

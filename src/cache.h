@@ -273,6 +273,7 @@ int irc__enter(const irc_cache *c, const irc__kind *want);
 int irc__compute(irc_cache *c, const irc__kind *want, const float p[3], const float n[3],
                  void *out, void *host, int (*fn)(irc__call *k, void *out), int record);
 int irc__insert(irc_cache *c, const irc__kind *want, const void *rec);
+void irc__clear_locked(irc_cache *c); /* the caller holds the write lock */
 int irc__lookup(irc_cache *c, const irc__kind *want, const float p[3], const float n[3],
                 void *out, float *weight);
 int irc__lookup_or_compute(irc_cache *c, const irc__kind *want, float footprint, const float p[3],

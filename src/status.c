@@ -21,6 +21,11 @@ const char *irc_strerror(int status)
     case IRC_ERR_UNSUPPORTED: return "a call this cache's kind or features do not serve";
     case IRC_ERR_PORT: return "the port could not initialise or take its lock";
     case IRC_ERR_RANGE: return "a value or index is out of its range";
+    case IRC_ERR_TRUNCATED: return "the snapshot is shorter than its header says";
+    case IRC_ERR_CORRUPT: return "the snapshot is corrupt (magic, checksum, length or values)";
+    case IRC_ERR_VERSION: return "the snapshot has another format version";
+    case IRC_ERR_MISMATCH: return "the snapshot's kind or config differs from the cache's";
+    case IRC_ERR_FINGERPRINT: return "the snapshot was made for another scene";
     default: return status < 0 ? "error from the trace callback" : "unknown status";
     }
 }

@@ -412,13 +412,8 @@ int irc_cache_neighbours(irc_cache *c, const float p[3], const float n[3],
     return IRC_OK;
 }
 
-int irc_cache_clear(irc_cache *c)
+void irc__clear_locked(irc_cache *c)
 {
-    int st = irc__enter(c, NULL);
-    if (st < 0)
-        return st;
-    if (c->port->write_lock(irc__lock(c)) < 0)
-        return IRC_ERR_PORT;
     c->count = 0;
     c->hand = 0;
     IRC_MEMSET(irc__rec_at(c, 0), 0, (size_t)c->capacity * c->rec_size);
@@ -427,6 +422,16 @@ int irc_cache_clear(irc_cache *c)
     if (c->o_used)
         IRC_MEMSET(irc__used(c), 0, ((size_t)c->capacity + 63u) / 64u * sizeof(uint64_t));
     irc__index_reset(c);
+}
+
+int irc_cache_clear(irc_cache *c)
+{
+    int st = irc__enter(c, NULL);
+    if (st < 0)
+        return st;
+    if (c->port->write_lock(irc__lock(c)) < 0)
+        return IRC_ERR_PORT;
+    irc__clear_locked(c);
     c->port->write_unlock(irc__lock(c));
     return IRC_OK;
 }

@@ -1,0 +1,300 @@
+/*
+ * snapshot.c -- a cache's records as a portable byte string, and back: the
+ * format the README defines byte by byte (little-endian, IEEE floats, a
+ * versioned header, CRC-32C over header and records).
+ */
+#include "cache.h"
+
+#define IRC__SNAP_VERSION 1u
+#define IRC__SNAP_HEAD 48u /* header bytes, its own CRC included */
+#define IRC__SNAP_TAIL 4u  /* the CRC of everything before it */
+
+/* CRC-32C (Castagnoli, reflected polynomial 0x82F63B78), four bits at a
+ * time: a 64-byte table instead of 1 KiB, for small targets. */
+static const uint32_t irc__crc_nibble[16] = {
+    0x00000000u, 0x105ec76fu, 0x20bd8edeu, 0x30e349b1u, 0x417b1dbcu, 0x5125dad3u,
+    0x61c69362u, 0x7198540du, 0x82f63b78u, 0x92a8fc17u, 0xa24bb5a6u, 0xb21572c9u,
+    0xc38d26c4u, 0xd3d3e1abu, 0xe330a81au, 0xf36e6f75u};
+
+/* Continues a CRC: crc is the running value before the final inversion
+ * (start from 0xffffffff, invert at the end). */
+static uint32_t irc__crc(uint32_t crc, const unsigned char *p, size_t n)
+{
+    while (n--) {
+        crc ^= *p++;
+        crc = (crc >> 4) ^ irc__crc_nibble[crc & 15u];
+        crc = (crc >> 4) ^ irc__crc_nibble[crc & 15u];
+    }
+    return crc;
+}
+
+static void irc__le_put(unsigned char *dst, uint64_t v, unsigned width)
+{
+    unsigned i;
+    for (i = 0; i < width; i++)
+        dst[i] = (unsigned char)(v >> (8 * i));
+}
+
+static uint64_t irc__le_get(const unsigned char *src, unsigned width)
+{
+    uint64_t v = 0;
+    unsigned i;
+    for (i = 0; i < width; i++)
+        v |= (uint64_t)src[i] << (8 * i);
+    return v;
+}
+
+/* A native value of `width` bytes at p, as an integer (and back). */
+static uint64_t irc__native_get(const unsigned char *p, unsigned width)
+{
+    uint8_t b;
+    uint16_t h;
+    uint32_t w;
+    uint64_t d;
+    switch (width) {
+    case 1: IRC_MEMCPY(&b, p, 1); return b;
+    case 2: IRC_MEMCPY(&h, p, 2); return h;
+    case 4: IRC_MEMCPY(&w, p, 4); return w;
+    default: IRC_MEMCPY(&d, p, 8); return d;
+    }
+}
+
+static void irc__native_put(unsigned char *p, uint64_t v, unsigned width)
+{
+    uint8_t b = (uint8_t)v;
+    uint16_t h = (uint16_t)v;
+    uint32_t w = (uint32_t)v;
+    switch (width) {
+    case 1: IRC_MEMCPY(p, &b, 1); break;
+    case 2: IRC_MEMCPY(p, &h, 2); break;
+    case 4: IRC_MEMCPY(p, &w, 4); break;
+    default: IRC_MEMCPY(p, &v, 8); break;
+    }
+}
+
+/* The width of the packed record's field at byte `at`: 4-byte words
+ * (floats, octahedral codes), but a gradient block's six int16 and four
+ * int8, and the leak guard's uint64. */
+static unsigned irc__field_width(const irc_cache *c, uint32_t at)
+{
+    uint32_t g;
+    if (c->off_g && at == c->off_g)
+        return 8;
+    for (g = 0; g < 2; g++) {
+        uint32_t o = g ? c->off_r : c->off_t;
+        if (o && at >= o && at < o + (uint32_t)sizeof(irc__grad))
+            return at - o < 12u ? 2u : 1u;
+    }
+    return 4;
+}
+
+/* A packed record to the snapshot's bytes (to_le) or back. */
+static void irc__convert(const irc_cache *c, const unsigned char *src, unsigned char *dst,
+                         int to_le)
+{
+    uint32_t at = 0;
+    while (at < c->rec_size) {
+        unsigned w = irc__field_width(c, at);
+        if (to_le)
+            irc__le_put(dst + at, irc__native_get(src + at, w), w);
+        else
+            irc__native_put(dst + at, irc__le_get(src + at, w), w);
+        at += w;
+    }
+}
+
+static void irc__header(const irc_cache *c, uint64_t fingerprint, unsigned char *h)
+{
+    float a = c->cfg.accuracy;
+    uint32_t abits;
+    IRC_MEMCPY(&abits, &a, 4);
+    IRC_MEMSET(h, 0, IRC__SNAP_HEAD);
+    h[0] = 'I'; h[1] = 'R'; h[2] = 'C'; h[3] = 'S';
+    irc__le_put(h + 4, IRC__SNAP_VERSION, 2);
+    irc__le_put(h + 6, c->kind_id, 2);
+    irc__le_put(h + 8, c->cfg.features, 4);
+    irc__le_put(h + 12, c->count, 4);
+    irc__le_put(h + 16, c->rec_size, 4);
+    irc__le_put(h + 20, c->sh_n ? c->cfg.sh_bands : 0u, 2);
+    irc__le_put(h + 22, c->sh_ch, 2);
+    irc__le_put(h + 24, abits, 4);
+    irc__le_put(h + 28, c->cfg.strata_theta, 4);
+    irc__le_put(h + 32, c->cfg.strata_phi, 4);
+    irc__le_put(h + 36, fingerprint, 8);
+    irc__le_put(h + 44, irc__crc(0xffffffffu, h, 44) ^ 0xffffffffu, 4);
+}
+
+static uint64_t irc__snap_bytes(const irc_cache *c, uint32_t count)
+{
+    return IRC__SNAP_HEAD + (uint64_t)count * c->rec_size + IRC__SNAP_TAIL;
+}
+
+int irc_snapshot_size(irc_cache *c, size_t *bytes)
+{
+    uint64_t n;
+    int st = irc__enter(c, NULL);
+    if (st < 0)
+        return st;
+    if (!bytes)
+        return IRC_ERR_NULL;
+    if (c->port->read_lock(irc__lock(c)) < 0)
+        return IRC_ERR_PORT;
+    n = irc__snap_bytes(c, c->count);
+    c->port->read_unlock(irc__lock(c));
+    if (n > (uint64_t)(size_t)-1)
+        return IRC_ERR_NOMEM;
+    *bytes = (size_t)n;
+    return IRC_OK;
+}
+
+/* Hands `n` bytes to the host's writer or copies them to out at *at. */
+static int irc__emit(irc_write_fn fn, void *ctx, unsigned char *out, size_t *at,
+                     const unsigned char *p, size_t n, uint32_t *crc)
+{
+    int st;
+    *crc = irc__crc(*crc, p, n);
+    if (fn) {
+        st = fn(ctx, p, n);
+        if (st != 0)
+            return st < 0 ? st : IRC_ERR_CALLBACK;
+    } else {
+        IRC_MEMCPY(out + *at, p, n);
+    }
+    *at += n;
+    return IRC_OK;
+}
+
+static int irc__write_locked(irc_cache *c, uint64_t fingerprint, unsigned char *out,
+                             irc_write_fn fn, void *ctx, size_t *written)
+{
+    union { irc__rec head; unsigned char b[IRC__REC_MAX]; } buf;
+    unsigned char tail[IRC__SNAP_TAIL];
+    uint32_t crc = 0xffffffffu, id;
+    size_t at = 0;
+    int st;
+    irc__header(c, fingerprint, buf.b);
+    if ((st = irc__emit(fn, ctx, out, &at, buf.b, IRC__SNAP_HEAD, &crc)) < 0)
+        return st;
+    for (id = 0; id < c->count; id++) {
+        irc__convert(c, (const unsigned char *)irc__rec_at(c, id), buf.b, 1);
+        if ((st = irc__emit(fn, ctx, out, &at, buf.b, c->rec_size, &crc)) < 0)
+            return st;
+    }
+    irc__le_put(tail, crc ^ 0xffffffffu, 4);
+    if ((st = irc__emit(fn, ctx, out, &at, tail, IRC__SNAP_TAIL, &crc)) < 0)
+        return st;
+    if (written)
+        *written = at;
+    return IRC_OK;
+}
+
+int irc_snapshot_write(irc_cache *c, uint64_t fingerprint, void *buffer, size_t size,
+                       irc_write_fn write, void *context, size_t *written)
+{
+    int st = irc__enter(c, NULL);
+    if (st < 0)
+        return st;
+    if (!write && !buffer)
+        return IRC_ERR_NULL;
+    if (c->port->read_lock(irc__lock(c)) < 0)
+        return IRC_ERR_PORT;
+    if (!write && irc__snap_bytes(c, c->count) > (uint64_t)size)
+        st = IRC_ERR_NOMEM;
+    else
+        st = irc__write_locked(c, fingerprint, (unsigned char *)buffer, write, context, written);
+    c->port->read_unlock(irc__lock(c));
+    return st;
+}
+
+/* Whether a decoded record holds values a cache could have made. */
+static int irc__record_sane(const irc_cache *c, const unsigned char *rec)
+{
+    const irc__rec *r = (const irc__rec *)(const void *)rec;
+    uint32_t i;
+    if (!irc__finite3(r->p) || !irc__finite3(r->e) || !irc__finite(r->r) || !(r->r > 0.0f) ||
+        r->e[0] < 0.0f || r->e[1] < 0.0f || r->e[2] < 0.0f ||
+        (r->n == IRC__FREE && c->kind_id != IRC__KIND_SH))
+        return 0;
+    if (c->off_a) {
+        const irc__aniso *a = (const irc__aniso *)(const void *)(rec + c->off_a);
+        if (!(a->q > 0.0f && a->q <= 1.0f))
+            return 0;
+    }
+    for (i = c->off_sh; c->off_sh && i < c->rec_size; i += 4) {
+        float f;
+        IRC_MEMCPY(&f, rec + i, 4);
+        if (!irc__finite(f))
+            return 0;
+    }
+    return 1;
+}
+
+/* Everything a read checks before it touches the cache; the record count
+ * in *count.  Version before the header's CRC, so that another version's
+ * snapshot is named as such. */
+static int irc__snap_check(const irc_cache *c, uint64_t fingerprint, const unsigned char *d,
+                           size_t size, uint32_t *count)
+{
+    unsigned char want[IRC__SNAP_HEAD];
+    uint64_t total;
+    uint32_t i;
+    if (size < 8)
+        return IRC_ERR_TRUNCATED;
+    if (d[0] != 'I' || d[1] != 'R' || d[2] != 'C' || d[3] != 'S')
+        return IRC_ERR_CORRUPT;
+    if (irc__le_get(d + 4, 2) != IRC__SNAP_VERSION)
+        return IRC_ERR_VERSION;
+    if (size < IRC__SNAP_HEAD)
+        return IRC_ERR_TRUNCATED;
+    if ((irc__crc(0xffffffffu, d, 44) ^ 0xffffffffu) != irc__le_get(d + 44, 4))
+        return IRC_ERR_CORRUPT;
+    *count = (uint32_t)irc__le_get(d + 12, 4);
+    if (irc__le_get(d + 16, 4) == 0)
+        return IRC_ERR_CORRUPT;
+    total = IRC__SNAP_HEAD + (uint64_t)*count * irc__le_get(d + 16, 4) + IRC__SNAP_TAIL;
+    if ((uint64_t)size < total)
+        return IRC_ERR_TRUNCATED;
+    if ((uint64_t)size > total ||
+        (irc__crc(0xffffffffu, d, size - IRC__SNAP_TAIL) ^ 0xffffffffu) !=
+            irc__le_get(d + size - IRC__SNAP_TAIL, 4))
+        return IRC_ERR_CORRUPT;
+    if (irc__le_get(d + 36, 8) != fingerprint)
+        return IRC_ERR_FINGERPRINT;
+    irc__header(c, fingerprint, want);
+    for (i = 6; i < 36; i++)
+        if ((i < 12 || i >= 16) && d[i] != want[i])
+            return IRC_ERR_MISMATCH;
+    if (*count > c->capacity)
+        return IRC_ERR_FULL;
+    for (i = 0; i < *count; i++) {
+        union { irc__rec head; unsigned char b[IRC__REC_MAX]; } rec;
+        irc__convert(c, d + IRC__SNAP_HEAD + (size_t)i * c->rec_size, rec.b, 0);
+        if (!irc__record_sane(c, rec.b))
+            return IRC_ERR_CORRUPT;
+    }
+    return IRC_OK;
+}
+
+int irc_snapshot_read(irc_cache *c, uint64_t fingerprint, const void *data, size_t size)
+{
+    const unsigned char *d = (const unsigned char *)data;
+    uint32_t count = 0, i;
+    int st = irc__enter(c, NULL);
+    if (st < 0)
+        return st;
+    if (!data)
+        return IRC_ERR_NULL;
+    if ((st = irc__snap_check(c, fingerprint, d, size, &count)) < 0)
+        return st;
+    if (c->port->write_lock(irc__lock(c)) < 0)
+        return IRC_ERR_PORT;
+    irc__clear_locked(c);
+    for (i = 0; i < count; i++) {
+        irc__convert(c, d + IRC__SNAP_HEAD + (size_t)i * c->rec_size,
+                     (unsigned char *)irc__rec_at(c, i), 0);
+        c->count = i + 1;
+        irc__index_insert(c, i);
+    }
+    c->port->write_unlock(irc__lock(c));
+    return IRC_OK;
+}
