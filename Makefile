@@ -150,14 +150,15 @@ $(BUILD)/t_exr: tests/t_exr.c tests/harness.c tests/test.h $(IMAGE_SRC) demo/ima
 # seconds, then merges what it found worth keeping into fuzz/corpus/NAME.
 # make test replays the committed corpora without libFuzzer.
 FUZZ_SECONDS ?= 60
-FUZZ_TARGETS = api callback scene
+FUZZ_TARGETS = api callback scene snapshot
 FUZZ_SAN = -O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=all
 # Sources each harness needs besides the library: the scene harness drives
 # the demo's parsers.
 FUZZ_EXTRA_api =
 FUZZ_EXTRA_callback =
+FUZZ_EXTRA_snapshot =
 FUZZ_EXTRA_scene = demo/loader.c demo/obj.c demo/bvh.c
-FUZZ_CORPORA = fuzz/corpus/api fuzz/corpus/callback fuzz/corpus/scene
+FUZZ_CORPORA = fuzz/corpus/api fuzz/corpus/callback fuzz/corpus/scene fuzz/corpus/snapshot
 
 $(BUILD)/replay_%: fuzz/fuzz_%.c fuzz/replay.c fuzz/fuzz_input.h demo/*.h $(LIBA)
 	$(CC) -std=c99 $(WARN) -Iinclude -Ifuzz -Idemo $(OPT) $(CFLAGS) fuzz/fuzz_$*.c fuzz/replay.c \
