@@ -96,6 +96,37 @@ static double record_cost(uint32_t features, uint32_t m, uint32_t n)
     return 1e6 * (t1 - t0) / done;
 }
 
+/* Snapshot write and read throughput of a filled cache (records/s), the
+ * read into a second block of the same config. */
+static void snapshot_rates(irc_cache *c, const irc_config *cfg, uint32_t cap)
+{
+    irc_config c2 = *cfg;
+    irc_cache *d;
+    size_t bytes = 0, need;
+    unsigned char *buf;
+    irc_stats st;
+    double t0;
+    if (irc_snapshot_size(c, &bytes) != IRC_OK || irc_cache_stats(c, &st) != IRC_OK ||
+        !(buf = malloc(bytes)))
+        return;
+    t0 = now();
+    irc_snapshot_write(c, 1u, buf, bytes, NULL, NULL, NULL);
+    printf("snapshot_write_per_s,trans+rot,%u,,,%.0f,records/s\n", cap,
+           st.records / (now() - t0));
+    irc_footprint(&c2, cap, &need);
+    c2.buffer = malloc(need);
+    c2.buffer_size = need;
+    if (c2.buffer && irc_init(&c2, cap, &d) == IRC_OK) {
+        t0 = now();
+        if (irc_snapshot_read(d, 1u, buf, bytes) == IRC_OK)
+            printf("snapshot_read_per_s,trans+rot,%u,,,%.0f,records/s\n", cap,
+                   st.records / (now() - t0));
+        irc_fini(d);
+    }
+    free(c2.buffer);
+    free(buf);
+}
+
 static double shift; /* the box's offset along every axis */
 
 /* A point on face f (0..5) at face coordinates (u, v) in [0,1)^2. */
@@ -262,6 +293,7 @@ int main(void)
                        (double)(st.index_nodes * 16u + sizes[k] * 4u) / sizes[k]);
                 printf("block_bytes,trans+rot,%u,,,%.2f,bytes/record\n", sizes[k],
                        (double)st.bytes_total / sizes[k]);
+                snapshot_rates(c, &cfg, sizes[k]);
             }
             printf("inserts_per_s,trans+rot,%u,%s,,%.0f,1/s\n", sizes[k], ports[pi]->name, ins);
             for (coh = 0; coh < 2; coh++) {
