@@ -23,7 +23,7 @@ PIC = $(if $(filter none,$(PORT)),,-fPIC)
 
 SRC = src/status.c src/check.c src/config.c src/layout.c src/store.c src/kind_irr.c \
       src/kind_sh.c src/sampler.c src/irradiance.c src/octa.c src/weight.c src/index.c \
-      src/visibility.c src/hessian.c src/sh.c src/shgrad.c src/snapshot.c
+      src/visibility.c src/hessian.c src/sh.c src/shgrad.c src/snapshot.c src/merge.c
 # The chosen port, and the single-threaded one (it needs nothing).
 PORT_SRC = $(sort port/$(PORT)/irc_port.c port/none/irc_port.c) port/irc_port_default.c
 OBJ = $(SRC:%.c=$(BUILD)/%.o)

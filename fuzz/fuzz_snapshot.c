@@ -4,7 +4,8 @@
  * trans + rot + Hessian; SH L = 2, one channel, gradients) and, in bit 7,
  * whether the harness first rewrites both CRC-32C fields to match the
  * bytes (so that mutations reach the header's fields and the records'
- * values instead of dying at the checksum); the rest is the snapshot.
+ * values instead of dying at the checksum), in bit 6 whether it merges
+ * (irc_merge) instead of reading; the rest is the snapshot.
  * The target cache holds two records of its own beforehand.
  *
  * Invariants (abort() on violation): the status is a documented one; a
@@ -133,7 +134,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         put32(snap + n - 4, crc32c(snap, n - 4));
     }
     memcpy(b.copy, b.block, bytes);
-    st = irc_snapshot_read(c, 0x5eedull, snap, n);
+    st = data[0] & 0x40 ? irc_merge(c, 0x5eedull, snap, n)
+                        : irc_snapshot_read(c, 0x5eedull, snap, n);
     check(st == IRC_OK || (st >= IRC_ERR_LAST && st < 0));
     if (st < 0)
         check(memcmp(b.copy, b.block, bytes) == 0);

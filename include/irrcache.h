@@ -19,8 +19,8 @@
  *   - Thread safety: with a locking port (the default of this build is
  *     POSIX threads), every call below may run concurrently from any
  *     threads on one cache, except irc_init, irc_attach, irc_cache_clear,
- *     irc_snapshot_read and irc_fini, which must not run concurrently with
- *     anything else on that cache.  Lookups take the port's read lock; inserts (and the insert of
+ *     irc_snapshot_read, irc_merge and irc_fini, which must not run
+ *     concurrently with anything else on that cache.  Lookups take the port's read lock; inserts (and the insert of
  *     lookup_or_compute) its write lock; the trace callback runs with no
  *     lock held.  With irc_port_none, one thread at a time.
  *   - Determinism: a record is a pure function of (p, n, config, seed).  Its
@@ -686,6 +686,25 @@ IRC_API int irc_snapshot_write(irc_cache *cache, uint64_t fingerprint, void *buf
  */
 IRC_API int irc_snapshot_read(irc_cache *cache, uint64_t fingerprint, const void *data,
                               size_t size);
+
+/*
+ * Adds a snapshot's records to the cache's, checked as irc_snapshot_read
+ * checks (the same statuses, the cache unchanged on any of them;
+ * IRC_ERR_FULL when the cache's records and the snapshot's together,
+ * duplicates counted, exceed its capacity).  The result does not depend
+ * on the order of merges: afterwards the records sit in one canonical
+ * order (field by field in the format's order, each field as an unsigned
+ * integer), records equal in every byte are kept once, and the index is
+ * rebuilt from that order; so merging a set of snapshots into an empty
+ * cache in any order gives caches whose snapshots are byte-identical, and
+ * merging one twice adds nothing.  Records from different snapshots that
+ * differ in any bit are all kept (two tiles that computed a record at the
+ * same point with the same config agree bit for bit: a record is a pure
+ * function of its query).  Record ids change; neighbour clamping is not
+ * applied.  Like irc_cache_clear, not concurrently with other calls.
+ * Returns IRC_OK or a negative error code.
+ */
+IRC_API int irc_merge(irc_cache *cache, uint64_t fingerprint, const void *data, size_t size);
 /* ------------------------------------------------------------------------ */
 /* SH records (IRC_FEATURE_SH).                                              */
 /*

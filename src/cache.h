@@ -274,6 +274,15 @@ int irc__compute(irc_cache *c, const irc__kind *want, const float p[3], const fl
                  void *out, void *host, int (*fn)(irc__call *k, void *out), int record);
 int irc__insert(irc_cache *c, const irc__kind *want, const void *rec);
 void irc__clear_locked(irc_cache *c); /* the caller holds the write lock */
+
+/* snapshot.c: the format's parts merge.c shares */
+#define IRC__SNAP_VERSION 1u
+#define IRC__SNAP_HEAD 48u /* header bytes, its own CRC included */
+#define IRC__SNAP_TAIL 4u  /* the CRC of everything before it */
+int irc__snap_check(const irc_cache *c, uint64_t fingerprint, const unsigned char *d,
+                    size_t size, uint32_t room, uint32_t *count);
+void irc__convert(const irc_cache *c, const unsigned char *src, unsigned char *dst, int to_le);
+unsigned irc__field_width(const irc_cache *c, uint32_t at);
 int irc__lookup(irc_cache *c, const irc__kind *want, const float p[3], const float n[3],
                 void *out, float *weight);
 int irc__lookup_or_compute(irc_cache *c, const irc__kind *want, float footprint, const float p[3],

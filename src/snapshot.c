@@ -5,9 +5,6 @@
  */
 #include "cache.h"
 
-#define IRC__SNAP_VERSION 1u
-#define IRC__SNAP_HEAD 48u /* header bytes, its own CRC included */
-#define IRC__SNAP_TAIL 4u  /* the CRC of everything before it */
 
 /* CRC-32C (Castagnoli, reflected polynomial 0x82F63B78), four bits at a
  * time: a 64-byte table instead of 1 KiB, for small targets. */
@@ -75,7 +72,7 @@ static void irc__native_put(unsigned char *p, uint64_t v, unsigned width)
 /* The width of the packed record's field at byte `at`: 4-byte words
  * (floats, octahedral codes), but a gradient block's six int16 and four
  * int8, and the leak guard's uint64. */
-static unsigned irc__field_width(const irc_cache *c, uint32_t at)
+unsigned irc__field_width(const irc_cache *c, uint32_t at)
 {
     uint32_t g;
     if (c->off_g && at == c->off_g)
@@ -89,7 +86,7 @@ static unsigned irc__field_width(const irc_cache *c, uint32_t at)
 }
 
 /* A packed record to the snapshot's bytes (to_le) or back. */
-static void irc__convert(const irc_cache *c, const unsigned char *src, unsigned char *dst,
+void irc__convert(const irc_cache *c, const unsigned char *src, unsigned char *dst,
                          int to_le)
 {
     uint32_t at = 0;
@@ -230,10 +227,10 @@ static int irc__record_sane(const irc_cache *c, const unsigned char *rec)
 }
 
 /* Everything a read checks before it touches the cache; the record count
- * in *count.  Version before the header's CRC, so that another version's
- * snapshot is named as such. */
-static int irc__snap_check(const irc_cache *c, uint64_t fingerprint, const unsigned char *d,
-                           size_t size, uint32_t *count)
+ * in *count, which must fit in `room` slots.  Version before the header's
+ * CRC, so that another version's snapshot is named as such. */
+int irc__snap_check(const irc_cache *c, uint64_t fingerprint, const unsigned char *d,
+                    size_t size, uint32_t room, uint32_t *count)
 {
     unsigned char want[IRC__SNAP_HEAD];
     uint64_t total;
@@ -264,7 +261,7 @@ static int irc__snap_check(const irc_cache *c, uint64_t fingerprint, const unsig
     for (i = 6; i < 36; i++)
         if ((i < 12 || i >= 16) && d[i] != want[i])
             return IRC_ERR_MISMATCH;
-    if (*count > c->capacity)
+    if (*count > room)
         return IRC_ERR_FULL;
     for (i = 0; i < *count; i++) {
         union { irc__rec head; unsigned char b[IRC__REC_MAX]; } rec;
@@ -284,7 +281,7 @@ int irc_snapshot_read(irc_cache *c, uint64_t fingerprint, const void *data, size
         return st;
     if (!data)
         return IRC_ERR_NULL;
-    if ((st = irc__snap_check(c, fingerprint, d, size, &count)) < 0)
+    if ((st = irc__snap_check(c, fingerprint, d, size, c->capacity, &count)) < 0)
         return st;
     if (c->port->write_lock(irc__lock(c)) < 0)
         return IRC_ERR_PORT;

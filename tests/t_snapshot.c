@@ -226,6 +226,117 @@ TEST(test_snapshot_rejects)
     block_free(&cfg3);
 }
 
+/* A trans + rot cache filled by lookups on a 0.25 grid over [x0, x1] x
+ * [-1, 1], and its snapshot. */
+static unsigned char *tile(irc_config *cfg, double x0, double x1, size_t *bytes)
+{
+    static tscene s;
+    irc_cache *c;
+    unsigned char *buf = NULL;
+    double x, y;
+    scene_sphere_plane(&s);
+    *cfg = scene_config(&s, IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION, 8, 32);
+    cfg->max_radius = 4.0f;
+    c = block_cache(cfg, 2048, 0);
+    for (x = x0; c && x <= x1; x += 0.25)
+        for (y = -1.0; y <= 1.0; y += 0.25) {
+            const float p[3] = {(float)x, (float)y, 0}, up[3] = {0, 0, 1};
+            float rgb[3], w;
+            irc_cache_lookup_or_compute(c, p, up, rgb, &w, NULL);
+        }
+    if (c && irc_snapshot_size(c, bytes) == IRC_OK && (buf = malloc(*bytes)) != NULL &&
+        irc_snapshot_write(c, 3u, buf, *bytes, NULL, NULL, NULL) != IRC_OK) {
+        free(buf);
+        buf = NULL;
+    }
+    block_free(cfg);
+    return buf;
+}
+
+/* Merges of three tiles (two overlapping) in all six orders give caches
+ * whose snapshots are byte-identical; merging a tile twice adds nothing;
+ * a merge that would overflow the cache, or of a corrupt snapshot, is
+ * refused with the cache unchanged. */
+TEST(test_merge_order_free)
+{
+    static const int perm[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+    irc_config cfg;
+    unsigned char *t[3], *first = NULL;
+    size_t tb[3], firstb = 0;
+    int k, i, same = 1;
+    uint64_t records = 0;
+    t[0] = tile(&cfg, -3.0, 0.0, &tb[0]);
+    t[1] = tile(&cfg, 0.0, 3.0, &tb[1]);
+    t[2] = tile(&cfg, -1.0, 1.5, &tb[2]);
+    CHECK(t[0] && t[1] && t[2], "tiles");
+    if (!t[0] || !t[1] || !t[2]) return;
+    for (k = 0; k < 6; k++) {
+        tscene s;
+        irc_config c2;
+        irc_cache *m;
+        irc_stats st;
+        size_t n = 0;
+        unsigned char *out;
+        scene_sphere_plane(&s);
+        c2 = scene_config(&s, IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION, 8, 32);
+        c2.max_radius = 4.0f;
+        m = block_cache(&c2, 2048, 0);
+        for (i = 0; m && i < 3; i++)
+            CHECK(irc_merge(m, 3u, t[perm[k][i]], tb[perm[k][i]]) == IRC_OK, "merge");
+        if (!m) continue;
+        if (k == 0) { /* the first tile again: nothing added */
+            irc_stats before;
+            irc_cache_stats(m, &before);
+            CHECK(irc_merge(m, 3u, t[0], tb[0]) == IRC_OK && irc_cache_stats(m, &st) == IRC_OK &&
+                      st.records == before.records, "merging twice added records");
+        }
+        irc_cache_stats(m, &st);
+        records = st.records;
+        irc_snapshot_size(m, &n);
+        out = malloc(n);
+        CHECK(irc_snapshot_write(m, 3u, out, n, NULL, NULL, NULL) == IRC_OK, "write");
+        if (!first) {
+            first = out;
+            firstb = n;
+        } else {
+            same &= n == firstb && memcmp(out, first, n) == 0;
+            free(out);
+        }
+        block_free(&c2);
+    }
+    printf("  tiles of %zu, %zu, %zu bytes merged: %llu records; six orders %s\n", tb[0], tb[1],
+           tb[2], (unsigned long long)records, same ? "byte-identical" : "DIFFER");
+    CHECK(same, "merge order changed the cache");
+    {   /* full, and corrupt: refused, unchanged */
+        tscene s;
+        irc_config c3;
+        irc_cache *m, *ref;
+        unsigned char *bad = malloc(tb[1]);
+        scene_sphere_plane(&s);
+        c3 = scene_config(&s, IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION, 8, 32);
+        c3.max_radius = 4.0f;
+        m = block_cache(&c3, (uint32_t)((tb[0] - 52) / 72 + 3), 0);
+        CHECK(m && irc_merge(m, 3u, t[0], tb[0]) == IRC_OK, "first merge");
+        CHECK(m && irc_merge(m, 3u, t[1], tb[1]) == IRC_ERR_FULL, "overflow refused");
+        memcpy(bad, t[1], tb[1]);
+        bad[60] ^= 1u;
+        CHECK(m && irc_merge(m, 3u, bad, tb[1]) == IRC_ERR_CORRUPT, "corrupt refused");
+        {
+            irc_config c4 = c3;
+            c4.buffer = NULL;
+            ref = block_cache(&c4, 64, 0);
+            CHECK(ref && irc_merge(ref, 3u, t[0], tb[0]) == IRC_OK && same_records(m, ref),
+                  "a refused merge changed the cache");
+            block_free(&c4);
+        }
+        free(bad);
+        block_free(&c3);
+    }
+    free(first);
+    for (i = 0; i < 3; i++)
+        free(t[i]);
+}
+
 /* CRC-32C bit by bit (the library uses a table): the test's own. */
 static uint32_t crc32c(const unsigned char *p, size_t n)
 {

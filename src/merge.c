@@ -1,0 +1,118 @@
+/*
+ * merge.c -- a snapshot's records added to a cache so that the result does
+ * not depend on the order of merges: after every merge the records sit in
+ * one canonical order with exact duplicates removed, and the index is
+ * rebuilt from that order.
+ */
+#include "cache.h"
+
+/* A field of `width` bytes as an unsigned integer. */
+static uint64_t irc__field(const unsigned char *p, unsigned width)
+{
+    uint8_t b;
+    uint16_t h;
+    uint32_t w;
+    uint64_t d;
+    switch (width) {
+    case 1: IRC_MEMCPY(&b, p, 1); return b;
+    case 2: IRC_MEMCPY(&h, p, 2); return h;
+    case 4: IRC_MEMCPY(&w, p, 4); return w;
+    default: IRC_MEMCPY(&d, p, 8); return d;
+    }
+}
+
+/* The canonical order: field by field in the format's order, each field
+ * compared as an unsigned integer of its width, so every machine sorts
+ * alike whatever its byte order.  Returns <0, 0, >0. */
+static int irc__order(const irc_cache *c, const unsigned char *a, const unsigned char *b)
+{
+    uint32_t at = 0;
+    while (at < c->rec_size) {
+        unsigned w = irc__field_width(c, at);
+        uint64_t x = irc__field(a + at, w), y = irc__field(b + at, w);
+        if (x != y)
+            return x < y ? -1 : 1;
+        at += w;
+    }
+    return 0;
+}
+
+static void irc__swap(irc_cache *c, uint32_t i, uint32_t j, unsigned char *tmp)
+{
+    unsigned char *a = (unsigned char *)irc__rec_at(c, i), *b = (unsigned char *)irc__rec_at(c, j);
+    IRC_MEMCPY(tmp, a, c->rec_size);
+    IRC_MEMCPY(a, b, c->rec_size);
+    IRC_MEMCPY(b, tmp, c->rec_size);
+}
+
+static void irc__sift(irc_cache *c, uint32_t root, uint32_t n, unsigned char *tmp)
+{
+    for (;;) {
+        uint32_t child = 2 * root + 1;
+        if (child >= n)
+            return;
+        if (child + 1 < n && irc__order(c, (const unsigned char *)irc__rec_at(c, child),
+                                        (const unsigned char *)irc__rec_at(c, child + 1)) < 0)
+            child++;
+        if (irc__order(c, (const unsigned char *)irc__rec_at(c, root),
+                       (const unsigned char *)irc__rec_at(c, child)) >= 0)
+            return;
+        irc__swap(c, root, child, tmp);
+        root = child;
+    }
+}
+
+/* Heap sort in the record pool itself: no memory beyond one record. */
+static void irc__sort(irc_cache *c, uint32_t n)
+{
+    union { irc__rec head; unsigned char b[IRC__REC_MAX]; } tmp;
+    uint32_t i;
+    for (i = n / 2; i-- > 0;)
+        irc__sift(c, i, n, tmp.b);
+    for (i = n; i-- > 1;) {
+        irc__swap(c, 0, i, tmp.b);
+        irc__sift(c, 0, i, tmp.b);
+    }
+}
+
+int irc_merge(irc_cache *c, uint64_t fingerprint, const void *data, size_t size)
+{
+    const unsigned char *d = (const unsigned char *)data;
+    uint32_t count = 0, i, n, kept;
+    int st = irc__enter(c, NULL);
+    if (st < 0)
+        return st;
+    if (!data)
+        return IRC_ERR_NULL;
+    if (c->port->write_lock(irc__lock(c)) < 0)
+        return IRC_ERR_PORT;
+    if ((st = irc__snap_check(c, fingerprint, d, size, c->capacity - c->count, &count)) < 0) {
+        c->port->write_unlock(irc__lock(c));
+        return st;
+    }
+    n = c->count + count;
+    for (i = 0; i < count; i++)
+        irc__convert(c, d + IRC__SNAP_HEAD + (size_t)i * c->rec_size,
+                     (unsigned char *)irc__rec_at(c, c->count + i), 0);
+    irc__sort(c, n);
+    for (i = kept = 0; i < n; i++)
+        if (kept == 0 || irc__order(c, (const unsigned char *)irc__rec_at(c, kept - 1),
+                                    (const unsigned char *)irc__rec_at(c, i)) != 0) {
+            if (kept != i)
+                IRC_MEMCPY(irc__rec_at(c, kept), irc__rec_at(c, i), c->rec_size);
+            kept++;
+        }
+    /* The index and CLOCK start over from the canonical order. */
+    IRC_MEMSET(irc__rec_at(c, kept), 0, (size_t)(c->capacity - kept) * c->rec_size);
+    IRC_MEMSET(irc__next(c), 0, (size_t)c->capacity * sizeof(uint32_t));
+    IRC_MEMSET(irc__nodes(c), 0, (size_t)c->nodes_used * sizeof(irc__node));
+    if (c->o_used)
+        IRC_MEMSET(irc__used(c), 0, ((size_t)c->capacity + 63u) / 64u * sizeof(uint64_t));
+    irc__index_reset(c);
+    c->hand = 0;
+    c->count = kept;
+    for (i = 0; i < kept; i++)
+        irc__index_insert(c, i);
+    c->port->write_unlock(irc__lock(c));
+    return IRC_OK;
+}
