@@ -273,7 +273,10 @@ int irc__enter(const irc_cache *c, const irc__kind *want);
 int irc__compute(irc_cache *c, const irc__kind *want, const float p[3], const float n[3],
                  void *out, void *host, int (*fn)(irc__call *k, void *out), int record);
 int irc__insert(irc_cache *c, const irc__kind *want, const void *rec);
-void irc__clear_locked(irc_cache *c); /* the caller holds the write lock */
+/* The caller holds the write lock: forget drops the index, the list links
+ * and CLOCK's bits, keeping the records; clear drops the records too. */
+void irc__forget_locked(irc_cache *c);
+void irc__clear_locked(irc_cache *c);
 
 /* snapshot.c: the format's parts merge.c shares */
 #define IRC__SNAP_VERSION 1u
@@ -283,6 +286,7 @@ int irc__snap_check(const irc_cache *c, uint64_t fingerprint, const unsigned cha
                     size_t size, uint32_t room, uint32_t *count);
 void irc__convert(const irc_cache *c, const unsigned char *src, unsigned char *dst, int to_le);
 unsigned irc__field_width(const irc_cache *c, uint32_t at);
+uint64_t irc__native_get(const unsigned char *p, unsigned width);
 int irc__lookup(irc_cache *c, const irc__kind *want, const float p[3], const float n[3],
                 void *out, float *weight);
 int irc__lookup_or_compute(irc_cache *c, const irc__kind *want, float footprint, const float p[3],

@@ -6,21 +6,6 @@
  */
 #include "cache.h"
 
-/* A field of `width` bytes as an unsigned integer. */
-static uint64_t irc__field(const unsigned char *p, unsigned width)
-{
-    uint8_t b;
-    uint16_t h;
-    uint32_t w;
-    uint64_t d;
-    switch (width) {
-    case 1: IRC_MEMCPY(&b, p, 1); return b;
-    case 2: IRC_MEMCPY(&h, p, 2); return h;
-    case 4: IRC_MEMCPY(&w, p, 4); return w;
-    default: IRC_MEMCPY(&d, p, 8); return d;
-    }
-}
-
 /* The canonical order: field by field in the format's order, each field
  * compared as an unsigned integer of its width, so every machine sorts
  * alike whatever its byte order.  Returns <0, 0, >0. */
@@ -29,7 +14,7 @@ static int irc__order(const irc_cache *c, const unsigned char *a, const unsigned
     uint32_t at = 0;
     while (at < c->rec_size) {
         unsigned w = irc__field_width(c, at);
-        uint64_t x = irc__field(a + at, w), y = irc__field(b + at, w);
+        uint64_t x = irc__native_get(a + at, w), y = irc__native_get(b + at, w);
         if (x != y)
             return x < y ? -1 : 1;
         at += w;
@@ -104,12 +89,7 @@ int irc_merge(irc_cache *c, uint64_t fingerprint, const void *data, size_t size)
         }
     /* The index and CLOCK start over from the canonical order. */
     IRC_MEMSET(irc__rec_at(c, kept), 0, (size_t)(c->capacity - kept) * c->rec_size);
-    IRC_MEMSET(irc__next(c), 0, (size_t)c->capacity * sizeof(uint32_t));
-    IRC_MEMSET(irc__nodes(c), 0, (size_t)c->nodes_used * sizeof(irc__node));
-    if (c->o_used)
-        IRC_MEMSET(irc__used(c), 0, ((size_t)c->capacity + 63u) / 64u * sizeof(uint64_t));
-    irc__index_reset(c);
-    c->hand = 0;
+    irc__forget_locked(c);
     c->count = kept;
     for (i = 0; i < kept; i++)
         irc__index_insert(c, i);

@@ -42,7 +42,7 @@ static uint64_t irc__le_get(const unsigned char *src, unsigned width)
 }
 
 /* A native value of `width` bytes at p, as an integer (and back). */
-static uint64_t irc__native_get(const unsigned char *p, unsigned width)
+uint64_t irc__native_get(const unsigned char *p, unsigned width)
 {
     uint8_t b;
     uint16_t h;

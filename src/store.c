@@ -412,16 +412,21 @@ int irc_cache_neighbours(irc_cache *c, const float p[3], const float n[3],
     return IRC_OK;
 }
 
-void irc__clear_locked(irc_cache *c)
+void irc__forget_locked(irc_cache *c)
 {
-    c->count = 0;
     c->hand = 0;
-    IRC_MEMSET(irc__rec_at(c, 0), 0, (size_t)c->capacity * c->rec_size);
     IRC_MEMSET(irc__next(c), 0, (size_t)c->capacity * sizeof(uint32_t));
     IRC_MEMSET(irc__nodes(c), 0, (size_t)c->nodes_used * sizeof(irc__node));
     if (c->o_used)
         IRC_MEMSET(irc__used(c), 0, ((size_t)c->capacity + 63u) / 64u * sizeof(uint64_t));
     irc__index_reset(c);
+}
+
+void irc__clear_locked(irc_cache *c)
+{
+    c->count = 0;
+    IRC_MEMSET(irc__rec_at(c, 0), 0, (size_t)c->capacity * c->rec_size);
+    irc__forget_locked(c);
 }
 
 int irc_cache_clear(irc_cache *c)
