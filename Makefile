@@ -23,7 +23,8 @@ PIC = $(if $(filter none,$(PORT)),,-fPIC)
 
 SRC = src/status.c src/check.c src/config.c src/layout.c src/store.c src/kind_irr.c \
       src/kind_sh.c src/sampler.c src/irradiance.c src/octa.c src/weight.c src/index.c \
-      src/visibility.c src/hessian.c src/sh.c src/shgrad.c src/snapshot.c src/merge.c
+      src/visibility.c src/hessian.c src/sh.c src/shgrad.c src/snapshot.c src/merge.c \
+      src/pass.c
 # The chosen port, and the single-threaded one (it needs nothing).
 PORT_SRC = $(sort port/$(PORT)/irc_port.c port/none/irc_port.c) port/irc_port_default.c
 OBJ = $(SRC:%.c=$(BUILD)/%.o)
@@ -66,7 +67,7 @@ $(LIBSO): $(OBJ) $(PORT_OBJ)
 TEST_SRC = tests/main.c tests/harness.c tests/scenes.c tests/t_record.c tests/t_lookup.c \
            tests/t_index.c tests/t_api.c tests/t_threads.c tests/t_visibility.c tests/t_sh.c \
            tests/t_shrec.c tests/t_hard.c tests/t_store.c tests/t_embed.c tests/t_hessian.c \
-           tests/t_snapshot.c
+           tests/t_snapshot.c tests/t_pass.c
 # The tests exercise every threaded port; the library holds one of them.
 TEST_PORTS = $(filter-out $(PORT),posix c11)
 TEST_PORT_OBJ = $(TEST_PORTS:%=$(BUILD)/tests/port_%.o)

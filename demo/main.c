@@ -28,6 +28,10 @@ static const char usage[] =
     "  --max-radius R          cache maximum radius (default 0.1 x the diagonal of\n"
     "                          what the camera sees; 0: no bound)\n"
     "  --threads T             render threads (default: the machine's cores)\n"
+    "  --free-fill             threads store records as they make them (faster\n"
+    "                          to start, but the records depend on timing);\n"
+    "                          default: deterministic passes, every 8th pixel,\n"
+    "                          4th, 2nd, then the rest\n"
     "  --size WxH              override the scene's resolution\n"
     "  --indirect              show only the indirect term kd/pi E\n"
     "  --light-samples N       light samples at camera-ray hits (default 16)\n"
@@ -122,6 +126,7 @@ static int parse_args(int argc, char **argv, cli *c)
         else if (!strcmp(a, "--size")) NEED(sscanf(n, "%dx%d", &c->width, &c->height) == 2 && c->width > 0 && c->height > 0 && c->width <= 16384 && c->height <= 16384);
         else if (!strcmp(a, "--indirect")) c->o.show = SHOW_INDIRECT;
         else if (!strcmp(a, "--no-leak-guard")) c->o.no_leak_guard = 1;
+        else if (!strcmp(a, "--free-fill")) c->o.free_fill = 1;
         else if (!strcmp(a, "--light-samples")) { NEED(parse_uint(n, 0, 4096, &v)); c->o.light_samples = (int)v; }
         else if (!strcmp(a, "--seed")) { NEED(parse_uint(n, 0, 0x7fffffff, &v)); c->o.seed = (uint64_t)v; }
         else if (!strcmp(a, "--out")) { NEED(1); c->out = n; }

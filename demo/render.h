@@ -37,6 +37,11 @@ typedef struct render_opts {
     int stride;           /* > 1: shade only pixels whose x and y are
                              multiples of it (the rest stay 0), as for a
                              reference on a lattice */
+    int free_fill;        /* cache: threads insert records as they make
+                             them, so the records (and the image) depend on
+                             thread timing; 0: deterministic passes (every
+                             8th pixel, 4th, 2nd, then the rest, each an
+                             irc_pass_begin/irc_pass_end) */
 } render_opts;
 
 typedef struct render_stats {

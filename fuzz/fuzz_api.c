@@ -199,7 +199,17 @@ static int call(fuzz_in *in, irc_cache *c, uint32_t cap)
         check(s == IRC_OK && st.records <= cap);
         return s;
     default:
-        return fz_u8(in) < 16 ? irc_cache_clear(c) : IRC_OK;
+        k = fz_u8(in);
+        if (k < 16)
+            return irc_cache_clear(c);
+        if (k < 32)
+            return irc_pass_begin(c);
+        if (k < 48) {
+            s = irc_pass_end(c, &cnt);
+            check(s != IRC_OK || cnt <= cap);
+            return s;
+        }
+        return IRC_OK;
     }
 }
 

@@ -144,7 +144,11 @@ typedef enum irc_status {
                                  accuracy or strata than the cache's */
     IRC_ERR_FINGERPRINT = -17,/* a snapshot made for another scene (its
                                  fingerprint differs from the one given) */
-    IRC_ERR_LAST = -17        /* the most negative code the library returns */
+    IRC_ERR_STATE = -18,      /* a call the cache's state forbids: a fill pass
+                                 begun while one is open or ended when none
+                                 is; clear, snapshot read or merge while a
+                                 pass is open */
+    IRC_ERR_LAST = -18        /* the most negative code the library returns */
 } irc_status;
 
 /* A one-line English description of any status code (never NULL).  Thread
@@ -705,6 +709,41 @@ IRC_API int irc_snapshot_read(irc_cache *cache, uint64_t fingerprint, const void
  * Returns IRC_OK or a negative error code.
  */
 IRC_API int irc_merge(irc_cache *cache, uint64_t fingerprint, const void *data, size_t size);
+
+/* ------------------------------------------------------------------------ */
+/* Fill passes: the same records whatever the threads and their timing.    */
+
+/*
+ * Opens a fill pass.  Until irc_pass_end, every lookup (of any call, on any
+ * thread) sees the cache as it was here, frozen: records computed by
+ * lookup_or_compute misses and records given to insert are kept aside in
+ * free slots, not indexed, and the miss still returns the new record's
+ * value (weight 0).  So a pass's answers and the records it adds depend
+ * only on the cache it began with and on the set of queries made, never on
+ * their order or on how many threads made them (a record is a pure
+ * function of its query, the config and the host's callback).  A pass
+ * never evicts: once the free slots are taken, further records of the pass
+ * are not stored (IRC_NOT_STORED, IRC_ERR_FULL from insert, counted in
+ * irc_stats.not_stored), and which ones were kept then depends on timing:
+ * size the pool so that does not happen.  Within a pass, two misses close
+ * together both compute a record; coarse-to-fine passes (every 8th pixel,
+ * every 4th, ...) keep that rare.  Not concurrent with other calls on the
+ * cache.  Returns IRC_OK, IRC_ERR_STATE when a pass is already open, or a
+ * negative error code.
+ */
+IRC_API int irc_pass_begin(irc_cache *cache);
+
+/*
+ * Closes the open pass: its records, sorted in merge's canonical order
+ * (see irc_merge) with exact duplicates kept once, are inserted one by one
+ * in that order (neighbour clamping, when on, applies in that order too)
+ * and become visible.  *added (optional) gets how many.  Not concurrent
+ * with other calls on the cache: every thread of the pass must be done.
+ * Returns IRC_OK, IRC_ERR_STATE when no pass is open, or a negative error
+ * code.  While a pass is open, irc_cache_clear, irc_snapshot_read and
+ * irc_merge return IRC_ERR_STATE and change nothing.
+ */
+IRC_API int irc_pass_end(irc_cache *cache, uint32_t *added);
 /* ------------------------------------------------------------------------ */
 /* SH records (IRC_FEATURE_SH).                                              */
 /*

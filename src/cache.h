@@ -17,7 +17,7 @@
 
 /* What a block must agree on to be re-attached (irc_attach): the layout's
  * version, pointer and size_t widths, byte order. */
-#define IRC__LAYOUT_VERSION 3u
+#define IRC__LAYOUT_VERSION 4u
 #define IRC__ABI                                                           \
     (IRC__LAYOUT_VERSION | (uint32_t)sizeof(void *) << 8 |                 \
      (uint32_t)sizeof(size_t) << 16 | (uint32_t)sizeof(double) << 24)
@@ -175,10 +175,15 @@ struct irc_cache {
     uint32_t nodes_used;
     uint32_t hand;           /* CLOCK hand */
     uint32_t root_set;
+    uint32_t pass_open;      /* a fill pass is open (irc_pass_begin) */
+    uint32_t pass_base;      /* count when it opened: its records go to
+                                slots [pass_base, capacity) */
     double root_c[3];        /* the root cube: centre exact in double */
     double root_h;           /* half its edge, a power of two */
     /* Atomic. */
     uint64_t slots_busy;     /* bit t: scratch slot t in use */
+    uint64_t pending;        /* records deferred by the open pass (some may
+                                not have found a slot) */
     uint64_t ctr[IRC__C_COUNT];
 };
 
@@ -277,6 +282,15 @@ int irc__insert(irc_cache *c, const irc__kind *want, const void *rec);
  * and CLOCK's bits, keeping the records; clear drops the records too. */
 void irc__forget_locked(irc_cache *c);
 void irc__clear_locked(irc_cache *c);
+/* The caller holds the write lock: the record in slot id (below count)
+ * joins the index, clamped by its neighbours if the config asks. */
+void irc__commit_locked(irc_cache *c, uint32_t id);
+
+/* merge.c: the canonical order of packed records, and a heap sort of
+ * slots [first, first + n) by it */
+int irc__order(const irc_cache *c, const unsigned char *a, const unsigned char *b);
+void irc__sort(irc_cache *c, uint32_t first, uint32_t n);
+uint32_t irc__unique(irc_cache *c, uint32_t first, uint32_t n);
 
 /* snapshot.c: the format's parts merge.c shares */
 #define IRC__SNAP_VERSION 1u

@@ -9,7 +9,7 @@
 /* The canonical order: field by field in the format's order, each field
  * compared as an unsigned integer of its width, so every machine sorts
  * alike whatever its byte order.  Returns <0, 0, >0. */
-static int irc__order(const irc_cache *c, const unsigned char *a, const unsigned char *b)
+int irc__order(const irc_cache *c, const unsigned char *a, const unsigned char *b)
 {
     uint32_t at = 0;
     while (at < c->rec_size) {
@@ -22,42 +22,64 @@ static int irc__order(const irc_cache *c, const unsigned char *a, const unsigned
     return 0;
 }
 
+static unsigned char *irc__bytes(const irc_cache *c, uint32_t id)
+{
+    return (unsigned char *)irc__rec_at(c, id);
+}
+
 static void irc__swap(irc_cache *c, uint32_t i, uint32_t j, unsigned char *tmp)
 {
-    unsigned char *a = (unsigned char *)irc__rec_at(c, i), *b = (unsigned char *)irc__rec_at(c, j);
+    unsigned char *a = irc__bytes(c, i), *b = irc__bytes(c, j);
     IRC_MEMCPY(tmp, a, c->rec_size);
     IRC_MEMCPY(a, b, c->rec_size);
     IRC_MEMCPY(b, tmp, c->rec_size);
 }
 
-static void irc__sift(irc_cache *c, uint32_t root, uint32_t n, unsigned char *tmp)
+/* Heap positions are relative to first. */
+static void irc__sift(irc_cache *c, uint32_t first, uint32_t root, uint32_t n,
+                      unsigned char *tmp)
 {
     for (;;) {
         uint32_t child = 2 * root + 1;
         if (child >= n)
             return;
-        if (child + 1 < n && irc__order(c, (const unsigned char *)irc__rec_at(c, child),
-                                        (const unsigned char *)irc__rec_at(c, child + 1)) < 0)
+        if (child + 1 < n &&
+            irc__order(c, irc__bytes(c, first + child), irc__bytes(c, first + child + 1)) < 0)
             child++;
-        if (irc__order(c, (const unsigned char *)irc__rec_at(c, root),
-                       (const unsigned char *)irc__rec_at(c, child)) >= 0)
+        if (irc__order(c, irc__bytes(c, first + root), irc__bytes(c, first + child)) >= 0)
             return;
-        irc__swap(c, root, child, tmp);
+        irc__swap(c, first + root, first + child, tmp);
         root = child;
     }
 }
 
 /* Heap sort in the record pool itself: no memory beyond one record. */
-static void irc__sort(irc_cache *c, uint32_t n)
+void irc__sort(irc_cache *c, uint32_t first, uint32_t n)
 {
     union { irc__rec head; unsigned char b[IRC__REC_MAX]; } tmp;
     uint32_t i;
     for (i = n / 2; i-- > 0;)
-        irc__sift(c, i, n, tmp.b);
+        irc__sift(c, first, i, n, tmp.b);
     for (i = n; i-- > 1;) {
-        irc__swap(c, 0, i, tmp.b);
-        irc__sift(c, 0, i, tmp.b);
+        irc__swap(c, first, first + i, tmp.b);
+        irc__sift(c, first, 0, i, tmp.b);
     }
+}
+
+/* Sorted slots [first, first + n) with runs of equal records kept once,
+ * moved down; the slots freed are zeroed.  Returns the records kept. */
+uint32_t irc__unique(irc_cache *c, uint32_t first, uint32_t n)
+{
+    uint32_t i, kept;
+    for (i = kept = 0; i < n; i++)
+        if (kept == 0 ||
+            irc__order(c, irc__bytes(c, first + kept - 1), irc__bytes(c, first + i)) != 0) {
+            if (kept != i)
+                IRC_MEMCPY(irc__bytes(c, first + kept), irc__bytes(c, first + i), c->rec_size);
+            kept++;
+        }
+    IRC_MEMSET(irc__bytes(c, first + kept), 0, (size_t)(n - kept) * c->rec_size);
+    return kept;
 }
 
 int irc_merge(irc_cache *c, uint64_t fingerprint, const void *data, size_t size)
@@ -71,24 +93,21 @@ int irc_merge(irc_cache *c, uint64_t fingerprint, const void *data, size_t size)
         return IRC_ERR_NULL;
     if (c->port->write_lock(irc__lock(c)) < 0)
         return IRC_ERR_PORT;
-    if ((st = irc__snap_check(c, fingerprint, d, size, c->capacity - c->count, &count)) < 0) {
+    if (c->pass_open)
+        st = IRC_ERR_STATE;
+    else
+        st = irc__snap_check(c, fingerprint, d, size, c->capacity - c->count, &count);
+    if (st < 0) {
         c->port->write_unlock(irc__lock(c));
         return st;
     }
     n = c->count + count;
     for (i = 0; i < count; i++)
         irc__convert(c, d + IRC__SNAP_HEAD + (size_t)i * c->rec_size,
-                     (unsigned char *)irc__rec_at(c, c->count + i), 0);
-    irc__sort(c, n);
-    for (i = kept = 0; i < n; i++)
-        if (kept == 0 || irc__order(c, (const unsigned char *)irc__rec_at(c, kept - 1),
-                                    (const unsigned char *)irc__rec_at(c, i)) != 0) {
-            if (kept != i)
-                IRC_MEMCPY(irc__rec_at(c, kept), irc__rec_at(c, i), c->rec_size);
-            kept++;
-        }
+                     irc__bytes(c, c->count + i), 0);
+    irc__sort(c, 0, n);
+    kept = irc__unique(c, 0, n);
     /* The index and CLOCK start over from the canonical order. */
-    IRC_MEMSET(irc__rec_at(c, kept), 0, (size_t)(c->capacity - kept) * c->rec_size);
     irc__forget_locked(c);
     c->count = kept;
     for (i = 0; i < kept; i++)

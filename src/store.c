@@ -189,11 +189,35 @@ static void irc__clamp_neighbours(irc_cache *c, irc__rec *r)
         r->r = c->cfg.min_radius;
 }
 
+void irc__commit_locked(irc_cache *c, uint32_t id)
+{
+    if (c->cfg.clamp_neighbours)
+        irc__clamp_neighbours(c, irc__rec_at(c, id));
+    irc__index_insert(c, id);
+    irc__count(c, IRC__C_INSERTS, 1);
+}
+
+/* In an open pass a record waits, unindexed, in a slot of its own past the
+ * frozen records until irc_pass_end; the slot is reserved atomically, so
+ * no lock is taken and lookups, which see only indexed records, are not
+ * disturbed.  A pass never evicts (that would change what its lookups
+ * see): without a free slot the record is not stored. */
+static int irc__defer(irc_cache *c, const void *packed)
+{
+    uint64_t k = c->port->fetch_add(&c->pending, 1);
+    if (k >= (uint64_t)(c->capacity - c->pass_base))
+        return IRC_ERR_FULL;
+    IRC_MEMCPY(irc__rec_at(c, c->pass_base + (uint32_t)k), packed, c->rec_size);
+    return IRC_OK;
+}
+
 /* Stores a packed record (rec_size bytes, already checked) in a free slot,
  * or in CLOCK's victim. */
 static int irc__store(irc_cache *c, const void *packed)
 {
     uint32_t id;
+    if (c->pass_open)
+        return irc__defer(c, packed);
     if (c->port->write_lock(irc__lock(c)) < 0)
         return IRC_ERR_PORT;
     if (c->count < c->capacity) {
@@ -207,10 +231,7 @@ static int irc__store(irc_cache *c, const void *packed)
         return IRC_ERR_FULL;
     }
     IRC_MEMCPY(irc__rec_at(c, id), packed, c->rec_size);
-    if (c->cfg.clamp_neighbours)
-        irc__clamp_neighbours(c, irc__rec_at(c, id));
-    irc__index_insert(c, id);
-    irc__count(c, IRC__C_INSERTS, 1);
+    irc__commit_locked(c, id);
     c->port->write_unlock(irc__lock(c));
     return IRC_OK;
 }
@@ -436,9 +457,12 @@ int irc_cache_clear(irc_cache *c)
         return st;
     if (c->port->write_lock(irc__lock(c)) < 0)
         return IRC_ERR_PORT;
-    irc__clear_locked(c);
+    if (c->pass_open)
+        st = IRC_ERR_STATE;
+    else
+        irc__clear_locked(c);
     c->port->write_unlock(irc__lock(c));
-    return IRC_OK;
+    return st;
 }
 
 int irc_cache_stats(irc_cache *c, irc_stats *out)

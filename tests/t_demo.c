@@ -259,7 +259,82 @@ TEST(test_leak_scene)
     scene_free(&s);
 }
 
-#define TESTS(X) X(test_bvh_soup) X(test_bvh_shipped_scenes) X(test_reference_sphere_plane) X(test_leak_scene)
+/* One cache render of s with o; image into img, the cache's snapshot into
+ * *snap (malloc'd; its size returned, 0 on failure). */
+static size_t fill_render(scene *s, const render_opts *o, float *img, unsigned char **snap)
+{
+    renderer r;
+    render_stats st;
+    char err[256];
+    size_t bytes = 0;
+    *snap = NULL;
+    if (renderer_init(&r, s, o, err, sizeof err) < 0) {
+        CHECK(0, "%s", err);
+        return 0;
+    }
+    CHECK(render_image(&r, img, &st) == 0, "render");
+    if (irc_snapshot_size(r.cache, &bytes) == IRC_OK && (*snap = malloc(bytes)) != NULL &&
+        irc_snapshot_write(r.cache, 1u, *snap, bytes, NULL, NULL, NULL) != IRC_OK)
+        bytes = 0;
+    renderer_free(&r);
+    return bytes;
+}
+
+/* The demo's default fill (passes) on the Cornell box with 1, 2 and 3
+ * threads: the same image and the same cache, bit for bit, for
+ * irradiance records with gradients and Hessian and for SH records. */
+TEST(test_deterministic_fill)
+{
+    static const uint32_t feats[2] = {
+        IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION | IRC_FEATURE_HESSIAN,
+        IRC_FEATURE_SH | IRC_FEATURE_SH_GRADIENT};
+    scene s;
+    render_opts o;
+    char err[512];
+    const int w = 72, h = 64, n = w * h;
+    float *img[3];
+    unsigned char *snap[3];
+    size_t bytes[3];
+    int f, t;
+    if (scene_load("demo/scenes/cornell.scene", &s, err, sizeof err) < 0) {
+        CHECK(0, "%s", err);
+        return;
+    }
+    s.cam.width = w;
+    s.cam.height = h;
+    memset(&o, 0, sizeof o);
+    o.mode = MODE_CACHE;
+    o.accuracy = 0.3f;
+    o.strata_m = 8;
+    o.strata_n = 32;
+    o.max_records = 20000;
+    o.max_radius = -1.0f;
+    o.seed = 3;
+    o.light_samples = 1;
+    for (f = 0; f < 2; f++) {
+        o.features = feats[f];
+        for (t = 0; t < 3; t++) {
+            img[t] = calloc((size_t)n * 3, sizeof(float));
+            o.threads = t + 1;
+            bytes[t] = img[t] ? fill_render(&s, &o, img[t], &snap[t]) : 0;
+            CHECK(bytes[t] > 48 + 4 + 100 * 32, "features %x: %zu snapshot bytes", feats[f],
+                  bytes[t]);
+        }
+        for (t = 1; t < 3; t++) {
+            CHECK(bytes[t] && bytes[t] == bytes[0] && memcmp(snap[t], snap[0], bytes[0]) == 0,
+                  "features %x: the cache of %d threads differs from 1 thread's", feats[f], t + 1);
+            CHECK(img[t] && img[0] && memcmp(img[t], img[0], sizeof(float) * 3 * n) == 0,
+                  "features %x: the image of %d threads differs from 1 thread's", feats[f], t + 1);
+        }
+        for (t = 0; t < 3; t++) {
+            free(img[t]);
+            free(snap[t]);
+        }
+    }
+    scene_free(&s);
+}
+
+#define TESTS(X) X(test_bvh_soup) X(test_bvh_shipped_scenes) X(test_reference_sphere_plane) X(test_leak_scene) X(test_deterministic_fill)
 TESTS(TEST_DECL)
 
 int main(int argc, char **argv)

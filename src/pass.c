@@ -1,0 +1,59 @@
+/*
+ * pass.c -- fill passes: records made while a pass is open wait outside
+ * the index, so every lookup of the pass sees the same frozen cache, and
+ * join it at the end in the canonical order of merges.  The records a
+ * pass adds then depend only on the cache it began with and the queries
+ * made, not on how many threads made them or in what order.
+ */
+#include "cache.h"
+
+int irc_pass_begin(irc_cache *c)
+{
+    int st = irc__enter(c, NULL);
+    if (st < 0)
+        return st;
+    if (c->port->write_lock(irc__lock(c)) < 0)
+        return IRC_ERR_PORT;
+    if (c->pass_open) {
+        st = IRC_ERR_STATE;
+    } else {
+        c->pass_open = 1;
+        c->pass_base = c->count;
+        c->port->store(&c->pending, 0);
+    }
+    c->port->write_unlock(irc__lock(c));
+    return st;
+}
+
+int irc_pass_end(irc_cache *c, uint32_t *added)
+{
+    uint64_t pend;
+    uint32_t n, kept, i;
+    int st = irc__enter(c, NULL);
+    if (st < 0)
+        return st;
+    if (c->port->write_lock(irc__lock(c)) < 0)
+        return IRC_ERR_PORT;
+    if (!c->pass_open) {
+        c->port->write_unlock(irc__lock(c));
+        return IRC_ERR_STATE;
+    }
+    pend = c->port->load(&c->pending);
+    n = pend < (uint64_t)(c->capacity - c->pass_base) ? (uint32_t)pend
+                                                       : c->capacity - c->pass_base;
+    /* Slot order is the order threads happened to finish in; the
+     * canonical order is not.  Two queries that made the same record made
+     * it once as far as the cache is concerned. */
+    irc__sort(c, c->pass_base, n);
+    kept = irc__unique(c, c->pass_base, n);
+    for (i = 0; i < kept; i++) {
+        c->count = c->pass_base + i + 1;
+        irc__commit_locked(c, c->pass_base + i);
+    }
+    c->pass_open = 0;
+    c->port->store(&c->pending, 0);
+    c->port->write_unlock(irc__lock(c));
+    if (added)
+        *added = kept;
+    return IRC_OK;
+}
