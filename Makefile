@@ -204,6 +204,14 @@ $(BUILD)/bench_run: bench/bench.c $(DEMO_LIB_SRC) demo/*.h $(LIBA)
 bench: $(BUILD)/bench_run
 	sh bench/bench.sh $(BUILD)/bench_run
 
+# What deterministic fill passes cost over free-running fills (README:
+# "Deterministic fills"); about two minutes.
+$(BUILD)/bench_fill: bench/fill.c $(DEMO_LIB_SRC) demo/*.h $(LIBA)
+	$(CC) $(DEMO_CFLAGS) bench/fill.c $(DEMO_LIB_SRC) $(LIBA) -o $@ -lm -lpthread
+
+bench-fill: $(BUILD)/bench_fill
+	$(BUILD)/bench_fill
+
 install: all
 	install -d $(PREFIX)/include $(PREFIX)/lib
 	install -m 644 include/irrcache.h $(PREFIX)/include/
@@ -212,4 +220,4 @@ install: all
 clean:
 	rm -rf build build-*
 
-.PHONY: all lib examples test coverage demo fig15 sh-experiments fuzz replay bench-core bench install clean
+.PHONY: all lib examples test coverage demo fig15 sh-experiments fuzz replay bench-core bench bench-fill install clean

@@ -341,9 +341,11 @@ typedef struct job {
     renderer *r;
     cam_frame cf;
     float *rgb;
-    int next_row, rows_done, error;
-    int level, levels;    /* this pass, of levels = 4^bits */
-    int bits;             /* passes take pixels (1 << bits) apart */
+    int next, done, error;  /* the pass's next pixel; pixels done in all */
+    int level, levels;      /* this pass, of levels = 4^bits */
+    int bits;               /* passes take pixels (1 << bits) apart */
+    int open;               /* a pass of the cache is open */
+    pthread_barrier_t wall;
     double start, shown;
     tstate ts[64];
 } job;
@@ -351,18 +353,16 @@ typedef struct job {
 static void progress(job *j, int done)
 {
     double el = now() - j->start;
-    int h = j->r->s->cam.height * j->levels, bar = 40, k, n;
+    int all = j->r->s->cam.width * j->r->s->cam.height, bar = 40, k, n = (int)((double)done * bar / all);
     char line[64];
-    done += j->level * j->r->s->cam.height;
-    n = done * bar / h;
-    if (!j->r->o.progress || el < 1.0 || (done < h && el - j->shown < 0.25))
+    if (!j->r->o.progress || el < 1.0 || (done < all && el - j->shown < 0.25))
         return;
     j->shown = el;
     for (k = 0; k < bar; k++)
         line[k] = k < n ? '#' : '.';
     line[bar] = 0;
-    fprintf(stderr, "\r[%s] %3d%% %5.1fs", line, done * 100 / h, el);
-    if (done == h)
+    fprintf(stderr, "\r[%s] %3d%% %5.1fs", line, (int)(done * 100.0 / all), el);
+    if (done == all)
         fputc('\n', stderr);
 }
 
@@ -386,42 +386,58 @@ static void pass_offset(int k, int bits, int *ox, int *oy)
     }
 }
 
-/* Shades the pixels of row y that belong to this job's pass. */
-static int shade_row(job *j, int y, tstate *ts)
+/* Shades this thread's share of the pass's pixels, taken 8 at a time in
+ * scanline order of the pass's lattice. */
+static int shade_pass(job *j, tstate *ts, int id)
 {
     const camera *c = &j->r->s->cam;
-    const int step = j->r->o.stride > 1 ? j->r->o.stride : 1;
-    const int period = 1 << j->bits;
-    int x, st, ox, oy;
+    const int step = j->r->o.stride > 1 ? j->r->o.stride : 1, period = 1 << j->bits;
+    int ox, oy, nx, ny, m, st;
     pass_offset(j->level, j->bits, &ox, &oy);
-    if (y % step || y % period != oy)
-        return 0;
-    for (x = ox; x < c->width; x += period) {
-        if (x % step)
-            continue;
-        if ((st = shade_pixel(j->r, &j->cf, x, y, &j->rgb[((size_t)y * c->width + x) * 3], ts)) < 0)
-            return st;
+    nx = (c->width - ox + period - 1) / period;
+    ny = (c->height - oy + period - 1) / period;
+    while ((m = __atomic_fetch_add(&j->next, 8, __ATOMIC_RELAXED)) < nx * ny) {
+        int e = m + 8 < nx * ny ? m + 8 : nx * ny, done;
+        for (; m < e; m++) {
+            int x = ox + period * (m % nx), y = oy + period * (m / nx);
+            if (__atomic_load_n(&j->error, __ATOMIC_RELAXED))
+                return 0;
+            if (x % step || y % step)
+                continue;
+            st = shade_pixel(j->r, &j->cf, x, y, &j->rgb[((size_t)y * c->width + x) * 3], ts);
+            if (st < 0)
+                return st;
+        }
+        done = __atomic_add_fetch(&j->done, 8, __ATOMIC_RELAXED);
+        if (id == 0)
+            progress(j, done);
     }
     return 0;
 }
 
+/* Every thread runs every pass; between two, all wait while thread 0
+ * closes one pass and opens the next (a cache with passes). */
 static void *worker(void *arg)
 {
     job *j = ((warg *)arg)->j;
-    int id = ((warg *)arg)->id;
-    tstate *ts = &j->ts[id];
-    const camera *c = &j->r->s->cam;
-    for (;;) {
-        int y = __atomic_fetch_add(&j->next_row, 1, __ATOMIC_RELAXED), done, st;
-        if (y >= c->height || __atomic_load_n(&j->error, __ATOMIC_RELAXED))
-            break;
-        if ((st = shade_row(j, y, ts)) < 0) {
+    int id = ((warg *)arg)->id, level, st;
+    for (level = 0; level < j->levels; level++) {
+        if ((st = shade_pass(j, &j->ts[id], id)) < 0)
             __atomic_store_n(&j->error, st, __ATOMIC_RELAXED);
-            break;
+        pthread_barrier_wait(&j->wall);
+        if (id == 0) {
+            if (j->open && (st = irc_pass_end(j->r->cache, NULL)) < 0 && !j->error)
+                j->error = st;
+            j->open = 0;
+            if (j->bits && level + 1 < j->levels && !j->error) {
+                if ((st = irc_pass_begin(j->r->cache)) < 0)
+                    j->error = st;
+                j->open = st == IRC_OK;
+            }
+            j->next = 0;
+            j->level = level + 1;
         }
-        done = __atomic_add_fetch(&j->rows_done, 1, __ATOMIC_RELAXED);
-        if (id == 0)
-            progress(j, done);
+        pthread_barrier_wait(&j->wall);
     }
     return NULL;
 }
@@ -447,13 +463,43 @@ static void collect(renderer *r, const tstate *ts, int n, double wall, render_st
     }
 }
 
-/* One pass over the image's rows with n threads (the caller's is one). */
-static void run_pass(job *j, int n)
+int render_image(renderer *r, float *rgb, render_stats *st)
 {
+    job *j = calloc(1, sizeof *j);
     pthread_t th[64];
     warg args[64];
-    int t;
-    j->next_row = j->rows_done = 0;
+    int n = r->o.threads < 1 ? 1 : r->o.threads > 64 ? 64 : r->o.threads, e = 0, t;
+    const int passes = r->cache && !r->o.free_fill;
+    if (!j)
+        return -1;
+    j->r = r;
+    j->rgb = rgb;
+    j->start = now();
+    /* Passes of pixels P apart, coarse to fine, P^2 of them: the first
+     * passes place records far apart, later ones find most pixels served.
+     * Two misses of one pass both make records where one might have
+     * served, so P should exceed a record's reach in pixels, which grows
+     * with the image: P is the power of two nearest width / 24, in [8,
+     * 32].  It must not depend on the thread count.  (fig5 at 384 x 288:
+     * 19,798 records with P = 2, 6,331 with 4, 3,147 with 8, 2,550 with
+     * 16, 2,474 with 32; 3,002 filled freely.) */
+    j->bits = 3;
+    while (passes && j->bits < 5 && r->s->cam.width > 24 * (3 << j->bits) / 2)
+        j->bits++;
+    if (!passes)
+        j->bits = 0;
+    j->levels = 1 << (2 * j->bits);
+    camera_frame(&r->s->cam, &j->cf);
+    if (pthread_barrier_init(&j->wall, NULL, (unsigned)n) != 0) {
+        free(j);
+        return -1;
+    }
+    if (passes && (e = irc_pass_begin(r->cache)) < 0) {
+        pthread_barrier_destroy(&j->wall);
+        free(j);
+        return e;
+    }
+    j->open = passes;
     for (t = 0; t < n; t++) {
         args[t].j = j;
         args[t].id = t;
@@ -463,38 +509,9 @@ static void run_pass(job *j, int n)
     worker(&args[0]);
     for (t = 1; t < n; t++)
         pthread_join(th[t], NULL);
-}
-
-int render_image(renderer *r, float *rgb, render_stats *st)
-{
-    job *j = calloc(1, sizeof *j);
-    int n = r->o.threads < 1 ? 1 : r->o.threads > 64 ? 64 : r->o.threads, e = 0;
-    const int passes = r->cache && !r->o.free_fill;
-    if (!j)
-        return -1;
-    j->r = r;
-    j->rgb = rgb;
-    j->start = now();
-    /* 64 passes of pixels 8 apart, coarse to fine: the first passes place
-     * records far apart, later ones find most pixels served.  Two misses
-     * of one pass both make records where one might have served, so a
-     * pass must not hold pixels close together (the Cornell box at 128 x
-     * 128: 5,659 records with 4 levels of strides 8, 4, 2, 1; 3,308 with
-     * 16 passes 4 apart; 3,272 with these 64; 3,713 filled freely). */
-    j->bits = passes ? 3 : 0;
-    j->levels = 1 << (2 * j->bits);
-    camera_frame(&r->s->cam, &j->cf);
-    for (j->level = 0; j->level < j->levels && !e; j->level++) {
-        if (passes && (e = irc_pass_begin(r->cache)) < 0)
-            break;
-        run_pass(j, n);
-        e = j->error;
-        if (passes) {
-            int pe = irc_pass_end(r->cache, NULL);
-            e = e < 0 ? e : pe;
-        }
-    }
+    pthread_barrier_destroy(&j->wall);
     collect(r, j->ts, n, now() - j->start, st);
+    e = j->error;
     free(j);
     return e;
 }
