@@ -461,6 +461,31 @@ IRC_API int irc_init(const irc_config *cfg, uint32_t max_records, irc_cache **ca
 IRC_API int irc_attach(const irc_config *cfg, irc_cache **cache);
 
 /*
+ * Share a block live between processes on one machine: one process makes
+ * the cache (irc_init) in memory every process maps (a file or shm object
+ * mapped MAP_SHARED); each other process joins it with irc_join, which
+ * builds that process's view of it in view (view_size >= IRC_VIEW_BYTES,
+ * aligned for a double; process-local memory the caller keeps until
+ * irc_fini of the view).  The view holds this process's callback, context
+ * and port (cfg->trace, cfg->context, cfg->port), so each process's misses
+ * call its own host; records, index, counters, passes and the lock are the
+ * block's, shared.  cfg->buffer is this process's mapping of the block,
+ * which may sit at another address than the creator's but at the same
+ * offset from a 64-byte boundary (mappings are page aligned, so any mmap
+ * does); the port must be the creator's (the posix port's lock is
+ * process-shared; port/none shares nothing safely).  irc_fini of a view
+ * releases the view only; the creator's irc_fini, after every view's,
+ * destroys the lock.  A process that dies holding the lock leaves the
+ * others waiting: share among processes that end cleanly.  Returns
+ * IRC_OK and writes *cache; IRC_ERR_CONFIG when the block holds no cache
+ * of this build, sits at another offset, or the port differs;
+ * IRC_ERR_NOMEM when view_size is too small or buffer_size smaller than
+ * the cache; or a negative error code.  The block is never written.
+ */
+#define IRC_VIEW_BYTES 1024u
+IRC_API int irc_join(const irc_config *cfg, void *view, size_t view_size, irc_cache **cache);
+
+/*
  * Release what the port holds (the lock).  The block is the caller's again
  * afterwards.  Returns IRC_OK, or a negative error code on failure.
  */

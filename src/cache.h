@@ -17,7 +17,7 @@
 
 /* What a block must agree on to be re-attached (irc_attach): the layout's
  * version, pointer and size_t widths, byte order. */
-#define IRC__LAYOUT_VERSION 4u
+#define IRC__LAYOUT_VERSION 5u
 #define IRC__ABI                                                           \
     (IRC__LAYOUT_VERSION | (uint32_t)sizeof(void *) << 8 |                 \
      (uint32_t)sizeof(size_t) << 16 | (uint32_t)sizeof(double) << 24)
@@ -153,6 +153,14 @@ struct irc_cache {
                                 buffer are attached */
     const irc__kind *kind;   /* attached */
     const irc_port *port;    /* attached: cfg.port */
+    irc_cache *home;         /* attached: the cache in the block, through
+                                which every part and all mutable state are
+                                reached: itself, or for a view (irc_join)
+                                the shared block's cache as this process
+                                maps it */
+    uint32_t view;           /* a process's view of a shared block */
+    char port_name[16];      /* the port that made the lock (views must
+                                use the same) */
     uint32_t rec_size;       /* packed record bytes */
     uint32_t off_t, off_r;   /* byte offsets of the gradients, 0 = absent */
     uint32_t off_a;          /* byte offset of the ellipse, 0 = absent */
@@ -168,9 +176,9 @@ struct irc_cache {
     size_t lock_bytes;       /* room reserved for the port's lock */
     size_t slot_bytes;       /* scratch bytes per thread slot */
     size_t total_bytes;      /* bytes of the block in use from the cache on */
-    /* Offsets from the cache's own address. */
+    /* Offsets from the address of home. */
     size_t o_lock, o_scratch, o_records, o_next, o_nodes, o_used; /* o_used 0: no CLOCK */
-    /* Mutable under the write lock. */
+    /* Mutable under the write lock; read and written through home. */
     uint32_t count;          /* records in slots [0, count) */
     uint32_t nodes_used;
     uint32_t hand;           /* CLOCK hand */
@@ -189,7 +197,7 @@ struct irc_cache {
 
 static inline unsigned char *irc__part(const irc_cache *c, size_t off)
 {
-    return (unsigned char *)(uintptr_t)c + off;
+    return (unsigned char *)(uintptr_t)c->home + off;
 }
 
 static inline void *irc__lock(const irc_cache *c) { return irc__part(c, c->o_lock); }

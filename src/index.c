@@ -44,8 +44,8 @@ static void irc__node_empty(irc__node *n)
 void irc__index_reset(irc_cache *c)
 {
     irc__node_empty(&irc__nodes(c)[0]);
-    c->nodes_used = 1;
-    c->root_set = 0;
+    c->home->nodes_used = 1;
+    c->home->root_set = 0;
 }
 
 static double irc__reach(const irc_cache *c, uint32_t id)
@@ -74,21 +74,21 @@ static void irc__child_cube(const irc__cube *q, int oct, irc__cube *out)
 
 static uint32_t irc__block_alloc(irc_cache *c)
 {
-    uint32_t b = c->nodes_used, i;
+    uint32_t b = c->home->nodes_used, i;
     if (c->node_cap - b < 8u)
         return 0;
     for (i = 0; i < 8; i++)
         irc__node_empty(&irc__nodes(c)[b + i]);
-    c->nodes_used += 8;
+    c->home->nodes_used += 8;
     return b;
 }
 
 static void irc__root_cube(const irc_cache *c, irc__cube *q)
 {
-    q->c[0] = c->root_c[0];
-    q->c[1] = c->root_c[1];
-    q->c[2] = c->root_c[2];
-    q->h = c->root_h;
+    q->c[0] = c->home->root_c[0];
+    q->c[1] = c->home->root_c[1];
+    q->c[2] = c->home->root_c[2];
+    q->h = c->home->root_h;
 }
 
 static void irc__push(irc_cache *c, irc__node *n, uint32_t id, double reach)
@@ -177,16 +177,16 @@ static void irc__root_fit(irc_cache *c, const double lo[3], const double hi[3])
     if (irc__max3(ext) > m) m = irc__max3(ext);
     if (m < 1e-30) m = 1e-30;
     IRC_FREXP(m, &e);
-    c->root_h = IRC_LDEXP(1.0, e);
+    c->home->root_h = IRC_LDEXP(1.0, e);
     for (i = 0; i < 3; i++)
-        c->root_c[i] = irc__cell_centre(mid[i], c->root_h);
+        c->home->root_c[i] = irc__cell_centre(mid[i], c->home->root_h);
     for (;;) {
         for (i = 0; i < 3; i++)
-            if (lo[i] < c->root_c[i] - c->root_h || hi[i] > c->root_c[i] + c->root_h)
+            if (lo[i] < c->home->root_c[i] - c->home->root_h || hi[i] > c->home->root_c[i] + c->home->root_h)
                 break;
         if (i == 3)
             return;
-        c->root_h *= 2.0;
+        c->home->root_h *= 2.0;
     }
 }
 
@@ -216,16 +216,16 @@ static int irc__grow(irc_cache *c, const float p[3])
     uint32_t b, id, nid, keep = IRC__NIL;
     irc__node *was, *nodes;
     int i, oct = 0;
-    if (2.0 * c->root_h > IRC__ROOT_MAX || !(b = irc__block_alloc(c)))
+    if (2.0 * c->home->root_h > IRC__ROOT_MAX || !(b = irc__block_alloc(c)))
         return 0;
     nodes = irc__nodes(c);
     irc__root_cube(c, &old);
     for (i = 0; i < 3; i++) {
         int below = p[i] < old.c[i];
         oct |= below << i;
-        c->root_c[i] = old.c[i] + (below ? -old.h : old.h);
+        c->home->root_c[i] = old.c[i] + (below ? -old.h : old.h);
     }
-    c->root_h = 2.0 * old.h;
+    c->home->root_h = 2.0 * old.h;
     was = &nodes[b + (uint32_t)oct];
     *was = nodes[0];
     irc__node_empty(&nodes[0]);
@@ -251,11 +251,11 @@ static int irc__grow(irc_cache *c, const float p[3])
 static void irc__root_cover(irc_cache *c, const float p[3])
 {
     irc__cube q;
-    if (!c->root_set) {
+    if (!c->home->root_set) {
         double at[3];
         at[0] = p[0]; at[1] = p[1]; at[2] = p[2];
         irc__root_fit(c, at, at);
-        c->root_set = 1;
+        c->home->root_set = 1;
     }
     irc__root_cube(c, &q);
     if (irc__inside(&q, p))
@@ -362,7 +362,7 @@ void irc__index_query(const irc_cache *c, const float p[3], irc__visit_fn fn,
                       void *ud)
 {
     irc__cube q;
-    if (!c->root_set)
+    if (!c->home->root_set)
         return;
     irc__root_cube(c, &q);
     irc__query_node(c, &irc__nodes(c)[0], &q, p, -1.0, 1.0, fn, ud);
@@ -374,7 +374,7 @@ void irc__index_range(const irc_cache *c, const float p[3], double range, irc__v
                       void *ud)
 {
     irc__cube q;
-    if (!c->root_set)
+    if (!c->home->root_set)
         return;
     irc__root_cube(c, &q);
     irc__query_node(c, &irc__nodes(c)[0], &q, p, range, 1.0 / c->cfg.accuracy, fn, ud);

@@ -147,6 +147,18 @@ static void irc__attach_pointers(irc_cache *c, const irc_config *cfg, const irc_
     c->cfg.buffer = cfg->buffer;
     c->cfg.buffer_size = cfg->buffer_size;
     c->kind = c->kind_id == IRC__KIND_SH ? &irc__kind_sh : &irc__kind_irr;
+    c->home = c;
+    c->view = 0;
+}
+
+/* The port's name as the block keeps it, to tell whether a view's port
+ * makes the same kind of lock. */
+static void irc__port_name(const irc_port *port, char out[16])
+{
+    size_t i;
+    IRC_MEMSET(out, 0, 16);
+    for (i = 0; i < 15 && port->name && port->name[i]; i++)
+        out[i] = port->name[i];
 }
 
 static void irc__set_parts(irc_cache *c, const irc__layout *l)
@@ -206,6 +218,7 @@ int irc_init(const irc_config *cfg, uint32_t max_records, irc_cache **out)
         c->sh_n = r.sh_bands * r.sh_bands;
         c->sh_ch = r.sh_channels;
     }
+    irc__port_name(c->port, c->port_name);
     irc__index_reset(c);
     if (c->port->lock_init(irc__lock(c)) < 0)
         return IRC_ERR_PORT;
@@ -252,10 +265,11 @@ int irc_attach(const irc_config *cfg, irc_cache **out)
         IRC_MEMMOVE(c, (unsigned char *)cfg->buffer + was, head.total_bytes);
     *(unsigned char *)cfg->buffer = (unsigned char)pad;
     irc__attach_pointers(c, cfg, port);
+    irc__port_name(port, c->port_name);
     /* The copied lock object is the old address's: made anew.  Nothing
      * holds it, and no slot is busy, in a block at rest. */
     IRC_MEMSET(irc__lock(c), 0, c->lock_bytes);
-    c->slots_busy = 0;
+    c->home->slots_busy = 0;
     /* A lock that cannot be made leaves the block moved but whole:
      * irc_attach may be called again. */
     if (port->lock_init(irc__lock(c)) < 0)
@@ -264,12 +278,55 @@ int irc_attach(const irc_config *cfg, irc_cache **out)
     return IRC_OK;
 }
 
+/* A view is a copy of the cache's header: it must fit the room the header
+ * promises (C99 has no static_assert: a negative array size stops the
+ * build). */
+typedef char irc__view_fits[sizeof(irc_cache) <= IRC_VIEW_BYTES ? 1 : -1];
+
+static int irc__same_name(const char a[16], const char b[16])
+{
+    int i;
+    for (i = 0; i < 16 && a[i] == b[i]; i++)
+        ;
+    return i == 16;
+}
+
+int irc_join(const irc_config *cfg, void *view, size_t view_size, irc_cache **out)
+{
+    irc_cache head, *home, *v = (irc_cache *)view;
+    const irc_port *port;
+    char name[16];
+    size_t at;
+    int st;
+    if (!cfg || !out || !cfg->buffer || !cfg->trace || !view)
+        return IRC_ERR_NULL;
+    if (view_size < sizeof *v || ((uintptr_t)view & (sizeof(double) - 1u)))
+        return IRC_ERR_NOMEM;
+    port = cfg->port ? cfg->port : irc_port_default;
+    if ((st = irc__find(cfg, &at, &head)) < 0)
+        return st;
+    irc__port_name(port, name);
+    /* A live block cannot move: this mapping must put the cache where the
+     * others do, at the same offset from a 64-byte boundary. */
+    if (at != irc__pad(cfg->buffer) || !irc__port_ok(port) ||
+        port->lock_size > head.lock_bytes || !irc__same_name(name, head.port_name))
+        return IRC_ERR_CONFIG;
+    home = (irc_cache *)(void *)((unsigned char *)cfg->buffer + at);
+    IRC_MEMCPY(v, home, sizeof *v);
+    irc__attach_pointers(v, cfg, port);
+    v->home = home;
+    v->view = 1;
+    *out = v;
+    return IRC_OK;
+}
+
 int irc_fini(irc_cache *c)
 {
     int st = irc__enter(c, NULL);
     if (st < 0)
         return st;
-    c->port->lock_destroy(irc__lock(c));
+    if (!c->view)
+        c->port->lock_destroy(irc__lock(c));
     c->magic = 0;
     return IRC_OK;
 }

@@ -93,23 +93,23 @@ int irc_merge(irc_cache *c, uint64_t fingerprint, const void *data, size_t size)
         return IRC_ERR_NULL;
     if (c->port->write_lock(irc__lock(c)) < 0)
         return IRC_ERR_PORT;
-    if (c->pass_open)
+    if (c->home->pass_open)
         st = IRC_ERR_STATE;
     else
-        st = irc__snap_check(c, fingerprint, d, size, c->capacity - c->count, &count);
+        st = irc__snap_check(c, fingerprint, d, size, c->capacity - c->home->count, &count);
     if (st < 0) {
         c->port->write_unlock(irc__lock(c));
         return st;
     }
-    n = c->count + count;
+    n = c->home->count + count;
     for (i = 0; i < count; i++)
         irc__convert(c, d + IRC__SNAP_HEAD + (size_t)i * c->rec_size,
-                     irc__bytes(c, c->count + i), 0);
+                     irc__bytes(c, c->home->count + i), 0);
     irc__sort(c, 0, n);
     kept = irc__unique(c, 0, n);
     /* The index and CLOCK start over from the canonical order. */
     irc__forget_locked(c);
-    c->count = kept;
+    c->home->count = kept;
     for (i = 0; i < kept; i++)
         irc__index_insert(c, i);
     c->port->write_unlock(irc__lock(c));

@@ -14,12 +14,12 @@ int irc_pass_begin(irc_cache *c)
         return st;
     if (c->port->write_lock(irc__lock(c)) < 0)
         return IRC_ERR_PORT;
-    if (c->pass_open) {
+    if (c->home->pass_open) {
         st = IRC_ERR_STATE;
     } else {
-        c->pass_open = 1;
-        c->pass_base = c->count;
-        c->port->store(&c->pending, 0);
+        c->home->pass_open = 1;
+        c->home->pass_base = c->home->count;
+        c->port->store(&c->home->pending, 0);
     }
     c->port->write_unlock(irc__lock(c));
     return st;
@@ -34,24 +34,24 @@ int irc_pass_end(irc_cache *c, uint32_t *added)
         return st;
     if (c->port->write_lock(irc__lock(c)) < 0)
         return IRC_ERR_PORT;
-    if (!c->pass_open) {
+    if (!c->home->pass_open) {
         c->port->write_unlock(irc__lock(c));
         return IRC_ERR_STATE;
     }
-    pend = c->port->load(&c->pending);
-    n = pend < (uint64_t)(c->capacity - c->pass_base) ? (uint32_t)pend
-                                                       : c->capacity - c->pass_base;
+    pend = c->port->load(&c->home->pending);
+    n = pend < (uint64_t)(c->capacity - c->home->pass_base) ? (uint32_t)pend
+                                                       : c->capacity - c->home->pass_base;
     /* Slot order is the order threads happened to finish in; the
      * canonical order is not.  Two queries that made the same record made
      * it once as far as the cache is concerned. */
-    irc__sort(c, c->pass_base, n);
-    kept = irc__unique(c, c->pass_base, n);
+    irc__sort(c, c->home->pass_base, n);
+    kept = irc__unique(c, c->home->pass_base, n);
     for (i = 0; i < kept; i++) {
-        c->count = c->pass_base + i + 1;
-        irc__commit_locked(c, c->pass_base + i);
+        c->home->count = c->home->pass_base + i + 1;
+        irc__commit_locked(c, c->home->pass_base + i);
     }
-    c->pass_open = 0;
-    c->port->store(&c->pending, 0);
+    c->home->pass_open = 0;
+    c->port->store(&c->home->pending, 0);
     c->port->write_unlock(irc__lock(c));
     if (added)
         *added = kept;

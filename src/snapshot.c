@@ -110,7 +110,7 @@ static void irc__header(const irc_cache *c, uint64_t fingerprint, unsigned char 
     irc__le_put(h + 4, IRC__SNAP_VERSION, 2);
     irc__le_put(h + 6, c->kind_id, 2);
     irc__le_put(h + 8, c->cfg.features, 4);
-    irc__le_put(h + 12, c->count, 4);
+    irc__le_put(h + 12, c->home->count, 4);
     irc__le_put(h + 16, c->rec_size, 4);
     irc__le_put(h + 20, c->sh_n ? c->cfg.sh_bands : 0u, 2);
     irc__le_put(h + 22, c->sh_ch, 2);
@@ -136,7 +136,7 @@ int irc_snapshot_size(irc_cache *c, size_t *bytes)
         return IRC_ERR_NULL;
     if (c->port->read_lock(irc__lock(c)) < 0)
         return IRC_ERR_PORT;
-    n = irc__snap_bytes(c, c->count);
+    n = irc__snap_bytes(c, c->home->count);
     c->port->read_unlock(irc__lock(c));
     if (n > (uint64_t)(size_t)-1)
         return IRC_ERR_NOMEM;
@@ -172,7 +172,7 @@ static int irc__write_locked(irc_cache *c, uint64_t fingerprint, unsigned char *
     irc__header(c, fingerprint, buf.b);
     if ((st = irc__emit(fn, ctx, out, &at, buf.b, IRC__SNAP_HEAD, &crc)) < 0)
         return st;
-    for (id = 0; id < c->count; id++) {
+    for (id = 0; id < c->home->count; id++) {
         irc__convert(c, (const unsigned char *)irc__rec_at(c, id), buf.b, 1);
         if ((st = irc__emit(fn, ctx, out, &at, buf.b, c->rec_size, &crc)) < 0)
             return st;
@@ -195,7 +195,7 @@ int irc_snapshot_write(irc_cache *c, uint64_t fingerprint, void *buffer, size_t 
         return IRC_ERR_NULL;
     if (c->port->read_lock(irc__lock(c)) < 0)
         return IRC_ERR_PORT;
-    if (!write && irc__snap_bytes(c, c->count) > (uint64_t)size)
+    if (!write && irc__snap_bytes(c, c->home->count) > (uint64_t)size)
         st = IRC_ERR_NOMEM;
     else
         st = irc__write_locked(c, fingerprint, (unsigned char *)buffer, write, context, written);
@@ -285,7 +285,7 @@ int irc_snapshot_read(irc_cache *c, uint64_t fingerprint, const void *data, size
         return st;
     if (c->port->write_lock(irc__lock(c)) < 0)
         return IRC_ERR_PORT;
-    if (c->pass_open) {
+    if (c->home->pass_open) {
         c->port->write_unlock(irc__lock(c));
         return IRC_ERR_STATE;
     }
@@ -293,7 +293,7 @@ int irc_snapshot_read(irc_cache *c, uint64_t fingerprint, const void *data, size
     for (i = 0; i < count; i++) {
         irc__convert(c, d + IRC__SNAP_HEAD + (size_t)i * c->rec_size,
                      (unsigned char *)irc__rec_at(c, i), 0);
-        c->count = i + 1;
+        c->home->count = i + 1;
         irc__index_insert(c, i);
     }
     c->port->write_unlock(irc__lock(c));

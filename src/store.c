@@ -56,7 +56,7 @@ static int irc__open(const irc_cache *c, const irc__kind *want, const void *out,
 
 void irc__count(irc_cache *c, int which, uint64_t v)
 {
-    c->port->fetch_add(&c->ctr[which], v);
+    c->port->fetch_add(&c->home->ctr[which], v);
 }
 
 /* Claims a free scratch slot (index in *t).  When all are taken it waits
@@ -65,12 +65,12 @@ void irc__count(irc_cache *c, int which, uint64_t v)
 static int irc__slot_claim(irc_cache *c, uint32_t *t, int *waited)
 {
     for (;;) {
-        uint64_t busy = c->port->load(&c->slots_busy);
+        uint64_t busy = c->port->load(&c->home->slots_busy);
         uint32_t i;
         for (i = 0; i < c->cfg.threads && (busy >> i & 1u); i++)
             ;
         if (i < c->cfg.threads) {
-            if (c->port->cas(&c->slots_busy, busy, busy | (1ull << i))) {
+            if (c->port->cas(&c->home->slots_busy, busy, busy | (1ull << i))) {
                 *t = i;
                 return IRC_OK;
             }
@@ -91,8 +91,8 @@ static void irc__slot_release(irc_cache *c, uint32_t t)
     uint64_t busy;
     IRC_MEMSET(irc__slot(c, t), 0, c->slot_bytes);
     do
-        busy = c->port->load(&c->slots_busy);
-    while (!c->port->cas(&c->slots_busy, busy, busy & ~(1ull << t)));
+        busy = c->port->load(&c->home->slots_busy);
+    while (!c->port->cas(&c->home->slots_busy, busy, busy & ~(1ull << t)));
 }
 
 /* Runs fn with slot t, then gives the slot back. */
@@ -139,9 +139,9 @@ static uint32_t irc__clock_victim(irc_cache *c)
 {
     uint64_t *used = irc__used(c);
     for (;;) {
-        uint32_t id = c->hand;
+        uint32_t id = c->home->hand;
         uint64_t *w = &used[id >> 6], bit = 1ull << (id & 63u);
-        c->hand = id + 1 == c->capacity ? 0 : id + 1;
+        c->home->hand = id + 1 == c->capacity ? 0 : id + 1;
         if (!(c->port->load(w) & bit))
             return id;
         c->port->store(w, c->port->load(w) & ~bit);
@@ -204,10 +204,10 @@ void irc__commit_locked(irc_cache *c, uint32_t id)
  * see): without a free slot the record is not stored. */
 static int irc__defer(irc_cache *c, const void *packed)
 {
-    uint64_t k = c->port->fetch_add(&c->pending, 1);
-    if (k >= (uint64_t)(c->capacity - c->pass_base))
+    uint64_t k = c->port->fetch_add(&c->home->pending, 1);
+    if (k >= (uint64_t)(c->capacity - c->home->pass_base))
         return IRC_ERR_FULL;
-    IRC_MEMCPY(irc__rec_at(c, c->pass_base + (uint32_t)k), packed, c->rec_size);
+    IRC_MEMCPY(irc__rec_at(c, c->home->pass_base + (uint32_t)k), packed, c->rec_size);
     return IRC_OK;
 }
 
@@ -216,12 +216,12 @@ static int irc__defer(irc_cache *c, const void *packed)
 static int irc__store(irc_cache *c, const void *packed)
 {
     uint32_t id;
-    if (c->pass_open)
+    if (c->home->pass_open)
         return irc__defer(c, packed);
     if (c->port->write_lock(irc__lock(c)) < 0)
         return IRC_ERR_PORT;
-    if (c->count < c->capacity) {
-        id = c->count++;
+    if (c->home->count < c->capacity) {
+        id = c->home->count++;
     } else if (c->o_used) {
         id = irc__clock_victim(c);
         irc__index_remove(c, id);
@@ -405,7 +405,7 @@ int irc__record_get(irc_cache *c, const irc__kind *want, uint32_t id, void *out)
         return IRC_ERR_RANGE;
     if (c->port->read_lock(irc__lock(c)) < 0)
         return IRC_ERR_PORT;
-    st = id < c->count ? IRC_OK : IRC_MISS;
+    st = id < c->home->count ? IRC_OK : IRC_MISS;
     if (st == IRC_OK)
         c->kind->unpack(c, irc__rec_at(c, id), out);
     c->port->read_unlock(irc__lock(c));
@@ -435,9 +435,9 @@ int irc_cache_neighbours(irc_cache *c, const float p[3], const float n[3],
 
 void irc__forget_locked(irc_cache *c)
 {
-    c->hand = 0;
+    c->home->hand = 0;
     IRC_MEMSET(irc__next(c), 0, (size_t)c->capacity * sizeof(uint32_t));
-    IRC_MEMSET(irc__nodes(c), 0, (size_t)c->nodes_used * sizeof(irc__node));
+    IRC_MEMSET(irc__nodes(c), 0, (size_t)c->home->nodes_used * sizeof(irc__node));
     if (c->o_used)
         IRC_MEMSET(irc__used(c), 0, ((size_t)c->capacity + 63u) / 64u * sizeof(uint64_t));
     irc__index_reset(c);
@@ -445,7 +445,7 @@ void irc__forget_locked(irc_cache *c)
 
 void irc__clear_locked(irc_cache *c)
 {
-    c->count = 0;
+    c->home->count = 0;
     IRC_MEMSET(irc__rec_at(c, 0), 0, (size_t)c->capacity * c->rec_size);
     irc__forget_locked(c);
 }
@@ -457,7 +457,7 @@ int irc_cache_clear(irc_cache *c)
         return st;
     if (c->port->write_lock(irc__lock(c)) < 0)
         return IRC_ERR_PORT;
-    if (c->pass_open)
+    if (c->home->pass_open)
         st = IRC_ERR_STATE;
     else
         irc__clear_locked(c);
@@ -475,18 +475,18 @@ int irc_cache_stats(irc_cache *c, irc_stats *out)
     if (c->port->read_lock(irc__lock(c)) < 0)
         return IRC_ERR_PORT;
     IRC_MEMSET(out, 0, sizeof *out);
-    out->records = c->count;
-    out->index_nodes = c->nodes_used;
+    out->records = c->home->count;
+    out->index_nodes = c->home->nodes_used;
     c->port->read_unlock(irc__lock(c));
     out->capacity = c->capacity;
-    out->inserts = c->port->load(&c->ctr[IRC__C_INSERTS]);
-    out->evictions = c->port->load(&c->ctr[IRC__C_EVICTIONS]);
-    out->lookups = c->port->load(&c->ctr[IRC__C_LOOKUPS]);
-    out->hits = c->port->load(&c->ctr[IRC__C_HITS]);
-    out->computes = c->port->load(&c->ctr[IRC__C_COMPUTES]);
-    out->not_stored = c->port->load(&c->ctr[IRC__C_NOT_STORED]);
-    out->waits = c->port->load(&c->ctr[IRC__C_WAITS]);
-    out->rays = c->port->load(&c->ctr[IRC__C_RAYS]);
+    out->inserts = c->port->load(&c->home->ctr[IRC__C_INSERTS]);
+    out->evictions = c->port->load(&c->home->ctr[IRC__C_EVICTIONS]);
+    out->lookups = c->port->load(&c->home->ctr[IRC__C_LOOKUPS]);
+    out->hits = c->port->load(&c->home->ctr[IRC__C_HITS]);
+    out->computes = c->port->load(&c->home->ctr[IRC__C_COMPUTES]);
+    out->not_stored = c->port->load(&c->home->ctr[IRC__C_NOT_STORED]);
+    out->waits = c->port->load(&c->home->ctr[IRC__C_WAITS]);
+    out->rays = c->port->load(&c->home->ctr[IRC__C_RAYS]);
     out->index_nodes_max = c->node_cap;
     out->record_bytes = c->rec_size;
     out->bytes_records = (size_t)c->capacity * c->rec_size;

@@ -11,9 +11,20 @@
 #error "port/posix needs GCC or Clang __atomic builtins; use port/c11 with another compiler"
 #endif
 
+/* Process-shared, so that processes mapping one block (irc_join) share the
+ * lock; within one process it costs nothing more. */
 static int posix_lock_init(void *l)
 {
-    return pthread_rwlock_init((pthread_rwlock_t *)l, NULL) == 0 ? 0 : -1;
+    pthread_rwlockattr_t a;
+    int st;
+    if (pthread_rwlockattr_init(&a) != 0)
+        return -1;
+    st = pthread_rwlockattr_setpshared(&a, PTHREAD_PROCESS_SHARED) == 0 &&
+                 pthread_rwlock_init((pthread_rwlock_t *)l, &a) == 0
+             ? 0
+             : -1;
+    pthread_rwlockattr_destroy(&a);
+    return st;
 }
 static void posix_lock_destroy(void *l) { pthread_rwlock_destroy((pthread_rwlock_t *)l); }
 static int posix_read_lock(void *l) { return pthread_rwlock_rdlock((pthread_rwlock_t *)l) == 0 ? 0 : -1; }
