@@ -204,6 +204,11 @@ $(BUILD)/bench_run: bench/bench.c $(DEMO_LIB_SRC) demo/*.h $(LIBA)
 bench: $(BUILD)/bench_run
 	sh bench/bench.sh $(BUILD)/bench_run
 
+# The Cornell box on a Slurm job array of 4 tile jobs, merged by a fifth
+# (README: "The farm"); starts a single-node Slurm of its own as root.
+farm-demo: $(BUILD)/irc_demo
+	sh farm/farm-demo.sh 4
+
 # What deterministic fill passes cost over free-running fills (README:
 # "Deterministic fills"); about two minutes.
 $(BUILD)/bench_fill: bench/fill.c $(DEMO_LIB_SRC) demo/*.h $(LIBA)
@@ -220,4 +225,4 @@ install: all
 clean:
 	rm -rf build build-*
 
-.PHONY: all lib examples test coverage demo fig15 sh-experiments fuzz replay bench-core bench bench-fill install clean
+.PHONY: all lib examples test coverage demo fig15 sh-experiments fuzz replay bench-core bench bench-fill farm-demo install clean

@@ -9,6 +9,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "cachefile.h"
 #include "image.h"
 #include "render.h"
 
@@ -28,6 +29,13 @@ static const char usage[] =
     "  --max-radius R          cache maximum radius (default 0.1 x the diagonal of\n"
     "                          what the camera sees; 0: no bound)\n"
     "  --threads T             render threads (default: the machine's cores)\n"
+    "  --tiles K --tile I      render only the I-th of K bands of rows (0-based)\n"
+    "  --save-cache F          after rendering, write the cache's records to F\n"
+    "                          (a snapshot carrying the scene file's fingerprint)\n"
+    "  --load-cache F          before rendering, merge the snapshot F (repeatable;\n"
+    "                          any order gives the same cache)\n"
+    "  --no-new-records        keep the cache as loaded: a miss computes a record,\n"
+    "                          uses it and drops it (counted)\n"
     "  --free-fill             threads store records as they make them (faster\n"
     "                          to start, but the records depend on timing);\n"
     "                          default: deterministic passes, every 8th pixel,\n"
@@ -44,8 +52,12 @@ static const char usage[] =
     "  --points FILE           irradiance \"r g b\" per line of \"px py pz nx ny nz\"\n"
     "  --quiet                 no progress bar\n";
 
+#define MAX_LOADS 256
+
 typedef struct cli {
-    const char *scene, *out, *compare, *points, *raw;
+    const char *scene, *out, *compare, *points, *raw, *save;
+    const char *load[MAX_LOADS];
+    int loads;
     int width, height, half;
     float exposure;
     render_opts o;
@@ -127,6 +139,11 @@ static int parse_args(int argc, char **argv, cli *c)
         else if (!strcmp(a, "--indirect")) c->o.show = SHOW_INDIRECT;
         else if (!strcmp(a, "--no-leak-guard")) c->o.no_leak_guard = 1;
         else if (!strcmp(a, "--free-fill")) c->o.free_fill = 1;
+        else if (!strcmp(a, "--tiles")) { NEED(parse_uint(n, 1, 65536, &v)); c->o.tiles = (int)v; }
+        else if (!strcmp(a, "--tile")) { NEED(parse_uint(n, 0, 65535, &v)); c->o.tile = (int)v; }
+        else if (!strcmp(a, "--save-cache")) { NEED(1); c->save = n; }
+        else if (!strcmp(a, "--load-cache")) { NEED(c->loads < MAX_LOADS); c->load[c->loads++] = n; }
+        else if (!strcmp(a, "--no-new-records")) c->o.frozen = 1;
         else if (!strcmp(a, "--light-samples")) { NEED(parse_uint(n, 0, 4096, &v)); c->o.light_samples = (int)v; }
         else if (!strcmp(a, "--seed")) { NEED(parse_uint(n, 0, 0x7fffffff, &v)); c->o.seed = (uint64_t)v; }
         else if (!strcmp(a, "--out")) { NEED(1); c->out = n; }
@@ -202,6 +219,9 @@ static void report(FILE *f, const cli *c, const renderer *r, const render_stats 
     fprintf(f, "  rays %llu; records %llu; lookups %llu (%llu answered from records); cache memory %.1f MB\n",
            (unsigned long long)st->rays, (unsigned long long)st->records,
            (unsigned long long)st->lookups, (unsigned long long)st->hits, st->cache_bytes / 1048576.0);
+    if (c->o.frozen)
+        fprintf(f, "  no new records: %llu misses computed and dropped\n",
+                (unsigned long long)st->dropped);
 }
 
 /* Relative RMSE = sqrt(sum (a-b)^2 / sum b^2) over pixels and channels;
@@ -269,6 +289,38 @@ static int write_outputs(const cli *c, renderer *r, const float *img, int w, int
     return 0;
 }
 
+/* Before the render (after = 0): merge every --load-cache file; after it:
+ * write --save-cache.  Prints what it did. */
+static int cache_files(const cli *c, renderer *r, int after)
+{
+    char err[512];
+    uint64_t fp;
+    irc_stats st;
+    int i;
+    if ((!c->loads && !c->save) || (after && !c->save) || (!after && !c->loads))
+        return 0;
+    if (!r->cache || scene_fingerprint(c->scene, &fp) < 0) {
+        fprintf(stderr, "irc_demo: cache files need --cache and a readable scene file\n");
+        return -1;
+    }
+    for (i = 0; !after && i < c->loads; i++)
+        if (cache_merge(r->cache, fp, c->load[i], err, sizeof err) < 0) {
+            fprintf(stderr, "irc_demo: %s\n", err);
+            return -1;
+        }
+    if (after && cache_save(r->cache, fp, c->save, err, sizeof err) < 0) {
+        fprintf(stderr, "irc_demo: %s\n", err);
+        return -1;
+    }
+    irc_cache_stats(r->cache, &st);
+    if (after)
+        printf("  saved %llu records to %s\n", (unsigned long long)st.records, c->save);
+    else
+        printf("  merged %d cache file%s: %llu records\n", c->loads, c->loads > 1 ? "s" : "",
+               (unsigned long long)st.records);
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     cli c;
@@ -295,6 +347,11 @@ int main(int argc, char **argv)
         scene_free(&s);
         return 1;
     }
+    if (cache_files(&c, &r, 0) < 0) {
+        renderer_free(&r);
+        scene_free(&s);
+        return 1;
+    }
     if (c.points) {
         int n = 0, i;
         float *pts = read_points(c.points, &n), *out;
@@ -314,7 +371,8 @@ int main(int argc, char **argv)
             fprintf(stderr, "irc_demo: render failed: %s\n", irc_strerror(e));
         } else {
             report(stdout, &c, &r, &st);
-            rc = (c.compare && compare(&c, img, w, h) < 0) || write_outputs(&c, &r, img, w, h) < 0;
+            rc = (c.compare && compare(&c, img, w, h) < 0) || write_outputs(&c, &r, img, w, h) < 0 ||
+                 cache_files(&c, &r, 1) < 0;
         }
         free(img);
     }

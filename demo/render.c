@@ -17,7 +17,7 @@
 
 typedef struct tstate {
     double trace_s, cache_s;
-    uint64_t rays;
+    uint64_t rays, dropped;
 } tstate;
 
 typedef struct cam_frame {
@@ -243,6 +243,13 @@ static int irradiance(renderer *r, const float p[3], const float n[3], uint64_t 
             st = irc_sh_lookup_or_compute(r->cache, p, n, &sh, NULL, ts);
             if (st >= 0)
                 st = irc_sh_irradiance(&sh, n, e);
+        } else if (r->o.frozen) {
+            irc_record rec;
+            if ((st = irc_cache_lookup(r->cache, p, n, e, NULL)) == IRC_MISS &&
+                (st = irc_record_compute(r->cache, p, n, &rec, ts)) >= 0) {
+                memcpy(e, rec.e, sizeof rec.e);
+                ts->dropped++;
+            }
         } else {
             st = irc_cache_lookup_or_compute(r->cache, p, n, e, NULL, ts);
         }
@@ -392,6 +399,8 @@ static int shade_pass(job *j, tstate *ts, int id)
 {
     const camera *c = &j->r->s->cam;
     const int step = j->r->o.stride > 1 ? j->r->o.stride : 1, period = 1 << j->bits;
+    const int k = j->r->o.tiles > 1 ? j->r->o.tiles : 1, t = j->r->o.tile;
+    const int y0 = (int)((long)c->height * t / k), y1 = (int)((long)c->height * (t + 1) / k);
     int ox, oy, nx, ny, m, st;
     pass_offset(j->level, j->bits, &ox, &oy);
     nx = (c->width - ox + period - 1) / period;
@@ -402,7 +411,7 @@ static int shade_pass(job *j, tstate *ts, int id)
             int x = ox + period * (m % nx), y = oy + period * (m / nx);
             if (__atomic_load_n(&j->error, __ATOMIC_RELAXED))
                 return 0;
-            if (x % step || y % step)
+            if (x % step || y % step || y < y0 || y >= y1)
                 continue;
             st = shade_pixel(j->r, &j->cf, x, y, &j->rgb[((size_t)y * c->width + x) * 3], ts);
             if (st < 0)
@@ -451,6 +460,7 @@ static void collect(renderer *r, const tstate *ts, int n, double wall, render_st
         st->trace_s += ts[i].trace_s;
         st->cache_s += ts[i].cache_s;
         st->rays += ts[i].rays;
+        st->dropped += ts[i].dropped;
     }
     if (r->cache) {
         irc_stats cs;
@@ -469,7 +479,7 @@ int render_image(renderer *r, float *rgb, render_stats *st)
     pthread_t th[64];
     warg args[64];
     int n = r->o.threads < 1 ? 1 : r->o.threads > 64 ? 64 : r->o.threads, e = 0, t;
-    const int passes = r->cache && !r->o.free_fill;
+    const int passes = r->cache && !r->o.free_fill && !r->o.frozen;
     if (!j)
         return -1;
     j->r = r;

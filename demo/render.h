@@ -37,6 +37,10 @@ typedef struct render_opts {
     int stride;           /* > 1: shade only pixels whose x and y are
                              multiples of it (the rest stay 0), as for a
                              reference on a lattice */
+    int tiles, tile;      /* tiles > 1: render only rows [tile H / tiles,
+                             (tile + 1) H / tiles) (a farm job's share) */
+    int frozen;           /* cache: add no records; a miss computes one,
+                             uses its value and drops it (counted) */
     int free_fill;        /* cache: threads insert records as they make
                              them, so the records (and the image) depend on
                              thread timing; 0: deterministic passes (every
@@ -51,6 +55,7 @@ typedef struct render_stats {
                              for the reference's rays) */
     double cache_s;       /* thread-seconds in cache calls, callback excluded */
     uint64_t rays;        /* every ray cast: camera, hemisphere, shadow */
+    uint64_t dropped;     /* frozen: misses whose record was not kept */
     uint64_t records;
     uint64_t lookups, hits;
     size_t cache_bytes;   /* the cache's block */

@@ -149,6 +149,13 @@ bad_scene() {
         [ "$(ls "$d")" = log ]
 }
 check bad-scene bad_scene
+# The farm (make farm-demo): 4 tile jobs of a Slurm job array and a merging
+# job, on a single-node Slurm the script starts (its daemons need root).
+if [ "$(id -u)" = 0 ]; then
+    check farm-demo sh farm/farm-demo.sh 4
+else
+    echo "skip farm-demo: starting Slurm's daemons needs root"
+fi
 
 echo "== stage 3: suite under ASan + UBSan"
 SAN="-O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=all"
@@ -172,7 +179,7 @@ done
 
 echo "== stage 4: threads under TSan"
 check build-tsan $MAKE -s CC="$SAN_CC" BUILD=build-tsan OPT="-O1 -g -fsanitize=thread" build-tsan/irc_tests
-suite tsan IRC_TEST_QUICK=1 TSAN_OPTIONS=halt_on_error=1 ./build-tsan/irc_tests test_threads test_busy_waits
+suite tsan IRC_TEST_QUICK=1 TSAN_OPTIONS=halt_on_error=1 ./build-tsan/irc_tests test_threads test_busy_waits test_pass_order_free
 
 echo "== stage 5: header, example host and library rules"
 check examples $MAKE -s BUILD=build examples
