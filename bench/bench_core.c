@@ -96,8 +96,8 @@ static double record_cost(uint32_t features, uint32_t m, uint32_t n)
     return 1e6 * (t1 - t0) / done;
 }
 
-/* Snapshot write and read throughput of a filled cache (records/s), the
- * read into a second block of the same config. */
+/* Snapshot write, read and merge throughput of a filled cache (records/s),
+ * the read and the merge into a second block of the same config. */
 static void snapshot_rates(irc_cache *c, const irc_config *cfg, uint32_t cap)
 {
     irc_config c2 = *cfg;
@@ -120,6 +120,13 @@ static void snapshot_rates(irc_cache *c, const irc_config *cfg, uint32_t cap)
         t0 = now();
         if (irc_snapshot_read(d, 1u, buf, bytes) == IRC_OK)
             printf("snapshot_read_per_s,trans+rot,%u,,,%.0f,records/s\n", cap,
+                   st.records / (now() - t0));
+        /* A merge into an empty cache: every check, the canonical sort,
+         * the index rebuilt. */
+        irc_cache_clear(d);
+        t0 = now();
+        if (irc_merge(d, 1u, buf, bytes) == IRC_OK)
+            printf("merge_per_s,trans+rot,%u,,,%.0f,records/s\n", cap,
                    st.records / (now() - t0));
         irc_fini(d);
     }

@@ -99,7 +99,7 @@ TEST(test_share_processes)
     counting host;
     irc_config cfg;
     irc_cache *c;
-    size_t bytes;
+    size_t bytes = 0;
     int fd = mkstemp(path), status = -1, *flags;
     void *map;
     pid_t pid;
