@@ -221,8 +221,10 @@ TEST(test_leak_scene)
     o.threads = 1; /* records in a fixed order: the same render every run */
     /* Records placed as a scanline fill places them.  The default fill
      * passes place them otherwise, and at a = 0.6 then light 2 of 8,765
-     * dark pixels (brightest 0.030; 48 without the guard): a gap of the
-     * guard, open (README, "Error control"). */
+     * dark pixels (brightest 0.030; 48 without the guard), on the back
+     * wall 1 mm below its top beside the middle wall, where rays of the
+     * neighbouring sector pass over the wall: a gap of the guard, open
+     * (README, "Error control"). */
     o.free_fill = 1;
     o.seed = 5;
     o.show = SHOW_INDIRECT;
