@@ -4,6 +4,7 @@
  */
 #define _POSIX_C_SOURCE 200809L
 #include "render.h"
+#include "camera.h"
 
 #include <float.h>
 #include <math.h>
@@ -20,9 +21,6 @@ typedef struct tstate {
     uint64_t rays, dropped;
 } tstate;
 
-typedef struct cam_frame {
-    float eye[3], f[3], right[3], up[3], tx, ty;
-} cam_frame;
 
 
 static double now(void)
@@ -95,8 +93,6 @@ static int host_trace(const irc_trace_args *a)
     return 0;
 }
 
-static void camera_frame(const camera *c, cam_frame *cf);
-static void camera_ray(const cam_frame *cf, const camera *c, int x, int y, float d[3]);
 
 /* The default maximum radius: 0.1 x the diagonal of what the camera sees
  * (the box around the first hits of a 32 x 32 grid of camera rays), as
@@ -258,52 +254,6 @@ static int irradiance(renderer *r, const float p[3], const float n[3], uint64_t 
     }
     reference_e(r, p, n, key, e, ts);
     return 0;
-}
-
-static void camera_frame(const camera *c, cam_frame *cf)
-{
-    float l;
-    int i;
-    for (i = 0; i < 3; i++)
-        cf->f[i] = c->look[i] - c->eye[i];
-    l = sqrtf(cf->f[0] * cf->f[0] + cf->f[1] * cf->f[1] + cf->f[2] * cf->f[2]);
-    for (i = 0; i < 3; i++) {
-        cf->f[i] /= l;
-        cf->eye[i] = c->eye[i];
-    }
-    cf->right[0] = cf->f[1] * c->up[2] - cf->f[2] * c->up[1];
-    cf->right[1] = cf->f[2] * c->up[0] - cf->f[0] * c->up[2];
-    cf->right[2] = cf->f[0] * c->up[1] - cf->f[1] * c->up[0];
-    l = sqrtf(cf->right[0] * cf->right[0] + cf->right[1] * cf->right[1] +
-              cf->right[2] * cf->right[2]);
-    for (i = 0; i < 3; i++)
-        cf->right[i] /= l;
-    cf->up[0] = cf->right[1] * cf->f[2] - cf->right[2] * cf->f[1];
-    cf->up[1] = cf->right[2] * cf->f[0] - cf->right[0] * cf->f[2];
-    cf->up[2] = cf->right[0] * cf->f[1] - cf->right[1] * cf->f[0];
-    cf->ty = tanf(0.5f * c->fov_deg * (float)(PI / 180.0));
-    cf->tx = cf->ty * (float)c->width / (float)c->height;
-}
-
-static void camera_ray(const cam_frame *cf, const camera *c, int x, int y, float d[3])
-{
-    float sx = (2.0f * (x + 0.5f) / c->width - 1.0f) * cf->tx;
-    float sy = (1.0f - 2.0f * (y + 0.5f) / c->height) * cf->ty, l;
-    int i;
-    for (i = 0; i < 3; i++)
-        d[i] = cf->f[i] + sx * cf->right[i] + sy * cf->up[i];
-    l = sqrtf(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-    for (i = 0; i < 3; i++)
-        d[i] /= l;
-}
-
-/* The point the cache sees for a surface: lifted off it so that hemisphere
- * rays start clear of it. */
-static void cache_point(const surface *sf, float p[3])
-{
-    int i;
-    for (i = 0; i < 3; i++)
-        p[i] = sf->p[i] + ray_offset(sf->p) * sf->ng[i];
 }
 
 static int shade_pixel(renderer *r, const cam_frame *cf, int x, int y, float out[3],
@@ -551,79 +501,4 @@ int render_record(renderer *r, const float p[3], const float n[3], irc_record *o
     int st;
     st = irc_record_compute(r->cache, p, n, out, &ts);
     return st;
-}
-
-static void hue(uint32_t id, float out[3])
-{
-    double h = (double)(hash64(id) >> 11) * (6.0 / 9007199254740992.0);
-    int i = (int)h;
-    float f = (float)(h - i), q = 1.0f - f;
-    float tab[6][3] = {{1, f, 0}, {q, 1, 0}, {0, 1, f}, {0, q, 1}, {f, 0, 1}, {1, 0, q}};
-    memcpy(out, tab[i % 6], 3 * sizeof(float));
-}
-
-int render_records(renderer *r, float *rgb)
-{
-    const camera *c = &r->s->cam;
-    cam_frame cf;
-    irc_stats cs;
-    uint32_t ids[256], cnt, k, id;
-    int x, y, i;
-    if (!r->cache)
-        return -1;
-    camera_frame(c, &cf);
-    for (y = 0; y < c->height; y++)
-        for (x = 0; x < c->width; x++) {
-            float d[3], p[3], *out = &rgb[((size_t)y * c->width + x) * 3], best = 0.0f;
-            bvh_hit bh;
-            surface sf;
-            out[0] = out[1] = out[2] = 0.0f;
-            camera_ray(&cf, c, x, y, d);
-            if (!bvh_intersect(&r->b, cf.eye, d, 0.0f, FLT_MAX, &bh))
-                continue;
-            surface_at(r->s, cf.eye, d, &bh, &sf);
-            cache_point(&sf, p);
-            irc_cache_neighbours(r->cache, p, sf.nsm, ids, 256, &cnt);
-            for (k = 0; k < cnt && k < 256; k++) {
-                irc_record rec;
-                float dd = 0.0f, nn = 0.0f, w;
-                irc_cache_record(r->cache, ids[k], &rec);
-                for (i = 0; i < 3; i++) {
-                    dd += (p[i] - rec.p[i]) * (p[i] - rec.p[i]);
-                    nn += sf.nsm[i] * rec.n[i];
-                }
-                w = 1.0f / (sqrtf(dd) / rec.radius + sqrtf(nn < 1.0f ? 1.0f - nn : 0.0f) + 1e-6f);
-                if (w > best) {
-                    best = w;
-                    hue(ids[k], out);
-                    for (i = 0; i < 3; i++)
-                        out[i] *= 0.6f;
-                }
-            }
-        }
-    irc_cache_stats(r->cache, &cs);
-    for (id = 0; id < cs.records; id++) {
-        irc_record rec;
-        float v[3], z, dist, sx, sy;
-        int px, py;
-        irc_cache_record(r->cache, id, &rec);
-        for (i = 0; i < 3; i++)
-            v[i] = rec.p[i] - cf.eye[i];
-        z = v[0] * cf.f[0] + v[1] * cf.f[1] + v[2] * cf.f[2];
-        if (z <= 0.0f)
-            continue;
-        dist = sqrtf(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-        for (i = 0; i < 3; i++)
-            v[i] /= dist;
-        if (bvh_occluded(&r->b, cf.eye, v, 0.0f, dist * (1.0f - 1e-3f)))
-            continue;
-        sx = (v[0] * cf.right[0] + v[1] * cf.right[1] + v[2] * cf.right[2]) / (z / dist) / cf.tx;
-        sy = (v[0] * cf.up[0] + v[1] * cf.up[1] + v[2] * cf.up[2]) / (z / dist) / cf.ty;
-        px = (int)((sx + 1.0f) * 0.5f * c->width);
-        py = (int)((1.0f - sy) * 0.5f * c->height);
-        if (px >= 0 && px < c->width && py >= 0 && py < c->height)
-            for (i = 0; i < 3; i++)
-                rgb[((size_t)py * c->width + px) * 3 + i] = 1.0f;
-    }
-    return 0;
 }

@@ -1,0 +1,22 @@
+/*
+ * camera.h -- the pinhole camera's frame and primary rays (shared by the
+ * integrator and the records view).
+ */
+#ifndef DEMO_CAMERA_H
+#define DEMO_CAMERA_H
+
+#include "scene.h"
+#include "shade.h"
+
+typedef struct cam_frame {
+    float eye[3], f[3], right[3], up[3], tx, ty;
+} cam_frame;
+
+void camera_frame(const camera *c, cam_frame *cf);
+/* The unit direction through pixel (x, y)'s centre. */
+void camera_ray(const cam_frame *cf, const camera *c, int x, int y, float d[3]);
+/* The point the cache sees for a surface: lifted off it along the
+ * geometric normal so that hemisphere rays start clear of it. */
+void cache_point(const surface *sf, float p[3]);
+
+#endif
