@@ -1,7 +1,8 @@
 /*
  * fill.c -- what deterministic fills cost (make bench-fill): the demo's
  * Cornell box and fig5 scene rendered with records stored as threads make
- * them (--free-fill) and with 64 fill passes (the default), on 1 thread
+ * them (--free-fill) and with fill passes (the default: 1,024 passes at
+ * these widths), on 1 thread
  * and on every core, alternating, REPS times each; prints the median wall
  * time, records, rays, the indirect term's relative RMSE against a
  * brute-force reference on every 4th pixel, and whether repeated renders
@@ -106,7 +107,7 @@ int main(void)
     const int cores = (int)sysconf(_SC_NPROCESSORS_ONLN);
     size_t k;
     int bad = 0;
-    printf("bench-fill: records stored as made (free) against 64 fill passes (passes); "
+    printf("bench-fill: records stored as made (free) against fill passes (passes); "
            "a = 0.2, trans+rot, 16x64 strata, indirect term only\n");
     for (k = 0; k < sizeof scenes / sizeof scenes[0]; k++) {
         const fscene *b = &scenes[k];

@@ -43,9 +43,9 @@ typedef struct render_opts {
                              uses its value and drops it (counted) */
     int free_fill;        /* cache: threads insert records as they make
                              them, so the records (and the image) depend on
-                             thread timing; 0: deterministic passes (every
-                             8th pixel, 4th, 2nd, then the rest, each an
-                             irc_pass_begin/irc_pass_end) */
+                             thread timing; 0: deterministic passes, pixels
+                             P apart in P^2 passes coarse to fine, each an
+                             irc_pass_begin/irc_pass_end (render.c) */
 } render_opts;
 
 typedef struct render_stats {

@@ -751,10 +751,13 @@ IRC_API int irc_merge(irc_cache *cache, uint64_t fingerprint, const void *data, 
  * are not stored (IRC_NOT_STORED, IRC_ERR_FULL from insert, counted in
  * irc_stats.not_stored), and which ones were kept then depends on timing:
  * size the pool so that does not happen.  Within a pass, two misses close
- * together both compute a record; coarse-to-fine passes (every 8th pixel,
- * every 4th, ...) keep that rare.  Not concurrent with other calls on the
- * cache.  Returns IRC_OK, IRC_ERR_STATE when a pass is already open, or a
- * negative error code.
+ * together both compute a record where one might have served: a pass
+ * should hold no two queries within a record's reach of each other (the
+ * demo shades pixels P apart in P^2 passes, P above a record's reach in
+ * pixels; all pixels at strides 8, 4, 2, 1 in 4 passes made 1.5x the
+ * records of a free fill, README "Fill passes").  Not concurrent with
+ * other calls on the cache.  Returns IRC_OK, IRC_ERR_STATE when a pass is
+ * already open, or a negative error code.
  */
 IRC_API int irc_pass_begin(irc_cache *cache);
 
