@@ -28,7 +28,7 @@ int irc_pass_begin(irc_cache *c)
 int irc_pass_end(irc_cache *c, uint32_t *added)
 {
     uint64_t pend;
-    uint32_t n, kept, i;
+    uint32_t n, kept, i, room;
     int st = irc__enter(c, NULL);
     if (st < 0)
         return st;
@@ -39,8 +39,8 @@ int irc_pass_end(irc_cache *c, uint32_t *added)
         return IRC_ERR_STATE;
     }
     pend = c->port->load(&c->home->pending);
-    n = pend < (uint64_t)(c->capacity - c->home->pass_base) ? (uint32_t)pend
-                                                       : c->capacity - c->home->pass_base;
+    room = c->capacity - c->home->pass_base;
+    n = pend < (uint64_t)room ? (uint32_t)pend : room;
     /* Slot order is the order threads happened to finish in; the
      * canonical order is not.  Two queries that made the same record made
      * it once as far as the cache is concerned. */
