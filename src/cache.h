@@ -158,7 +158,6 @@ struct irc_cache {
                                 reached: itself, or for a view (irc_join)
                                 the shared block's cache as this process
                                 maps it */
-    uint32_t view;           /* a process's view of a shared block */
     char port_name[16];      /* the port that made the lock (views must
                                 use the same) */
     uint32_t rec_size;       /* packed record bytes */
@@ -290,6 +289,9 @@ int irc__insert(irc_cache *c, const irc__kind *want, const void *rec);
  * and CLOCK's bits, keeping the records; clear drops the records too. */
 void irc__forget_locked(irc_cache *c);
 void irc__clear_locked(irc_cache *c);
+/* Takes the write lock for a call a fill pass forbids: IRC_OK with the
+ * lock held, or IRC_ERR_PORT / IRC_ERR_STATE (a pass is open) without. */
+int irc__write_lock_idle(irc_cache *c);
 /* The caller holds the write lock: the record in slot id (below count)
  * joins the index, clamped by its neighbours if the config asks. */
 void irc__commit_locked(irc_cache *c, uint32_t id);

@@ -148,7 +148,6 @@ static void irc__attach_pointers(irc_cache *c, const irc_config *cfg, const irc_
     c->cfg.buffer_size = cfg->buffer_size;
     c->kind = c->kind_id == IRC__KIND_SH ? &irc__kind_sh : &irc__kind_irr;
     c->home = c;
-    c->view = 0;
 }
 
 /* The port's name as the block keeps it, to tell whether a view's port
@@ -315,7 +314,6 @@ int irc_join(const irc_config *cfg, void *view, size_t view_size, irc_cache **ou
     IRC_MEMCPY(v, home, sizeof *v);
     irc__attach_pointers(v, cfg, port);
     v->home = home;
-    v->view = 1;
     *out = v;
     return IRC_OK;
 }
@@ -325,7 +323,7 @@ int irc_fini(irc_cache *c)
     int st = irc__enter(c, NULL);
     if (st < 0)
         return st;
-    if (!c->view)
+    if (c->home == c) /* not a view: the lock is this handle's */
         c->port->lock_destroy(irc__lock(c));
     c->magic = 0;
     return IRC_OK;

@@ -91,12 +91,9 @@ int irc_merge(irc_cache *c, uint64_t fingerprint, const void *data, size_t size)
         return st;
     if (!data)
         return IRC_ERR_NULL;
-    if (c->port->write_lock(irc__lock(c)) < 0)
-        return IRC_ERR_PORT;
-    if (c->home->pass_open)
-        st = IRC_ERR_STATE;
-    else
-        st = irc__snap_check(c, fingerprint, d, size, c->capacity - c->home->count, &count);
+    if ((st = irc__write_lock_idle(c)) < 0)
+        return st;
+    st = irc__snap_check(c, fingerprint, d, size, c->capacity - c->home->count, &count);
     if (st < 0) {
         c->port->write_unlock(irc__lock(c));
         return st;

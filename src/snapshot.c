@@ -283,12 +283,8 @@ int irc_snapshot_read(irc_cache *c, uint64_t fingerprint, const void *data, size
         return IRC_ERR_NULL;
     if ((st = irc__snap_check(c, fingerprint, d, size, c->capacity, &count)) < 0)
         return st;
-    if (c->port->write_lock(irc__lock(c)) < 0)
-        return IRC_ERR_PORT;
-    if (c->home->pass_open) {
-        c->port->write_unlock(irc__lock(c));
-        return IRC_ERR_STATE;
-    }
+    if ((st = irc__write_lock_idle(c)) < 0)
+        return st;
     irc__clear_locked(c);
     for (i = 0; i < count; i++) {
         irc__convert(c, d + IRC__SNAP_HEAD + (size_t)i * c->rec_size,

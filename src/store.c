@@ -433,6 +433,16 @@ int irc_cache_neighbours(irc_cache *c, const float p[3], const float n[3],
     return IRC_OK;
 }
 
+int irc__write_lock_idle(irc_cache *c)
+{
+    if (c->port->write_lock(irc__lock(c)) < 0)
+        return IRC_ERR_PORT;
+    if (!c->home->pass_open)
+        return IRC_OK;
+    c->port->write_unlock(irc__lock(c));
+    return IRC_ERR_STATE;
+}
+
 void irc__forget_locked(irc_cache *c)
 {
     c->home->hand = 0;
@@ -455,14 +465,11 @@ int irc_cache_clear(irc_cache *c)
     int st = irc__enter(c, NULL);
     if (st < 0)
         return st;
-    if (c->port->write_lock(irc__lock(c)) < 0)
-        return IRC_ERR_PORT;
-    if (c->home->pass_open)
-        st = IRC_ERR_STATE;
-    else
-        irc__clear_locked(c);
+    if ((st = irc__write_lock_idle(c)) < 0)
+        return st;
+    irc__clear_locked(c);
     c->port->write_unlock(irc__lock(c));
-    return st;
+    return IRC_OK;
 }
 
 int irc_cache_stats(irc_cache *c, irc_stats *out)
