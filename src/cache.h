@@ -17,7 +17,7 @@
 
 /* What a block must agree on to be re-attached (irc_attach): the layout's
  * version, pointer and size_t widths, byte order. */
-#define IRC__LAYOUT_VERSION 5u
+#define IRC__LAYOUT_VERSION 6u
 #define IRC__ABI                                                           \
     (IRC__LAYOUT_VERSION | (uint32_t)sizeof(void *) << 8 |                 \
      (uint32_t)sizeof(size_t) << 16 | (uint32_t)sizeof(double) << 24)
@@ -62,13 +62,27 @@ static inline int irc__sector(double x, double y)
     return x < 0.0 ? 8 + sub : 15 - sub;
 }
 
-/* Octree node.  Its cube is implied by the path from the root. */
+/* Octree node.  Its cube is implied by the path from the root.  12 bytes. */
 typedef struct irc__node {
     uint32_t child;  /* first of 8 consecutive children, 0 = leaf */
     uint32_t head;   /* first record stored at this node (IRC__NIL = none) */
     float reach;     /* largest a*R_i of any record in this subtree */
-    uint32_t count;  /* records stored at this node itself */
 } irc__node;
+
+/* A record's entry in the index, by id: its list link and its position and
+ * reach a*R_i quantized against the cube (centre c, half edge h) of the
+ * node whose list holds it, in steps of 2h/65535.  A query tests these
+ * before it touches the record: the candidates of one lookup then share
+ * cache lines (5 entries to a line, against one record), and most fail
+ * the test.  12 bytes. */
+#define IRC__IX_ANY 0xffffu  /* rq: no bound in this cube's steps (a root
+                                record outside the cube, or a reach of
+                                2h or more): always a candidate */
+typedef struct irc__ixe {
+    uint16_t q[3];   /* (x - (c - h)) / step, rounded to nearest */
+    uint16_t rq;     /* reach / step, rounded up */
+    uint32_t next;   /* next record in the same list, IRC__NIL = last */
+} irc__ixe;
 
 enum {
     IRC__C_INSERTS, IRC__C_EVICTIONS, IRC__C_LOOKUPS, IRC__C_HITS,
@@ -176,12 +190,13 @@ struct irc_cache {
     size_t slot_bytes;       /* scratch bytes per thread slot */
     size_t total_bytes;      /* bytes of the block in use from the cache on */
     /* Offsets from the address of home. */
-    size_t o_lock, o_scratch, o_records, o_next, o_nodes, o_used; /* o_used 0: no CLOCK */
+    size_t o_lock, o_scratch, o_records, o_ix, o_nodes, o_used; /* o_used 0: no CLOCK */
     /* Mutable under the write lock; read and written through home. */
     uint32_t count;          /* records in slots [0, count) */
     uint32_t nodes_used;
     uint32_t hand;           /* CLOCK hand */
     uint32_t root_set;
+    uint32_t depth;          /* the index's deepest node level */
     uint32_t pass_open;      /* a fill pass is open (irc_pass_begin) */
     uint32_t pass_base;      /* count when it opened: its records go to
                                 slots [pass_base, capacity) */
@@ -200,9 +215,9 @@ static inline unsigned char *irc__part(const irc_cache *c, size_t off)
 }
 
 static inline void *irc__lock(const irc_cache *c) { return irc__part(c, c->o_lock); }
-static inline uint32_t *irc__next(const irc_cache *c)
+static inline irc__ixe *irc__ix(const irc_cache *c)
 {
-    return (uint32_t *)(void *)irc__part(c, c->o_next);
+    return (irc__ixe *)(void *)irc__part(c, c->o_ix);
 }
 static inline irc__node *irc__nodes(const irc_cache *c)
 {
@@ -319,13 +334,15 @@ int irc__record_get(irc_cache *c, const irc__kind *want, uint32_t id, void *out)
 void irc__count(irc_cache *c, int which, uint64_t v);
 
 /* index.c */
-/* Called with the first record of each visited node's list. */
-typedef void (*irc__visit_fn)(void *ud, uint32_t head);
+/* Called with each candidate: a superset of the records the query asks
+ * for, which the caller tests exactly. */
+typedef void (*irc__visit_fn)(void *ud, uint32_t id);
 void irc__index_reset(irc_cache *c);
 void irc__index_insert(irc_cache *c, uint32_t id);
 void irc__index_remove(irc_cache *c, uint32_t id);
-void irc__index_query(const irc_cache *c, const float p[3], irc__visit_fn fn,
-                      void *ud);
+/* Returns the index entries it scanned (the work; tests check it). */
+uint32_t irc__index_query(const irc_cache *c, const float p[3], irc__visit_fn fn,
+                          void *ud);
 void irc__index_range(const irc_cache *c, const float p[3], double range, irc__visit_fn fn,
                       void *ud);
 

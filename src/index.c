@@ -23,9 +23,16 @@
  */
 #include "cache.h"
 
-#define IRC__SPLIT 8u
+#ifndef IRC__SPLIT
+#define IRC__SPLIT 16u
+#endif
 #define IRC__DEPTH 40    /* with the root's h >= |c|/32: centres within 2^45 of
                             their size, so exact in double */
+#define IRC__LEVELS 48   /* deepest node below the root, growth included: a
+                            root that grows makes every node one deeper, and
+                            refuses to once that would pass this (records
+                            then stay in the root's list); a query's stack
+                            holds a frame a level */
 #define IRC__ROOT_MAX 1e39
 
 typedef struct irc__cube {
@@ -38,7 +45,6 @@ static void irc__node_empty(irc__node *n)
     n->child = 0;
     n->head = IRC__NIL;
     n->reach = -1.0f;
-    n->count = 0;
 }
 
 void irc__index_reset(irc_cache *c)
@@ -46,6 +52,7 @@ void irc__index_reset(irc_cache *c)
     irc__node_empty(&irc__nodes(c)[0]);
     c->home->nodes_used = 1;
     c->home->root_set = 0;
+    c->home->depth = 0;
 }
 
 static double irc__reach(const irc_cache *c, uint32_t id)
@@ -72,6 +79,45 @@ static void irc__child_cube(const irc__cube *q, int oct, irc__cube *out)
         out->c[i] = q->c[i] + (oct >> i & 1 ? out->h : -out->h);
 }
 
+/* The inverse: the cube whose child oct is q, exact (centres lie on the
+ * grid of their edge). */
+static void irc__parent_cube(irc__cube *q, int oct)
+{
+    int i;
+    for (i = 0; i < 3; i++)
+        q->c[i] -= oct >> i & 1 ? q->h : -q->h;
+    q->h *= 2.0;
+}
+
+/* Sets id's entry for the list of the node with cube q.  The position is
+ * rounded to the nearest step (at most half a step off per axis) and the
+ * reach up, so a query's test on entries (irc__scan) can only admit more
+ * than the exact test. */
+static void irc__quantize(const irc_cache *c, uint32_t id, const irc__cube *q, double reach)
+{
+    irc__ixe *e = &irc__ix(c)[id];
+    const float *p = irc__rec_at(c, id)->p;
+    double inv = 32767.5 / q->h, r = -IRC_FLOOR(-reach * inv);
+    int i;
+    if (!irc__inside(q, p) || !(r < (double)IRC__IX_ANY)) {
+        e->q[0] = e->q[1] = e->q[2] = 0;
+        e->rq = IRC__IX_ANY;
+        return;
+    }
+    for (i = 0; i < 3; i++)
+        e->q[i] = (uint16_t)IRC_FLOOR((p[i] - (q->c[i] - q->h)) * inv + 0.5);
+    e->rq = (uint16_t)r;
+}
+
+/* Records in a list, counted up to limit. */
+static uint32_t irc__list_len(const irc_cache *c, uint32_t id, uint32_t limit)
+{
+    uint32_t n = 0;
+    for (; id != IRC__NIL && n < limit; id = irc__ix(c)[id].next)
+        n++;
+    return n;
+}
+
 static uint32_t irc__block_alloc(irc_cache *c)
 {
     uint32_t b = c->home->nodes_used, i;
@@ -91,11 +137,12 @@ static void irc__root_cube(const irc_cache *c, irc__cube *q)
     q->h = c->home->root_h;
 }
 
-static void irc__push(irc_cache *c, irc__node *n, uint32_t id, double reach)
+static void irc__push(irc_cache *c, irc__node *n, const irc__cube *q, uint32_t id,
+                      double reach)
 {
-    irc__next(c)[id] = n->head;
+    irc__quantize(c, id, q, reach);
+    irc__ix(c)[id].next = n->head;
     n->head = id;
-    n->count++;
     if (reach > n->reach)
         n->reach = (float)reach;
 }
@@ -125,23 +172,26 @@ static irc__node *irc__home(irc_cache *c, const float p[3], double reach,
     }
 }
 
-static void irc__split(irc_cache *c, irc__node *n, const irc__cube *q)
+static void irc__split(irc_cache *c, irc__node *n, const irc__cube *q, int depth)
 {
     uint32_t b = irc__block_alloc(c), id, keep = IRC__NIL, nid;
     if (!b)
         return;
     n->child = b;
-    n->count = 0;
+    if ((uint32_t)depth + 1u > c->home->depth)
+        c->home->depth = (uint32_t)depth + 1u;
     for (id = n->head; id != IRC__NIL; id = nid) {
         double reach = irc__reach(c, id);
         const float *p = irc__rec_at(c, id)->p;
-        nid = irc__next(c)[id];
+        nid = irc__ix(c)[id].next;
         if (0.5 * q->h >= reach && irc__inside(q, p)) {
-            irc__push(c, &irc__nodes(c)[b + (uint32_t)irc__octant(q, p)], id, reach);
+            int oct = irc__octant(q, p);
+            irc__cube cq;
+            irc__child_cube(q, oct, &cq);
+            irc__push(c, &irc__nodes(c)[b + (uint32_t)oct], &cq, id, reach);
         } else {
-            irc__next(c)[id] = keep;
+            irc__ix(c)[id].next = keep;
             keep = id;
-            n->count++;
         }
     }
     n->head = keep;
@@ -194,17 +244,21 @@ static void irc__root_fit(irc_cache *c, const double lo[3], const double hi[3])
 static void irc__root_refit(irc_cache *c, const float p[3])
 {
     double lo[3], hi[3];
+    irc__cube q;
     uint32_t id;
     int i;
     for (i = 0; i < 3; i++)
         lo[i] = hi[i] = p[i];
-    for (id = irc__nodes(c)[0].head; id != IRC__NIL; id = irc__next(c)[id])
+    for (id = irc__nodes(c)[0].head; id != IRC__NIL; id = irc__ix(c)[id].next)
         for (i = 0; i < 3; i++) {
             double x = irc__rec_at(c, id)->p[i];
             if (x < lo[i]) lo[i] = x;
             if (x > hi[i]) hi[i] = x;
         }
     irc__root_fit(c, lo, hi);
+    irc__root_cube(c, &q);
+    for (id = irc__nodes(c)[0].head; id != IRC__NIL; id = irc__ix(c)[id].next)
+        irc__quantize(c, id, &q, irc__reach(c, id));
 }
 
 /* Doubles a root that has children toward p: the old root becomes the
@@ -212,12 +266,14 @@ static void irc__root_refit(irc_cache *c, const float p[3])
  * longer fit a child (too large, or outside its cube) move up. */
 static int irc__grow(irc_cache *c, const float p[3])
 {
-    irc__cube old;
+    irc__cube old, now;
     uint32_t b, id, nid, keep = IRC__NIL;
     irc__node *was, *nodes;
     int i, oct = 0;
-    if (2.0 * c->home->root_h > IRC__ROOT_MAX || !(b = irc__block_alloc(c)))
+    if (2.0 * c->home->root_h > IRC__ROOT_MAX || c->home->depth >= IRC__LEVELS ||
+        !(b = irc__block_alloc(c)))
         return 0;
+    c->home->depth++;
     nodes = irc__nodes(c);
     irc__root_cube(c, &old);
     for (i = 0; i < 3; i++) {
@@ -231,15 +287,14 @@ static int irc__grow(irc_cache *c, const float p[3])
     irc__node_empty(&nodes[0]);
     nodes[0].child = b;
     nodes[0].reach = was->reach;
-    was->count = 0;
+    irc__root_cube(c, &now);
     for (id = was->head; id != IRC__NIL; id = nid) {
-        nid = irc__next(c)[id];
+        nid = irc__ix(c)[id].next;
         if (irc__reach(c, id) > old.h || !irc__inside(&old, irc__rec_at(c, id)->p)) {
-            irc__push(c, &nodes[0], id, irc__reach(c, id));
+            irc__push(c, &nodes[0], &now, id, irc__reach(c, id));
         } else {
-            irc__next(c)[id] = keep;
+            irc__ix(c)[id].next = keep;
             keep = id;
-            was->count++;
         }
     }
     was->head = keep;
@@ -277,12 +332,14 @@ void irc__index_insert(irc_cache *c, uint32_t id)
     irc__node *n;
     int depth;
     irc__root_cover(c, p);
-    if (!irc__nodes(c)[0].child && irc__nodes(c)[0].count >= IRC__SPLIT)
+    if (!irc__nodes(c)[0].child &&
+        irc__list_len(c, irc__nodes(c)[0].head, IRC__SPLIT) >= IRC__SPLIT)
         irc__root_refit(c, p);
     n = irc__home(c, p, reach, 1, &q, &depth);
-    irc__push(c, n, id, reach);
-    if (!n->child && n->count > IRC__SPLIT && depth < IRC__DEPTH && irc__inside(&q, p))
-        irc__split(c, n, &q);
+    irc__push(c, n, &q, id, reach);
+    if (!n->child && depth < IRC__DEPTH && irc__inside(&q, p) &&
+        irc__list_len(c, n->head, IRC__SPLIT + 1u) > IRC__SPLIT)
+        irc__split(c, n, &q, depth);
 }
 
 /* Unlinks id from the first list on the path to its home that holds it:
@@ -292,11 +349,10 @@ static int irc__unlink(irc_cache *c, irc__node *n, uint32_t id)
 {
     uint32_t *link = &n->head;
     while (*link != IRC__NIL && *link != id)
-        link = &irc__next(c)[*link];
+        link = &irc__ix(c)[*link].next;
     if (*link != id)
         return 0;
-    *link = irc__next(c)[id];
-    n->count--;
+    *link = irc__ix(c)[id].next;
     return 1;
 }
 
@@ -308,7 +364,7 @@ void irc__index_remove(irc_cache *c, uint32_t id)
     int depth = 0, found;
     irc__root_cube(c, &q);
     while (!(found = irc__unlink(c, n, id)) && n->child && irc__inside(&q, p) &&
-           depth < IRC__DEPTH) {
+           depth < IRC__LEVELS) {
         int oct = irc__octant(&q, p);
         irc__cube cq;
         irc__child_cube(&q, oct, &cq);
@@ -321,61 +377,155 @@ void irc__index_remove(irc_cache *c, uint32_t id)
     /* Reaches are left as they are: an upper bound stays exact. */
 }
 
-/* Visits every list whose records may hold p within scale times their
- * reach, or, with range >= 0, every list whose records may lie within
- * range of p (a record lies inside its node's cube, the root's list
- * excepted, which is always visited). */
-static void irc__query_node(const irc_cache *c, const irc__node *n,
-                            const irc__cube *q, const float p[3], double range,
-                            double scale, irc__visit_fn fn, void *ud)
+/* What a query asks for: records whose reach times scale may hold p, or,
+ * with range >= 0, records within range of p. */
+typedef struct irc__probe {
+    const float *p;
+    double range, scale;
+    irc__visit_fn fn;
+    void *ud;
+} irc__probe;
+
+/* Hands over the records of a list whose entries pass the probe's test in
+ * the list's steps.  The test admits a superset of the exact one: the
+ * entry's position is at most sqrt(3)/2 steps off (the 1 added to the
+ * bound), and the float rounding of numbers of up to about 2^17 steps is
+ * covered by the 1e-5 relative margin. */
+static uint32_t irc__scan(const irc_cache *c, uint32_t id, const irc__cube *q,
+                          const irc__probe *pr)
 {
-    double part[3][2], hc = 0.5 * q->h, pad = hc * 1e-9;
-    int oct, i, k;
-    if (n->head != IRC__NIL)
-        fn(ud, n->head);
-    if (!n->child)
-        return;
+    uint32_t n = 0;
+    const irc__ixe *ix = irc__ix(c);
+    const double inv = 32767.5 / q->h;
+    const float b0 = (float)((pr->p[0] - (q->c[0] - q->h)) * inv),
+                b1 = (float)((pr->p[1] - (q->c[1] - q->h)) * inv),
+                b2 = (float)((pr->p[2] - (q->c[2] - q->h)) * inv);
+    /* The bound is m rq + f steps: a reach times scale, or the range. */
+    const float m = pr->range >= 0.0 ? 0.0f : (float)(pr->scale * (1.0 + 1e-5)),
+                f = pr->range >= 0.0 ? (float)(pr->range * inv * (1.0 + 1e-5)) + 1.0f : 1.0f;
+    for (; id != IRC__NIL; id = ix[id].next) {
+        const irc__ixe *e = &ix[id];
+        float dx = b0 - e->q[0], dy = b1 - e->q[1], dz = b2 - e->q[2];
+        float r = (float)e->rq * m + f;
+        n++;
+        if (dx * dx + dy * dy + dz * dz <= r * r || e->rq == IRC__IX_ANY)
+            pr->fn(pr->ud, id);
+    }
+    return n;
+}
+
+/* The children of node n (cube q) a probe must enter, as bits by octant:
+ * those whose cube lies within the subtree's reach (or the range) of p (a
+ * record lies inside its node's cube, the root's list excepted, which is
+ * always scanned). */
+static unsigned irc__children(const irc_cache *c, const irc__node *n, const irc__cube *q,
+                              const irc__probe *pr)
+{
+    const irc__node *ch = &irc__nodes(c)[n->child];
+    const double hc = 0.5 * q->h, pad = hc * 1e-9, s = pr->scale * (1.0 + 1e-6);
+    double part[3][2], xy[4], fixed = pr->range + pad;
+    unsigned mask = 0;
+    int oct, i;
     /* Squared distance from p to each child's cube, axis by axis: child
-     * bit k of axis i sits at centre c_i - hc (k = 0) or c_i + hc (k = 1). */
-    for (i = 0; i < 3; i++)
-        for (k = 0; k < 2; k++) {
-            double o = IRC_FABS(p[i] - (q->c[i] + (k ? hc : -hc))) - hc;
-            part[i][k] = o > 0.0 ? o * o : 0.0;
-        }
+     * bit k of axis i spans [c_i - h, c_i] (k = 0) or [c_i, c_i + h]. */
+    for (i = 0; i < 3; i++) {
+        double below = (q->c[i] - q->h) - pr->p[i], above = pr->p[i] - (q->c[i] + q->h),
+               lo = pr->p[i] - q->c[i], hi = q->c[i] - pr->p[i];
+        lo = lo > below ? lo : below; /* outside [c - h, c] */
+        hi = hi > above ? hi : above; /* outside [c, c + h] */
+        part[i][0] = lo > 0.0 ? lo * lo : 0.0;
+        part[i][1] = hi > 0.0 ? hi * hi : 0.0;
+    }
+    /* By the octant's low two bits (x, y), then z added per child. */
+    xy[0] = part[0][0] + part[1][0];
+    xy[1] = part[0][1] + part[1][0];
+    xy[2] = part[0][0] + part[1][1];
+    xy[3] = part[0][1] + part[1][1];
+    if (pr->range >= 0.0) {
+        for (oct = 0; oct < 8; oct++)
+            if (ch[oct].reach >= 0.0f && xy[oct & 3] + part[2][oct >> 2] <= fixed * fixed)
+                mask |= 1u << oct;
+        return mask;
+    }
     for (oct = 0; oct < 8; oct++) {
-        const irc__node *ch = &irc__nodes(c)[n->child + (uint32_t)oct];
-        double r, d2;
-        if (ch->reach < 0.0f)
-            continue;
-        d2 = part[0][oct & 1] + part[1][oct >> 1 & 1] + part[2][oct >> 2 & 1];
         /* The pad covers the float rounding of the stored reach. */
-        r = (range >= 0.0 ? range : scale * (double)ch->reach * (1.0 + 1e-6)) + pad;
-        if (d2 <= r * r) {
-            irc__cube cq;
-            irc__child_cube(q, oct, &cq);
-            irc__query_node(c, ch, &cq, p, range, scale, fn, ud);
+        double r = s * (double)ch[oct].reach + pad;
+        if (ch[oct].reach >= 0.0f && xy[oct & 3] + part[2][oct >> 2] <= r * r)
+            mask |= 1u << oct;
+    }
+    return mask;
+}
+
+/* Depth first, children in octant order, each node's list before its
+ * children's (the order lookups sum in), with an explicit stack: one
+ * frame a level, the cube of the current node kept and restored on the
+ * way up by irc__parent_cube. */
+static uint32_t irc__descend(const irc_cache *c, const irc__probe *pr)
+{
+    uint32_t scanned = 0;
+    struct { uint32_t block; uint8_t mask, oct; } st[IRC__LEVELS + 1];
+    const irc__node *nodes = irc__nodes(c);
+    irc__cube q;
+    int top = 0;
+    if (!c->home->root_set)
+        return 0;
+    irc__root_cube(c, &q);
+    if (nodes[0].head != IRC__NIL)
+        scanned += irc__scan(c, nodes[0].head, &q, pr);
+    if (!nodes[0].child)
+        return scanned;
+    st[0].block = nodes[0].child;
+    st[0].mask = (uint8_t)irc__children(c, &nodes[0], &q, pr);
+    for (;;) {
+        const irc__node *n;
+        irc__cube cq;
+        unsigned oct;
+        if (!st[top].mask) {
+            if (top == 0)
+                return scanned;
+            top--;
+            irc__parent_cube(&q, (int)st[top].oct);
+            continue;
+        }
+        for (oct = 0; !(st[top].mask >> oct & 1u); oct++)
+            ;
+        st[top].mask = (uint8_t)(st[top].mask & ~(1u << oct));
+        n = &nodes[st[top].block + oct];
+        irc__child_cube(&q, (int)oct, &cq);
+        if (n->head != IRC__NIL)
+            scanned += irc__scan(c, n->head, &cq, pr);
+        IRC_ASSERT(!n->child || top < IRC__LEVELS);
+        if (n->child && top < IRC__LEVELS) {
+            st[top].oct = (uint8_t)oct;
+            q = cq;
+            top++;
+            st[top].block = n->child;
+            st[top].mask = (uint8_t)irc__children(c, n, &q, pr);
         }
     }
 }
 
-void irc__index_query(const irc_cache *c, const float p[3], irc__visit_fn fn,
-                      void *ud)
+uint32_t irc__index_query(const irc_cache *c, const float p[3], irc__visit_fn fn, void *ud)
 {
-    irc__cube q;
-    if (!c->home->root_set)
-        return;
-    irc__root_cube(c, &q);
-    irc__query_node(c, &irc__nodes(c)[0], &q, p, -1.0, 1.0, fn, ud);
+    irc__probe pr;
+    pr.p = p;
+    pr.range = -1.0;
+    pr.scale = 1.0;
+    pr.fn = fn;
+    pr.ud = ud;
+    return irc__descend(c, &pr);
 }
 
-/* range >= 0: the lists of records within range of p; range < 0: of
- * records whose radius R_i (reach / a) may hold p. */
+/* range >= 0: records within range of p; range < 0: records whose radius
+ * R_i (reach / a) may hold p. */
 void irc__index_range(const irc_cache *c, const float p[3], double range, irc__visit_fn fn,
                       void *ud)
 {
-    irc__cube q;
-    if (!c->home->root_set)
-        return;
-    irc__root_cube(c, &q);
-    irc__query_node(c, &irc__nodes(c)[0], &q, p, range, 1.0 / c->cfg.accuracy, fn, ud);
+    irc__probe pr;
+    pr.p = p;
+    pr.range = range;
+    pr.scale = 1.0 / c->cfg.accuracy;
+    pr.fn = fn;
+    pr.ud = ud;
+    (void)irc__descend(c, &pr);
 }

@@ -5,7 +5,7 @@
  * Byte 0 of the block holds the distance (1..64) from the block's start to
  * the cache, which sits on the first 64-byte boundary after byte 0; from
  * there on:
- *   struct irc_cache | lock | scratch slots | records | next links | nodes |
+ *   struct irc_cache | lock | scratch slots | records | index entries | nodes |
  *   CLOCK bits (only with eviction)
  * each part on a 64-byte boundary, reached by its offset from the cache.
  * So the footprint carries 64 bytes of slack, and irc_attach can find the
@@ -14,7 +14,7 @@
 #include "cache.h"
 
 typedef struct irc__layout {
-    uint64_t lock, scratch, records, next, nodes, used, total;
+    uint64_t lock, scratch, records, ix, nodes, used, total;
     uint64_t slot_bytes, lock_bytes;
     uint32_t rec_size, off_t, off_r, off_a, off_g, off_sh, off_shg, node_cap, samples;
 } irc__layout;
@@ -24,15 +24,17 @@ static uint64_t irc__up(uint64_t x)
     return (x + (IRC__ALIGN - 1)) & ~(uint64_t)(IRC__ALIGN - 1);
 }
 
-/* Index pool: the root plus one block of 8 children per 8 records.  A leaf
- * splits when more than 8 records sit in it, and records lie on surfaces,
- * which fill about half of a split's 8 children: a 126 x 126 floor used
- * 0.7 nodes a record (test_index_origin).  When the pool runs out, leaves
+/* Index pool: the root plus one block of 8 children per 32 records, so
+ * that the index (a 12-byte entry per record, 12-byte nodes) stays within
+ * 16 bytes a record.  A leaf splits when more than 16 records sit in it,
+ * and records lie on surfaces, which fill about half of a split's 8
+ * children: records on a unit box (bench/bench_core.c) used 0.23 nodes a
+ * record at 1e5 records, 0.26 at 1e6.  When the pool runs out, leaves
  * simply grow longer (lookups stay exact, only slower).  irc_stats reports
  * the nodes used. */
 static uint32_t irc__node_cap(uint32_t capacity)
 {
-    return 1u + 8u * (capacity / 8u + 8u);
+    return 1u + 8u * (capacity / 32u + 8u);
 }
 
 /* Record bytes: the 32-byte head, then the kind's payload. */
@@ -103,8 +105,8 @@ static void irc__layout_of(const irc_config *cfg, uint32_t capacity, irc__layout
     at += (uint64_t)cfg->threads * l->slot_bytes;
     l->records = at;
     at += irc__up((uint64_t)capacity * l->rec_size);
-    l->next = at;
-    at += irc__up((uint64_t)capacity * sizeof(uint32_t));
+    l->ix = at;
+    at += irc__up((uint64_t)capacity * sizeof(irc__ixe));
     l->nodes = at;
     at += irc__up((uint64_t)l->node_cap * sizeof(irc__node));
     l->used = at;
@@ -177,7 +179,7 @@ static void irc__set_parts(irc_cache *c, const irc__layout *l)
     c->o_lock = (size_t)l->lock;
     c->o_scratch = (size_t)l->scratch;
     c->o_records = (size_t)l->records;
-    c->o_next = (size_t)l->next;
+    c->o_ix = (size_t)l->ix;
     c->o_nodes = (size_t)l->nodes;
     c->o_used = c->cfg.evict == IRC_EVICT_CLOCK ? (size_t)l->used : 0;
 }

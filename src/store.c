@@ -164,16 +164,13 @@ typedef struct irc__near {
 static void irc__clamp_visit(void *ud, uint32_t id)
 {
     irc__near *k = (irc__near *)ud;
-    const uint32_t *next = irc__next(k->c);
-    for (; id != IRC__NIL; id = next[id]) {
-        irc__rec *j = irc__rec_at(k->c, id);
-        double dx = (double)j->p[0] - k->r->p[0], dy = (double)j->p[1] - k->r->p[1],
-               dz = (double)j->p[2] - k->r->p[2], d = IRC_SQRT(dx * dx + dy * dy + dz * dz);
-        if (!k->back && d < k->r->r && j->r + d < k->r->r)
-            k->r->r = (float)(j->r + d);
-        else if (k->back && d < j->r && k->r->r + d < j->r)
-            j->r = (float)(k->r->r + d);
-    }
+    irc__rec *j = irc__rec_at(k->c, id);
+    double dx = (double)j->p[0] - k->r->p[0], dy = (double)j->p[1] - k->r->p[1],
+           dz = (double)j->p[2] - k->r->p[2], d = IRC_SQRT(dx * dx + dy * dy + dz * dz);
+    if (!k->back && d < k->r->r && j->r + d < k->r->r)
+        k->r->r = (float)(j->r + d);
+    else if (k->back && d < j->r && k->r->r + d < j->r)
+        j->r = (float)(k->r->r + d);
 }
 
 static void irc__clamp_neighbours(irc_cache *c, irc__rec *r)
@@ -281,22 +278,19 @@ static void irc__visit(void *ud, uint32_t id)
 {
     irc__walk *v = (irc__walk *)ud;
     const irc_cache *c = v->c;
-    const uint32_t *next = irc__next(c);
-    for (; id != IRC__NIL; id = next[id]) {
-        const irc__rec *r = irc__rec_at(c, id);
-        double w;
-        float ni[3];
-        if (!irc__within_reach(c, r, v->q->p) || !c->kind->weigh(c, r, v->q, &w, ni))
-            continue;
-        v->w += w;
-        if (v->acc) {
-            c->kind->accumulate(c, r, v->q, w, ni, v->acc);
-            irc__mark_used(v->c, id);
-        } else {
-            if (v->found < v->cap)
-                v->ids[v->found] = id;
-            v->found++;
-        }
+    const irc__rec *r = irc__rec_at(c, id);
+    double w;
+    float ni[3];
+    if (!irc__within_reach(c, r, v->q->p) || !c->kind->weigh(c, r, v->q, &w, ni))
+        return;
+    v->w += w;
+    if (v->acc) {
+        c->kind->accumulate(c, r, v->q, w, ni, v->acc);
+        irc__mark_used(v->c, id);
+    } else {
+        if (v->found < v->cap)
+            v->ids[v->found] = id;
+        v->found++;
     }
 }
 
@@ -446,7 +440,7 @@ int irc__write_lock_idle(irc_cache *c)
 void irc__forget_locked(irc_cache *c)
 {
     c->home->hand = 0;
-    IRC_MEMSET(irc__next(c), 0, (size_t)c->capacity * sizeof(uint32_t));
+    IRC_MEMSET(irc__ix(c), 0, (size_t)c->capacity * sizeof(irc__ixe));
     IRC_MEMSET(irc__nodes(c), 0, (size_t)c->home->nodes_used * sizeof(irc__node));
     if (c->o_used)
         IRC_MEMSET(irc__used(c), 0, ((size_t)c->capacity + 63u) / 64u * sizeof(uint64_t));
@@ -497,7 +491,7 @@ int irc_cache_stats(irc_cache *c, irc_stats *out)
     out->index_nodes_max = c->node_cap;
     out->record_bytes = c->rec_size;
     out->bytes_records = (size_t)c->capacity * c->rec_size;
-    out->bytes_index = (size_t)c->capacity * sizeof(uint32_t) +
+    out->bytes_index = (size_t)c->capacity * sizeof(irc__ixe) +
                        (size_t)c->node_cap * sizeof(irc__node) +
                        (c->o_used ? ((size_t)c->capacity + 63u) / 64u * 8u : 0u);
     out->bytes_scratch = (size_t)c->cfg.threads * c->slot_bytes;
