@@ -67,7 +67,7 @@ static int cheap_trace(const irc_trace_args *a)
 }
 
 /* Microseconds of library time per record computed. */
-static double record_cost(uint32_t features, uint32_t m, uint32_t n)
+static double record_cost(uint32_t features, uint32_t m, uint32_t n, double seconds)
 {
     irc_config cfg;
     irc_cache *c;
@@ -83,18 +83,36 @@ static double record_cost(uint32_t features, uint32_t m, uint32_t n)
     irc_footprint(&cfg, 16, &bytes);
     cfg.buffer = malloc(bytes);
     cfg.buffer_size = bytes;
+    cfg.sh_bands = (features & IRC_FEATURE_SH) ? 3u : 0u;
     irc_init(&cfg, 16, &c);
     t0 = now();
     do {
         float p[3] = {(float)urand(), (float)urand(), 0.0f}, nn[3] = {0.0f, 0.0f, 1.0f};
         irc_record r;
-        if (irc_record_compute(c, p, nn, &r, NULL) != IRC_OK)
+        irc_sh sh;
+        if ((features & IRC_FEATURE_SH) ? irc_sh_compute(c, p, nn, &sh, NULL) != IRC_OK
+                                        : irc_record_compute(c, p, nn, &r, NULL) != IRC_OK)
             return -1.0;
         done++;
         t1 = now();
-    } while (t1 - t0 < 0.5);
+    } while (t1 - t0 < seconds);
     free(cfg.buffer);
     return 1e6 * (t1 - t0) / done;
+}
+
+/* Library time of records with features b over records with features a:
+ * five alternating runs of each, the fastest of each kept (this machine's
+ * speed drifts by up to 2x; alternation puts both under the same drift). */
+static double cost_ratio(uint32_t a, uint32_t b, uint32_t m, uint32_t n)
+{
+    double best_a = 1e30, best_b = 1e30;
+    int k;
+    for (k = 0; k < 5; k++) {
+        double ta = record_cost(a, m, n, 0.15), tb = record_cost(b, m, n, 0.15);
+        if (ta < best_a) best_a = ta;
+        if (tb < best_b) best_b = tb;
+    }
+    return best_b / best_a;
 }
 
 /* Snapshot write, read and merge throughput of a filled cache (records/s),
@@ -321,7 +339,22 @@ int main(void)
         static const uint32_t strata[2][2] = {{16, 64}, {32, 128}};
         for (i = 0; i < nsets; i++)
             printf("record_us_library,%s,,,%ux%u,%.2f,us\n", sets[i].name, strata[k][0],
-                   strata[k][1], record_cost(sets[i].f, strata[k][0], strata[k][1]));
+                   strata[k][1], record_cost(sets[i].f, strata[k][0], strata[k][1], 0.5));
+        printf("record_us_library,sh L=3,,,%ux%u,%.2f,us\n", strata[k][0], strata[k][1],
+               record_cost(IRC_FEATURE_SH, strata[k][0], strata[k][1], 0.5));
+        printf("record_us_library,sh L=3 + gradient,,,%ux%u,%.2f,us\n", strata[k][0],
+               strata[k][1],
+               record_cost(IRC_FEATURE_SH | IRC_FEATURE_SH_GRADIENT, strata[k][0], strata[k][1],
+                           0.5));
+        /* The issue's ratios: trans + rot gradients over a bare record; an
+         * L = 3 SH record with gradients over one without. */
+        printf("gradient_cost_over_bare,trans+rot,,,%ux%u,%.3f,x\n", strata[k][0],
+               strata[k][1],
+               cost_ratio(0, IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION, strata[k][0],
+                          strata[k][1]));
+        printf("gradient_cost_over_bare,sh L=3,,,%ux%u,%.3f,x\n", strata[k][0], strata[k][1],
+               cost_ratio(IRC_FEATURE_SH, IRC_FEATURE_SH | IRC_FEATURE_SH_GRADIENT,
+                          strata[k][0], strata[k][1]));
     }
     for (k = 0; k < 2; k++) {
         for (pi = 0; pi < 2; pi++) {
@@ -345,8 +378,10 @@ int main(void)
             if (pi == 0) {
                 printf("index_bytes_reserved,trans+rot,%u,,,%.2f,bytes/record\n", sizes[k],
                        (double)st.bytes_index / sizes[k]);
+                /* The pool's unused nodes (12 bytes each) taken off. */
                 printf("index_bytes_used,trans+rot,%u,,,%.2f,bytes/record\n", sizes[k],
-                       (double)(st.index_nodes * 16u + sizes[k] * 4u) / sizes[k]);
+                       ((double)st.bytes_index -
+                        (double)(st.index_nodes_max - st.index_nodes) * 12.0) / sizes[k]);
                 printf("block_bytes,trans+rot,%u,,,%.2f,bytes/record\n", sizes[k],
                        (double)st.bytes_total / sizes[k]);
                 snapshot_rates(c, &cfg, sizes[k]);

@@ -87,7 +87,7 @@ typedef struct irc__ixe {
 enum {
     IRC__C_INSERTS, IRC__C_EVICTIONS, IRC__C_LOOKUPS, IRC__C_HITS,
     IRC__C_COMPUTES, IRC__C_RAYS, IRC__C_NOT_STORED, IRC__C_WAITS, IRC__C_COUNT
-};
+}; /* IRC__C_COUNT * 8 bytes: one stripe, at most a cache line */
 
 /* One stratum's sample: the estimator needs radiance and distance, nothing
  * else, so scratch is 16 bytes a stratum. */
@@ -190,7 +190,8 @@ struct irc_cache {
     size_t slot_bytes;       /* scratch bytes per thread slot */
     size_t total_bytes;      /* bytes of the block in use from the cache on */
     /* Offsets from the address of home. */
-    size_t o_lock, o_scratch, o_records, o_ix, o_nodes, o_used; /* o_used 0: no CLOCK */
+    size_t o_lock, o_scratch, o_records, o_ix, o_nodes, o_ctr,
+           o_used;           /* o_used 0: no CLOCK */
     /* Mutable under the write lock; read and written through home. */
     uint32_t count;          /* records in slots [0, count) */
     uint32_t nodes_used;
@@ -206,8 +207,14 @@ struct irc_cache {
     uint64_t slots_busy;     /* bit t: scratch slot t in use */
     uint64_t pending;        /* records deferred by the open pass (some may
                                 not have found a slot) */
-    uint64_t ctr[IRC__C_COUNT];
 };
+
+/* The counters, in IRC__STRIPES stripes of one cache line each (a part of
+ * the block at o_ctr): a thread adds to the stripe its stack's address
+ * picks, so threads on other cores rarely write the same line, and
+ * irc_cache_stats sums the stripes.  Any thread may use any stripe; the
+ * adds stay atomic. */
+#define IRC__STRIPES 8u
 
 static inline unsigned char *irc__part(const irc_cache *c, size_t off)
 {
@@ -222,6 +229,10 @@ static inline irc__ixe *irc__ix(const irc_cache *c)
 static inline irc__node *irc__nodes(const irc_cache *c)
 {
     return (irc__node *)(void *)irc__part(c, c->o_nodes);
+}
+static inline uint64_t *irc__stripe(const irc_cache *c, uint32_t s)
+{
+    return (uint64_t *)(void *)irc__part(c, c->o_ctr + (size_t)s * IRC__ALIGN);
 }
 static inline uint64_t *irc__used(const irc_cache *c)
 {

@@ -6,7 +6,7 @@
  * the cache, which sits on the first 64-byte boundary after byte 0; from
  * there on:
  *   struct irc_cache | lock | scratch slots | records | index entries | nodes |
- *   CLOCK bits (only with eviction)
+ *   counter stripes | CLOCK bits (only with eviction)
  * each part on a 64-byte boundary, reached by its offset from the cache.
  * So the footprint carries 64 bytes of slack, and irc_attach can find the
  * cache in a block copied to any address.
@@ -14,7 +14,7 @@
 #include "cache.h"
 
 typedef struct irc__layout {
-    uint64_t lock, scratch, records, ix, nodes, used, total;
+    uint64_t lock, scratch, records, ix, nodes, ctr, used, total;
     uint64_t slot_bytes, lock_bytes;
     uint32_t rec_size, off_t, off_r, off_a, off_g, off_sh, off_shg, node_cap, samples;
 } irc__layout;
@@ -32,9 +32,12 @@ static uint64_t irc__up(uint64_t x)
  * record at 1e5 records, 0.26 at 1e6.  When the pool runs out, leaves
  * simply grow longer (lookups stay exact, only slower).  irc_stats reports
  * the nodes used. */
+#ifndef IRC__POOL_DIV
+#define IRC__POOL_DIV 32u
+#endif
 static uint32_t irc__node_cap(uint32_t capacity)
 {
-    return 1u + 8u * (capacity / 32u + 8u);
+    return 1u + 8u * (capacity / IRC__POOL_DIV + 8u);
 }
 
 /* Record bytes: the 32-byte head, then the kind's payload. */
@@ -109,6 +112,8 @@ static void irc__layout_of(const irc_config *cfg, uint32_t capacity, irc__layout
     at += irc__up((uint64_t)capacity * sizeof(irc__ixe));
     l->nodes = at;
     at += irc__up((uint64_t)l->node_cap * sizeof(irc__node));
+    l->ctr = at;
+    at += (uint64_t)IRC__STRIPES * IRC__ALIGN;
     l->used = at;
     if (cfg->evict == IRC_EVICT_CLOCK)
         at += irc__up(((uint64_t)capacity + 63u) / 64u * sizeof(uint64_t));
@@ -181,6 +186,7 @@ static void irc__set_parts(irc_cache *c, const irc__layout *l)
     c->o_records = (size_t)l->records;
     c->o_ix = (size_t)l->ix;
     c->o_nodes = (size_t)l->nodes;
+    c->o_ctr = (size_t)l->ctr;
     c->o_used = c->cfg.evict == IRC_EVICT_CLOCK ? (size_t)l->used : 0;
 }
 
@@ -283,6 +289,7 @@ int irc_attach(const irc_config *cfg, irc_cache **out)
  * promises (C99 has no static_assert: a negative array size stops the
  * build). */
 typedef char irc__view_fits[sizeof(irc_cache) <= IRC_VIEW_BYTES ? 1 : -1];
+typedef char irc__stripe_fits[IRC__C_COUNT * sizeof(uint64_t) <= IRC__ALIGN ? 1 : -1];
 
 static int irc__same_name(const char a[16], const char b[16])
 {

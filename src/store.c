@@ -54,9 +54,28 @@ static int irc__open(const irc_cache *c, const irc__kind *want, const void *out,
     return out ? irc__query_make(c, p, n, q) : IRC_ERR_NULL;
 }
 
+/* The calling thread's stripe: its stack's address above 64 KiB
+ * granules, hashed (threads' stacks lie megabytes apart; one thread's
+ * calls stay within one granule or two). */
+static uint32_t irc__my_stripe(void)
+{
+    unsigned char here;
+    uint64_t a = (uint64_t)(uintptr_t)&here >> 16;
+    return (uint32_t)((a * 0x9e3779b97f4a7c15ull) >> 61) % IRC__STRIPES;
+}
+
 void irc__count(irc_cache *c, int which, uint64_t v)
 {
-    c->port->fetch_add(&c->home->ctr[which], v);
+    c->port->fetch_add(&irc__stripe(c, irc__my_stripe())[which], v);
+}
+
+static uint64_t irc__counter(const irc_cache *c, int which)
+{
+    uint64_t sum = 0;
+    uint32_t s;
+    for (s = 0; s < IRC__STRIPES; s++)
+        sum += c->port->load(&irc__stripe(c, s)[which]);
+    return sum;
 }
 
 /* Claims a free scratch slot (index in *t).  When all are taken it waits
@@ -480,14 +499,14 @@ int irc_cache_stats(irc_cache *c, irc_stats *out)
     out->index_nodes = c->home->nodes_used;
     c->port->read_unlock(irc__lock(c));
     out->capacity = c->capacity;
-    out->inserts = c->port->load(&c->home->ctr[IRC__C_INSERTS]);
-    out->evictions = c->port->load(&c->home->ctr[IRC__C_EVICTIONS]);
-    out->lookups = c->port->load(&c->home->ctr[IRC__C_LOOKUPS]);
-    out->hits = c->port->load(&c->home->ctr[IRC__C_HITS]);
-    out->computes = c->port->load(&c->home->ctr[IRC__C_COMPUTES]);
-    out->not_stored = c->port->load(&c->home->ctr[IRC__C_NOT_STORED]);
-    out->waits = c->port->load(&c->home->ctr[IRC__C_WAITS]);
-    out->rays = c->port->load(&c->home->ctr[IRC__C_RAYS]);
+    out->inserts = irc__counter(c, IRC__C_INSERTS);
+    out->evictions = irc__counter(c, IRC__C_EVICTIONS);
+    out->lookups = irc__counter(c, IRC__C_LOOKUPS);
+    out->hits = irc__counter(c, IRC__C_HITS);
+    out->computes = irc__counter(c, IRC__C_COMPUTES);
+    out->not_stored = irc__counter(c, IRC__C_NOT_STORED);
+    out->waits = irc__counter(c, IRC__C_WAITS);
+    out->rays = irc__counter(c, IRC__C_RAYS);
     out->index_nodes_max = c->node_cap;
     out->record_bytes = c->rec_size;
     out->bytes_records = (size_t)c->capacity * c->rec_size;
