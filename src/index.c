@@ -4,10 +4,14 @@
  * A record sits in the deepest node whose children are at least as large as
  * its reach a*R_i (a loose octree: a subtree's records reach at most one
  * node size past its cube).  Cubes lie on a power-of-two grid, so every
- * centre is exact in double and placement never depends on rounding.  Each node keeps the largest reach in its
- * subtree, and a query descends only into children whose cube lies within
- * that reach of the query point, which is exact: a record whose sphere holds
- * p lies in a cube no farther from p than the record's reach.
+ * centre is exact in double and placement never depends on rounding.
+ * Each node keeps the largest reach in its subtree, and a query descends
+ * only into children whose cube lies within that reach of the query point,
+ * which is exact: a record whose sphere holds p lies in a cube no farther
+ * from p than the record's reach.  In a node's list a query tests each
+ * record's index entry (cache.h, irc__ixe: position and reach in 16-bit
+ * steps of the node's cube, rounded so the test admits a superset) and
+ * hands over only the records that pass, for the caller's exact test.
  *
  * A leaf with more than IRC__SPLIT records splits when the node pool has a
  * block of 8 free.  The root is not tied to a grid through the origin: a
@@ -18,7 +22,8 @@
  * (not their reaches, which may be 1e30); afterwards it doubles toward
  * records that land outside it, the old root becoming one of its children.
  * Centres stay exact because the root's half edge is kept at least 1/32 of
- * its centre's largest coordinate and the tree is at most IRC__DEPTH deep.
+ * its centre's largest coordinate, splits stop at depth IRC__DEPTH and
+ * growth at IRC__LEVELS.
  * When the pool is spent, lists grow instead: slower, never wrong.
  */
 #include "cache.h"
