@@ -186,6 +186,9 @@ fuzz:
 $(BUILD)/bench_core: bench/bench_core.c tests/scenes.c tests/scenes.h $(LIBA)
 	$(CC) $(TEST_CFLAGS) -O2 -g $(CFLAGS) bench/bench_core.c tests/scenes.c $(LIBA) -o $@ -lm -lpthread
 
+$(BUILD)/bench_lookups: bench/lookups.c $(LIBA)
+	$(CC) $(TEST_CFLAGS) -O2 -g $(CFLAGS) bench/lookups.c $(LIBA) -o $@ -lm
+
 # ---------------------------------------------------------------- examples
 $(BUILD)/minimal: examples/minimal.c $(LIBA)
 	$(CC) -std=c99 $(WARN) -Iinclude $(OPT) examples/minimal.c $(LIBA) -o $@ -lm $(THREAD_LIBS)
@@ -195,6 +198,12 @@ examples: $(BUILD)/minimal $(BUILD)/threads
 
 bench-core: $(BUILD)/bench_core
 	$(BUILD)/bench_core
+
+# One lookup workload for profilers (README: "Where the lookup time goes"):
+# rates, entries scanned and passed, and a checksum of the answers.
+bench-lookups: $(BUILD)/bench_lookups
+	for o in scanline random; do for n in 100000 1000000; do \
+	  $(BUILD)/bench_lookups $$o 200000 $$n count || exit 1; done; done
 
 # Speed against error on every shipped scene (README: "Speed against
 # error").  BENCH_QUICK=1: small images, fewer runs, under two minutes.
@@ -225,4 +234,4 @@ install: all
 clean:
 	rm -rf build build-*
 
-.PHONY: all lib examples test coverage demo fig15 sh-experiments fuzz replay bench-core bench bench-fill farm-demo install clean
+.PHONY: all lib examples test coverage demo fig15 sh-experiments fuzz replay bench-core bench-lookups bench bench-fill farm-demo install clean

@@ -72,9 +72,10 @@ typedef struct irc__node {
 /* A record's entry in the index, by id: its list link and its position and
  * reach a*R_i quantized against the cube (centre c, half edge h) of the
  * node whose list holds it, in steps of 2h/65535.  A query tests these
- * before it touches the record: the candidates of one lookup then share
- * cache lines (5 entries to a line, against one record), and most fail
- * the test.  12 bytes. */
+ * before it touches the record, and most candidates fail the test: it
+ * reads 12 bytes, not a record's line.  Entries sit at their records'
+ * ids, so one lookup's entries share lines only as far as their ids are
+ * near (README, "Where the lookup time goes").  12 bytes. */
 #define IRC__IX_ANY 0xffffu  /* rq: no bound in this cube's steps (a root
                                 record outside the cube, or a reach of
                                 2h or more): always a candidate */

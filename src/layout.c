@@ -32,12 +32,9 @@ static uint64_t irc__up(uint64_t x)
  * record at 1e5 records, 0.26 at 1e6.  When the pool runs out, leaves
  * simply grow longer (lookups stay exact, only slower).  irc_stats reports
  * the nodes used. */
-#ifndef IRC__POOL_DIV
-#define IRC__POOL_DIV 32u
-#endif
 static uint32_t irc__node_cap(uint32_t capacity)
 {
-    return 1u + 8u * (capacity / IRC__POOL_DIV + 8u);
+    return 1u + 8u * (capacity / 32u + 8u);
 }
 
 /* Record bytes: the 32-byte head, then the kind's payload. */

@@ -1,0 +1,138 @@
+/*
+ * lookups.c -- one lookup workload, small enough to profile: N trans+rot
+ * records on the six faces of a unit box (as bench_core.c builds them),
+ * then L lookups in scanline or random order.  Prints the lookup rate, the
+ * index nodes used per record, the index entries a lookup scans and those
+ * that pass the entry test (with "count": a second pass over queries of
+ * the same kind, not timed), and the
+ * sum of the returned values with 9 digits, so that two builds can be
+ * checked for the same answers.
+ *
+ *   ./build/bench_lookups ORDER L N [count]     ORDER: scanline | random
+ *
+ * Instructions per lookup: run it under callgrind with L = 0 and L = 10000
+ * and divide the difference by 10000 (README, "Speed and memory").
+ */
+#define _POSIX_C_SOURCE 200809L
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include "cache.h" /* irc__index_query: entries scanned and passed */
+
+static unsigned long long rng = 1;
+
+static double urand(void)
+{
+    rng ^= rng << 13;
+    rng ^= rng >> 7;
+    rng ^= rng << 17;
+    return (double)(rng >> 11) * (1.0 / 9007199254740992.0);
+}
+
+static double now(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+static int no_trace(const irc_trace_args *a)
+{
+    (void)a;
+    return -1;
+}
+
+static void face_point(int f, double u, double v, float p[3], float n[3]);
+
+static void count_passed(void *ud, uint32_t id)
+{
+    (void)id;
+    ++*(unsigned long long *)ud;
+}
+
+/* The i-th query of the workload (random order draws from rng). */
+static void query(int scanline, uint32_t i, float p[3], float n[3])
+{
+    if (scanline)
+        face_point((int)(i >> 8) % 6, (double)(i & 255) / 4096.0 + 0.3,
+                   (double)((i >> 8) % 97) / 100.0, p, n);
+    else
+        face_point((int)(urand() * 6), urand(), urand(), p, n);
+}
+
+static void face_point(int f, double u, double v, float p[3], float n[3])
+{
+    int axis = f % 3, side = f / 3, a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
+    p[axis] = (float)side;
+    p[a1] = (float)u;
+    p[a2] = (float)v;
+    n[0] = n[1] = n[2] = 0.0f;
+    n[axis] = side ? 1.0f : -1.0f;
+}
+
+int main(int argc, char **argv)
+{
+    irc_config cfg;
+    irc_cache *c;
+    irc_record r;
+    irc_stats st;
+    size_t bytes;
+    uint32_t count, i;
+    long nl, hits = 0;
+    unsigned long long scanned = 0, passed = 0;
+    double reach, sum = 0.0, t0, t1;
+    int scanline;
+    if (argc < 4 || argc > 5 || (argc == 5 && strcmp(argv[4], "count")) ||
+        (strcmp(argv[1], "scanline") && strcmp(argv[1], "random"))) {
+        fprintf(stderr, "usage: %s scanline|random LOOKUPS RECORDS [count]\n", argv[0]);
+        return 2;
+    }
+    scanline = !strcmp(argv[1], "scanline");
+    nl = atol(argv[2]);
+    count = (uint32_t)atol(argv[3]);
+    memset(&cfg, 0, sizeof cfg);
+    cfg.trace = no_trace;
+    cfg.accuracy = 0.2f;
+    cfg.features = IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION;
+    cfg.port = &irc_port_none;
+    if (count == 0 || irc_footprint(&cfg, count, &bytes) != IRC_OK ||
+        !(cfg.buffer = malloc(bytes))) {
+        fprintf(stderr, "bad record count\n");
+        return 2;
+    }
+    cfg.buffer_size = bytes;
+    if (irc_init(&cfg, count, &c) != IRC_OK)
+        return 1;
+    reach = sqrt(36.0 / (3.14159265 * count));
+    memset(&r, 0, sizeof r);
+    for (i = 0; i < count; i++) {
+        face_point((int)(urand() * 6), urand(), urand(), r.p, r.n);
+        r.e[0] = r.e[1] = r.e[2] = (float)(0.5 + urand());
+        r.grad_t[0][0] = 0.1f;
+        r.radius = (float)(reach / 0.2 * exp((urand() - 0.5) * 1.4));
+        if (irc_cache_insert(c, &r) != IRC_OK)
+            return 1;
+    }
+    t0 = now();
+    for (i = 0; i < (uint32_t)nl; i++) {
+        float p[3], n[3], rgb[3], w;
+        query(scanline, i, p, n);
+        hits += irc_cache_lookup(c, p, n, rgb, &w) == IRC_OK;
+        sum += rgb[0];
+    }
+    t1 = now();
+    for (i = 0; argc == 5 && i < (uint32_t)nl; i++) {
+        float p[3], n[3];
+        query(scanline, i, p, n);
+        scanned += irc__index_query(c, p, count_passed, &passed);
+    }
+    irc_cache_stats(c, &st);
+    printf("%s order, %u records: %ld lookups, %ld hits, %.3f M/s, %.3f index nodes a record, "
+           "%.1f entries scanned and %.1f passed a lookup, sum %.9g\n", argv[1], count, nl, hits,
+           nl > 0 ? nl / (t1 - t0) / 1e6 : 0.0, (double)st.index_nodes / count,
+           nl > 0 ? (double)scanned / nl : 0.0, nl > 0 ? (double)passed / nl : 0.0, sum);
+    free(cfg.buffer);
+    return 0;
+}
