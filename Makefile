@@ -21,7 +21,7 @@ PORT ?= posix
 CFLAGS_LIB = -std=c99 $(WARN) $(OPT) $(PIC) -fvisibility=hidden -Iinclude $(CFLAGS)
 PIC = $(if $(filter none,$(PORT)),,-fPIC)
 
-SRC = src/status.c src/check.c src/config.c src/layout.c src/store.c src/kind_irr.c \
+SRC = src/status.c src/check.c src/config.c src/layout.c src/store.c src/kind_irr.c src/gradient.c \
       src/kind_sh.c src/sampler.c src/irradiance.c src/octa.c src/weight.c src/index.c \
       src/visibility.c src/hessian.c src/sh.c src/shgrad.c src/snapshot.c src/merge.c \
       src/pass.c
@@ -189,6 +189,9 @@ $(BUILD)/bench_core: bench/bench_core.c tests/scenes.c tests/scenes.h $(LIBA)
 $(BUILD)/bench_lookups: bench/lookups.c $(LIBA)
 	$(CC) $(TEST_CFLAGS) -O2 -g $(CFLAGS) bench/lookups.c $(LIBA) -o $@ -lm
 
+$(BUILD)/bench_records: bench/records.c $(LIBA)
+	$(CC) $(TEST_CFLAGS) -O2 -g $(CFLAGS) bench/records.c $(LIBA) -o $@ -lm
+
 # ---------------------------------------------------------------- examples
 $(BUILD)/minimal: examples/minimal.c $(LIBA)
 	$(CC) -std=c99 $(WARN) -Iinclude $(OPT) examples/minimal.c $(LIBA) -o $@ -lm $(THREAD_LIBS)
@@ -204,6 +207,11 @@ bench-core: $(BUILD)/bench_core
 bench-lookups: $(BUILD)/bench_lookups
 	for o in scanline random; do for n in 100000 1000000; do \
 	  $(BUILD)/bench_lookups $$o 200000 $$n count || exit 1; done; done
+
+# One record workload for profilers (README: "Speed and memory"): time a
+# record and a checksum of the records, per feature set.
+bench-records: $(BUILD)/bench_records
+	for f in bare both sh shgrad; do $(BUILD)/bench_records $$f 2000 || exit 1; done
 
 # Speed against error on every shipped scene (README: "Speed against
 # error").  BENCH_QUICK=1: small images, fewer runs, under two minutes.
@@ -234,4 +242,4 @@ install: all
 clean:
 	rm -rf build build-*
 
-.PHONY: all lib examples test coverage demo fig15 sh-experiments fuzz replay bench-core bench-lookups bench bench-fill farm-demo install clean
+.PHONY: all lib examples test coverage demo fig15 sh-experiments fuzz replay bench-core bench-lookups bench-records bench bench-fill farm-demo install clean

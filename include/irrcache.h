@@ -400,9 +400,9 @@ typedef struct irc_config {
  * there).
  */
 #define IRC_FOOTPRINT_BOUND(features, records, s, t, b)                          \
-    (8192u +                                                                     \
-     (size_t)(t) * (128u + (size_t)(s) * (((features) & IRC_FEATURE_VISIBILITY) ? 432u : \
-                                          ((features) & IRC_FEATURE_HESSIAN) ? 64u : 32u) + \
+    (8192u + (size_t)(s) * 40u +                                                 \
+     (size_t)(t) * (384u + (size_t)(s) * (((features) & IRC_FEATURE_VISIBILITY) ? 456u : \
+                                          ((features) & IRC_FEATURE_HESSIAN) ? 88u : 56u) + \
                     (size_t)(b) * 56u) + \
      (size_t)(records) * (((features) & IRC_FEATURE_HESSIAN) ? 85u : 77u) +     \
      ((size_t)(records) / 8u + 16u) * 128u)

@@ -17,7 +17,7 @@
 
 /* What a block must agree on to be re-attached (irc_attach): the layout's
  * version, pointer and size_t widths, byte order. */
-#define IRC__LAYOUT_VERSION 6u
+#define IRC__LAYOUT_VERSION 7u
 #define IRC__ABI                                                           \
     (IRC__LAYOUT_VERSION | (uint32_t)sizeof(void *) << 8 |                 \
      (uint32_t)sizeof(size_t) << 16 | (uint32_t)sizeof(double) << 24)
@@ -192,7 +192,8 @@ struct irc_cache {
     size_t total_bytes;      /* bytes of the block in use from the cache on */
     /* Offsets from the address of home. */
     size_t o_lock, o_scratch, o_records, o_ix, o_nodes, o_ctr,
-           o_used;           /* o_used 0: no CLOCK */
+           o_used,           /* o_used 0: no CLOCK */
+           o_gtab;           /* the gradients' table (gradient.c), 0 = none */
     /* Mutable under the write lock; read and written through home. */
     uint32_t count;          /* records in slots [0, count) */
     uint32_t nodes_used;
@@ -238,6 +239,10 @@ static inline uint64_t *irc__stripe(const irc_cache *c, uint32_t s)
 static inline uint64_t *irc__used(const irc_cache *c)
 {
     return c->o_used ? (uint64_t *)(void *)irc__part(c, c->o_used) : NULL;
+}
+static inline const void *irc__gtab(const irc_cache *c)
+{
+    return irc__part(c, c->o_gtab);
 }
 static inline unsigned char *irc__slot(const irc_cache *c, uint32_t t)
 {
@@ -293,6 +298,10 @@ int irc__grad_visibility(irc__call *k, int netvis, double g[3][3]);
 /* irradiance.c: the irradiance record's estimator */
 int irc__irr_compute(irc__call *k, void *rec);
 int irc__hemisphere(irc__call *k, double t1[3], double t2[3]);
+uint64_t irc__gtab_bytes(uint32_t m, uint32_t nphi);
+void irc__gtab_fill(const irc_cache *c, void *tab);
+void irc__gradients(const irc_cache *c, const irc__sample *s, const double mean[3],
+                    const double t1[3], const double t2[3], double gt[3][3], double gr[3][3]);
 
 /* octa.c: the normal codec */
 uint32_t irc__oct_encode(const double n[3]);
@@ -375,8 +384,8 @@ typedef struct irc__cross {
 } irc__cross;
 
 /* A thread's scratch slot: the samples (slot_samples of them), one batch of
- * rays and hits, two weights per row of strata for the translational
- * gradient; with IRC_FEATURE_VISIBILITY or SH each sample's direction and
+ * rays and hits, an inverse hit distance per stratum and five rows of
+ * boundary weights (gradient.c); with IRC_FEATURE_VISIBILITY or SH each sample's direction and
  * hit normal; with VISIBILITY per stratum two edge indices and room for two
  * crossings (plus a spoke and a crossing per column). */
 static inline irc_ray *irc__slot_rays(const irc_cache *c, unsigned char *slot)
@@ -384,16 +393,31 @@ static inline irc_ray *irc__slot_rays(const irc_cache *c, unsigned char *slot)
     return (irc_ray *)(void *)(slot + (size_t)c->slot_samples * sizeof(irc__sample));
 }
 
-static inline double *irc__slot_rows(const irc_cache *c, const irc__sample *s)
+/* The gradients' rows of per-column values are padded to a multiple of 4
+ * plus 4, so that their loops run in blocks of four (which compilers turn
+ * into vector operations) and column N can stand for column 0. */
+static inline uint32_t irc__pad4(uint32_t nphi)
 {
-    return (double *)(void *)((unsigned char *)(void *)(irc__sample *)s +
-                              (size_t)c->slot_samples * sizeof(irc__sample) +
-                              (size_t)c->cfg.max_batch * (sizeof(irc_ray) + sizeof(irc_hit)));
+    return (nphi + 3u) / 4u * 4u + 4u;
+}
+
+/* Slot floats the gradients need: the strata's inverse distances and five
+ * padded rows (gradient.c). */
+static inline uint64_t irc__gscratch_floats(uint32_t strata, uint32_t nphi)
+{
+    return (uint64_t)strata + 5u * irc__pad4(nphi);
+}
+
+static inline float *irc__slot_inv(const irc_cache *c, const irc__sample *s)
+{
+    return (float *)(void *)((unsigned char *)(void *)(irc__sample *)s +
+                             (size_t)c->slot_samples * sizeof(irc__sample) +
+                             (size_t)c->cfg.max_batch * (sizeof(irc_ray) + sizeof(irc_hit)));
 }
 
 static inline float *irc__slot_dirs(const irc_cache *c, const irc__sample *s)
 {
-    return (float *)(void *)(irc__slot_rows(c, s) + 2u * c->cfg.strata_theta);
+    return irc__slot_inv(c, s) + irc__gscratch_floats(c->strata, c->cfg.strata_phi);
 }
 
 static inline float *irc__slot_normals(const irc_cache *c, const irc__sample *s)

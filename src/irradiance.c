@@ -1,7 +1,7 @@
 /*
  * irradiance.c -- the irradiance record's estimator: irradiance, harmonic
- * mean distance, translational and rotational gradients, radius, from the
- * stratified samples of one hemisphere.
+ * mean distance, radius and leak guard from the stratified samples of one
+ * hemisphere; the gradients come from gradient.c.
  */
 #include "cache.h"
 
@@ -24,125 +24,6 @@ static void irc__fill_failed(irc__sample *s, uint32_t total, uint32_t used)
         if (s[i].d != s[i].d)
             for (c = 0; c < 3; c++)
                 s[i].l[c] = (float)(sum[c] / used);
-}
-
-static double irc__nearer(float a, float b)
-{
-    return a < b ? (double)a : (double)b;
-}
-
-/* Translational gradient, the stratified form of Krivanek et al. 2005: the
- * radiance difference across every boundary between neighbouring strata
- * times the rate at which the boundary sweeps solid angle, using the nearer
- * of the two hit distances.  Rows: theta_j- = asin(sqrt(j/M)); a boundary
- * between rows j-1 and j in column k moves along u_k with weight
- * (2 pi/N) cos^2(theta_j-) sin(theta_j-) / d.  Columns: the boundary at
- * phi = 2 pi k/N moves along v_k- with weight
- * cos(theta_j) (cos theta_j- - cos theta_j+) / (sin(theta_j) d), theta_j the
- * row's centre.  Unlike one open implementation, the boundary between rows
- * 0 and 1 is included. */
-static void irc__grad_trans(const irc_cache *c, const irc__sample *s,
-                            const double t1[3], const double t2[3], double g[3][3])
-{
-    const uint32_t m = c->cfg.strata_theta, nphi = c->cfg.strata_phi;
-    double *row = irc__slot_rows(c, s);
-    /* With visibility gradients, edges holding a silhouette are left to
-     * visibility.c; the others keep these terms. */
-    const int vis = (c->cfg.features & IRC_FEATURE_VISIBILITY) != 0;
-    const int32_t *eh = vis ? irc__slot_edges(c, s) : NULL, *ev = vis ? eh + c->strata : NULL;
-    const irc__cross *x = vis ? irc__slot_cross(c, s) : NULL;
-    uint32_t j, k;
-    int ch, i;
-    /* The boundary weights depend on the row only: once per row, into the
-     * slot, so a stratum costs two divisions. */
-    for (j = 0; j < m; j++) {
-        double s2lo = (double)j / m, s2hi = (double)(j + 1) / m, s2c = (j + 0.5) / m;
-        row[2 * j] = (2.0 * IRC_PI / nphi) * (1.0 - s2lo) * IRC_SQRT(s2lo);
-        row[2 * j + 1] = IRC_SQRT(1.0 - s2c) * (IRC_SQRT(1.0 - s2lo) - IRC_SQRT(1.0 - s2hi)) /
-                         IRC_SQRT(s2c);
-    }
-    for (ch = 0; ch < 3; ch++)
-        g[ch][0] = g[ch][1] = g[ch][2] = 0.0;
-    for (k = 0; k < nphi; k++) {
-        double phc = 2.0 * IRC_PI * (k + 0.5) / nphi, phb = 2.0 * IRC_PI * k / nphi;
-        double uk[3], vk[3], ru[3] = {0, 0, 0}, rv[3] = {0, 0, 0};
-        for (i = 0; i < 3; i++) {
-            uk[i] = IRC_COS(phc) * t1[i] + IRC_SIN(phc) * t2[i];
-            vk[i] = -IRC_SIN(phb) * t1[i] + IRC_COS(phb) * t2[i];
-        }
-        for (j = 0; j < m; j++) {
-            const irc__sample *a = &s[j * nphi + k];
-            const irc__sample *left = &s[j * nphi + (k + nphi - 1) % nphi];
-            double d;
-            if (j > 0 && !(vis && ev[(j - 1) * nphi + k] >= 0 && x[ev[(j - 1) * nphi + k]].ok)) {
-                const irc__sample *below = &s[(j - 1) * nphi + k];
-                d = irc__nearer(a->d, below->d);
-                if (d == d && d < HUGE_VAL) {
-                    double w = row[2 * j] / d;
-                    for (ch = 0; ch < 3; ch++)
-                        ru[ch] += w * ((double)a->l[ch] - below->l[ch]);
-                }
-            }
-            d = irc__nearer(a->d, left->d);
-            if (vis) {
-                int32_t e = eh[j * nphi + (k + nphi - 1) % nphi];
-                if (e >= 0 && x[e].ok)
-                    d = HUGE_VAL;
-            }
-            if (nphi > 1 && d == d && d < HUGE_VAL) {
-                double w = row[2 * j + 1] / d;
-                for (ch = 0; ch < 3; ch++)
-                    rv[ch] += w * ((double)a->l[ch] - left->l[ch]);
-            }
-        }
-        for (ch = 0; ch < 3; ch++)
-            for (i = 0; i < 3; i++)
-                g[ch][i] += ru[ch] * uk[i] + rv[ch] * vk[i];
-    }
-}
-
-/* Rotational gradient (Ward-Heckbert 1992): grad_r = integral of
- * L(w) (n x w) dw, so that E(n') ~ E + (n x n').grad_r.  With n x w =
- * sin(theta) v(phi), each stratum's share is integrated exactly over the
- * stratum instead of sampled with tan(theta_j) as in the paper's estimator:
- * the horizon row's 1/cos(theta) otherwise gives the estimate a heavy tail.
- * Row weight W_j = integral of sin^2(theta) dtheta over row j; column vector
- * V_k = integral of v(phi) dphi = (cos phi_k+1 - cos phi_k, sin phi_k+1 -
- * sin phi_k), a fixed rotation-and-scale of (cos phi_k, sin phi_k), so the
- * boundary angles advance by recurrence and no stratum needs a trig call. */
-static void irc__grad_rot(const irc_cache *c, const irc__sample *s,
-                          const double t1[3], const double t2[3], double g[3][3])
-{
-    const uint32_t m = c->cfg.strata_theta, nphi = c->cfg.strata_phi;
-    const double dphi = 2.0 * IRC_PI / nphi, cd = IRC_COS(dphi), sd = IRC_SIN(dphi);
-    double acc[3][2] = {{0, 0}, {0, 0}, {0, 0}}, th0 = 0.0, sc0 = 0.0;
-    uint32_t j, k;
-    int ch, i;
-    for (j = 0; j < m; j++) {
-        double s1 = (double)(j + 1) / m, th1 = IRC_ASIN(IRC_SQRT(s1));
-        double sc1 = IRC_SQRT(s1 * (1.0 - s1)); /* sin(2 theta)/2 */
-        double w = 0.5 * (th1 - th0) - 0.5 * (sc1 - sc0), cp = 1.0, sp = 0.0;
-        for (k = 0; k < nphi; k++) {
-            const irc__sample *a = &s[j * nphi + k];
-            double t;
-            for (ch = 0; ch < 3; ch++) {
-                acc[ch][0] += w * a->l[ch] * cp;
-                acc[ch][1] += w * a->l[ch] * sp;
-            }
-            t = cp * cd - sp * sd;
-            sp = sp * cd + cp * sd;
-            cp = t;
-        }
-        th0 = th1;
-        sc0 = sc1;
-    }
-    for (ch = 0; ch < 3; ch++) {
-        /* V_k = [[cd - 1, -sd], [sd, cd - 1]] (cos phi_k, sin phi_k) */
-        double a = (cd - 1.0) * acc[ch][0] - sd * acc[ch][1];
-        double b = sd * acc[ch][0] + (cd - 1.0) * acc[ch][1];
-        for (i = 0; i < 3; i++)
-            g[ch][i] = a * t1[i] + b * t2[i];
-    }
 }
 
 /* One channel's Hessian on the tangent plane, t^T H t', from the packed
@@ -341,7 +222,8 @@ static void irc__record_build(const irc_cache *c, const irc__sample *s,
                        const double t2[3], double gvis[3][3], float fp, irc_record *out)
 {
     const uint32_t total = c->strata;
-    double sum[3] = {0, 0, 0}, hm, far, r, g[3][3];
+    double sum[3] = {0, 0, 0}, mean[3], hm, far, r, g[3][3], gr[3][3];
+    const uint32_t f = c->cfg.features;
     uint32_t i, used = 0;
     int ch, k;
 
@@ -355,13 +237,16 @@ static void irc__record_build(const irc_cache *c, const irc__sample *s,
     IRC_MEMSET(out, 0, sizeof *out);
     irc__fill_failed((irc__sample *)s, total, used);
     for (ch = 0; ch < 3; ch++) {
+        mean[ch] = sum[ch] / used;
         out->e[ch] = (float)(IRC_PI * sum[ch] / used);
         out->n[ch] = (float)n[ch];
     }
     hm = irc__split_sphere(c, s, &far);
     r = hm;
-    if (c->cfg.features & IRC_FEATURE_TRANSLATION) {
-        irc__grad_trans(c, s, t1, t2, g);
+    if (f & (IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION))
+        irc__gradients(c, s, mean, t1, t2, (f & IRC_FEATURE_TRANSLATION) ? g : NULL,
+                       (f & IRC_FEATURE_ROTATION) ? gr : NULL);
+    if (f & IRC_FEATURE_TRANSLATION) {
         for (ch = 0; ch < 3; ch++)
             for (k = 0; k < 3; k++)
                 g[ch][k] += gvis ? gvis[ch][k] : 0.0;
@@ -375,12 +260,10 @@ static void irc__record_build(const irc_cache *c, const irc__sample *s,
                 out->grad_t[ch][k] = (float)g[ch][k];
         }
     }
-    if (c->cfg.features & IRC_FEATURE_ROTATION) {
-        irc__grad_rot(c, s, t1, t2, g);
+    if (f & IRC_FEATURE_ROTATION)
         for (ch = 0; ch < 3; ch++)
             for (k = 0; k < 3; k++)
-                out->grad_r[ch][k] = (float)g[ch][k];
-    }
+                out->grad_r[ch][k] = (float)gr[ch][k];
     irc__radii(c, s, n, t1, t2, r, far, fp, out);
     if (c->off_g)
         out->leak_guard = irc__leak_guard(c, s, n, t1, t2, out);

@@ -6,7 +6,8 @@
  * the cache, which sits on the first 64-byte boundary after byte 0; from
  * there on:
  *   struct irc_cache | lock | scratch slots | records | index entries | nodes |
- *   counter stripes | CLOCK bits (only with eviction)
+ *   counter stripes | CLOCK bits (only with eviction) | the gradients' table
+ *   (only with translational or rotational gradients in irradiance records)
  * each part on a 64-byte boundary, reached by its offset from the cache.
  * So the footprint carries 64 bytes of slack, and irc_attach can find the
  * cache in a block copied to any address.
@@ -14,7 +15,7 @@
 #include "cache.h"
 
 typedef struct irc__layout {
-    uint64_t lock, scratch, records, ix, nodes, ctr, used, total;
+    uint64_t lock, scratch, records, ix, nodes, ctr, used, gtab, total;
     uint64_t slot_bytes, lock_bytes;
     uint32_t rec_size, off_t, off_r, off_a, off_g, off_sh, off_shg, node_cap, samples;
 } irc__layout;
@@ -88,7 +89,8 @@ static uint64_t irc__slot_layout(const irc_config *cfg, irc__layout *l)
         geom += (uint64_t)l->samples * sizeof(float);
     return irc__up((uint64_t)l->samples * sizeof(irc__sample) +
                    (uint64_t)cfg->max_batch * (sizeof(irc_ray) + sizeof(irc_hit)) +
-                   (uint64_t)cfg->strata_theta * 2u * sizeof(double) + geom);
+                   irc__gscratch_floats(cfg->strata_theta * cfg->strata_phi, cfg->strata_phi) *
+                       sizeof(float) + geom);
 }
 
 /* In 64-bit arithmetic, so that a 32-bit size_t is checked, not wrapped. */
@@ -114,6 +116,12 @@ static void irc__layout_of(const irc_config *cfg, uint32_t capacity, irc__layout
     l->used = at;
     if (cfg->evict == IRC_EVICT_CLOCK)
         at += irc__up(((uint64_t)capacity + 63u) / 64u * sizeof(uint64_t));
+    l->gtab = 0;
+    if (!(cfg->features & IRC_FEATURE_SH) &&
+        (cfg->features & (IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION))) {
+        l->gtab = at;
+        at += irc__up(irc__gtab_bytes(cfg->strata_theta, cfg->strata_phi));
+    }
     l->total = at;
 }
 
@@ -185,6 +193,7 @@ static void irc__set_parts(irc_cache *c, const irc__layout *l)
     c->o_nodes = (size_t)l->nodes;
     c->o_ctr = (size_t)l->ctr;
     c->o_used = c->cfg.evict == IRC_EVICT_CLOCK ? (size_t)l->used : 0;
+    c->o_gtab = (size_t)l->gtab;
 }
 
 int irc_init(const irc_config *cfg, uint32_t max_records, irc_cache **out)
@@ -224,6 +233,8 @@ int irc_init(const irc_config *cfg, uint32_t max_records, irc_cache **out)
     }
     irc__port_name(c->port, c->port_name);
     irc__index_reset(c);
+    if (c->o_gtab)
+        irc__gtab_fill(c, irc__part(c, c->o_gtab));
     if (c->port->lock_init(irc__lock(c)) < 0)
         return IRC_ERR_PORT;
     c->magic = IRC__MAGIC;

@@ -62,10 +62,13 @@ static void irc__sh_legendre(int bands, double z, double q[][IRC__SH_MAX_BANDS],
 void irc__sh_eval(int bands, const double s[3], double *y, double (*grad)[3])
 {
     double q[IRC__SH_MAX_BANDS][IRC__SH_MAX_BANDS], dq[IRC__SH_MAX_BANDS][IRC__SH_MAX_BANDS];
-    double len = IRC_SQRT(irc__dot3d(s, s)), u[3], cm = 1.0, sm = 0.0, cp = 0.0, sp = 0.0;
+    /* One division: a record evaluates the basis at every sample, and a
+     * division costs several multiplications. */
+    const double il = 1.0 / IRC_SQRT(irc__dot3d(s, s));
+    double u[3], cm = 1.0, sm = 0.0, cp = 0.0, sp = 0.0;
     int l, m, k;
     for (k = 0; k < 3; k++)
-        u[k] = s[k] / len;
+        u[k] = s[k] * il;
     irc__sh_legendre(bands, u[2], q, grad ? dq : NULL);
     for (m = 0; m < bands; m++) {
         for (l = m; l < bands; l++) {
@@ -97,7 +100,7 @@ void irc__sh_eval(int bands, const double s[3], double *y, double (*grad)[3])
     for (l = 0; l < bands * bands; l++) { /* tangent part, over |s| */
         double gn = irc__dot3d(grad[l], u);
         for (k = 0; k < 3; k++)
-            grad[l][k] = (grad[l][k] - gn * u[k]) / len;
+            grad[l][k] = (grad[l][k] - gn * u[k]) * il;
     }
 }
 

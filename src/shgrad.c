@@ -166,7 +166,7 @@ static void irc__sh_add(const irc_cache *c, irc__shsum *a, const irc__sample *x,
 {
     const int nc = (int)c->sh_n, nch = (int)c->sh_ch, bands = (int)c->cfg.sh_bands;
     const int grad = c->off_shg != 0;
-    double y[IRC__NC], gy[IRC__NC][3], v[3 * IRC__NC];
+    double y[IRC__NC], gy[IRC__NC][3], v[3 * IRC__NC], id;
     int ch, i, k;
     irc__sh_eval(bands, w, y, grad ? gy : NULL);
     for (ch = 0; ch < nch; ch++)
@@ -177,13 +177,14 @@ static void irc__sh_add(const irc_cache *c, irc__shsum *a, const irc__sample *x,
             a->e[ch] += x->l[ch] * irc__dot3d(w, n);
     if (!irc__hit(x))
         return;
-    a->inv_d += 1.0 / x->d;
+    id = 1.0 / x->d;
+    a->inv_d += id;
     if (!grad)
         return;
     /* One vector per sample, then a plain multiply-add per channel. */
     for (i = 0; i < nc; i++)
         for (k = 0; k < 3; k++)
-            v[3 * i + k] = (gy[i][k] - 2.0 * y[i] * w[k]) / x->d + y[i] * e[k];
+            v[3 * i + k] = (gy[i][k] - 2.0 * y[i] * w[k]) * id + y[i] * e[k];
     for (ch = 0; ch < nch; ch++) {
         const double l = x->l[ch];
         for (i = 0; i < 3 * nc; i++)

@@ -120,9 +120,11 @@ check build-tests $MAKE -s BUILD=build build/irc_tests
 suite suite ./build/irc_tests
 
 # The benchmarks build, and the profiling driver runs (figures come from
-# make bench-core and make bench-lookups, not from here).
-check build-bench $MAKE -s BUILD=build build/bench_core build/bench_lookups
+# make bench-core, make bench-lookups and make bench-records, not from
+# here).
+check build-bench $MAKE -s BUILD=build build/bench_core build/bench_lookups build/bench_records
 check bench-lookups ./build/bench_lookups scanline 1000 2000 count
+check bench-records ./build/bench_records shgrad 3
 
 echo "== stage 2c: suite at 32 bits"
 check build-m32 $MAKE -s CC="gcc -m32" BUILD=build-m32 build-m32/irc_tests
