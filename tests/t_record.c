@@ -225,7 +225,10 @@ TEST(test_rotational_gradient_sky)
         printf("  tilt %5.1f deg: E %.5f (exact %.5f)  |grad_r - exact| / |exact| = %.4f%%\n",
                tilts[i], r.e[0], e, 100.0 * err / gm);
         CHECK(fabs(r.e[0] - e) <= 0.005 * e, "E %g vs %g", r.e[0], e);
-        CHECK(err <= 0.02 * gm, "rotational gradient off by %g%%", 100.0 * err / gm);
+        /* At 10 degrees the gradient is small against the noise (1.06%
+         * measured); from 30 degrees on it was within 0.24%. */
+        CHECK(err <= (tilts[i] < 20.0 ? 0.02 : 0.005) * gm, "rotational gradient off by %g%%",
+              100.0 * err / gm);
     }
     block_free(&cfg);
 }
