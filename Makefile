@@ -183,8 +183,8 @@ fuzz:
 	done
 
 # ---------------------------------------------------------------- bench
-$(BUILD)/bench_core: bench/bench_core.c tests/scenes.c tests/scenes.h $(LIBA)
-	$(CC) $(TEST_CFLAGS) -O2 -g $(CFLAGS) bench/bench_core.c tests/scenes.c $(LIBA) -o $@ -lm -lpthread
+$(BUILD)/bench_core: bench/bench_core.c tests/scenes.c tests/scenes.h $(DEMO_LIB_SRC) demo/*.h $(LIBA)
+	$(CC) $(TEST_CFLAGS) -Idemo -O2 -g $(CFLAGS) bench/bench_core.c tests/scenes.c $(DEMO_LIB_SRC) $(LIBA) -o $@ -lm -lpthread
 
 $(BUILD)/bench_lookups: bench/lookups.c $(LIBA)
 	$(CC) $(TEST_CFLAGS) -O2 -g $(CFLAGS) bench/lookups.c $(LIBA) -o $@ -lm

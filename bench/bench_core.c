@@ -10,8 +10,16 @@
  * (that is, a full cache at accuracy 0.2).  Queries sit on the same faces.
  * The box has a corner at the origin; the placement rows move it to be
  * centred on the origin and 1000 away, where users put their scenes.
+ *
+ * Records: library time per record for each feature set with a host whose
+ * rays cost almost nothing, and the gradients' cost as ratios; then the
+ * Cornell box rendered by the demo's tracer (cornell_rows): the cache's
+ * share of the render and the gradients' share of a record's thread time
+ * with a real host.  Run from the project's root (it reads
+ * demo/scenes/cornell.scene).
  */
 #define _POSIX_C_SOURCE 200809L
+#include <float.h>
 #include <math.h>
 #include <pthread.h>
 #include <stdio.h>
@@ -20,6 +28,11 @@
 #include <time.h>
 
 #include "irrcache.h"
+#include "bvh.h"
+#include "camera.h"
+#include "render.h"
+#include "scene.h"
+#include "shade.h"
 
 static double now(void)
 {
@@ -308,6 +321,113 @@ static void placement(void)
     shift = 0.0;
 }
 
+/* ------------------------------------------------------------ the Cornell box
+ * The issue's render rows: demo/scenes/cornell.scene at 256 x 256, indirect
+ * light only, a = 0.2, 16x64 strata, trans + rot, fill passes, one thread
+ * (as make bench renders it, smaller): the cache's share of the thread's
+ * time (library time in cache calls, the host's tracing excluded, over the
+ * wall time); and the gradients' share of one record's thread time there,
+ * the host's tracing included: records at the camera's hits on a 16 x 16
+ * pixel lattice, five alternating runs with and without gradients, the
+ * fastest of each kept. */
+#define CORNELL "demo/scenes/cornell.scene"
+
+static int cornell_opts(renderer *r, const scene *s, uint32_t features)
+{
+    render_opts o;
+    char err[256];
+    memset(&o, 0, sizeof o);
+    o.mode = MODE_CACHE;
+    o.features = features;
+    o.threads = 1;
+    o.show = SHOW_INDIRECT;
+    o.light_samples = 1;
+    o.seed = 7;
+    o.accuracy = 0.2f;
+    o.strata_m = 16;
+    o.strata_n = 64;
+    o.max_records = 400000;
+    o.max_radius = -1.0f;
+    if (renderer_init(r, s, &o, err, sizeof err) < 0) {
+        fprintf(stderr, "bench_core: %s\n", err);
+        return -1;
+    }
+    return 0;
+}
+
+/* Seconds a record at each of the k points (6 floats a point). */
+static double cornell_record_s(const scene *s, uint32_t features, const float *pn, int k)
+{
+    renderer r;
+    irc_record rec;
+    double t0, t;
+    int i;
+    if (cornell_opts(&r, s, features) < 0)
+        return -1.0;
+    t0 = now();
+    for (i = 0; i < k; i++)
+        if (render_record(&r, &pn[6 * i], &pn[6 * i + 3], &rec) != IRC_OK)
+            break;
+    t = (now() - t0) / k;
+    renderer_free(&r);
+    return i == k ? t : -1.0;
+}
+
+static void cornell_rows(void)
+{
+    const uint32_t both = IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION;
+    enum { LATTICE = 16 };
+    scene s;
+    renderer r;
+    render_stats st;
+    cam_frame cf;
+    char err[256];
+    float *img, pn[6 * LATTICE * LATTICE];
+    double best[2] = {1e30, 1e30};
+    int i, j, k = 0;
+    if (scene_load(CORNELL, &s, err, sizeof err) < 0) {
+        fprintf(stderr, "bench_core: %s\n", err);
+        return;
+    }
+    s.cam.width = s.cam.height = 256;
+    img = malloc(sizeof(float) * 3 * 256 * 256);
+    if (img && cornell_opts(&r, &s, both) == 0) {
+        if (render_image(&r, img, &st) == 0)
+            printf("cornell_cache_share,trans+rot,%llu,,256x256 a=0.2 16x64,%.4f,of thread time\n",
+                   (unsigned long long)st.records, st.cache_s / st.wall);
+        camera_frame(&s.cam, &cf);
+        for (j = 0; j < LATTICE; j++)
+            for (i = 0; i < LATTICE; i++) {
+                float d[3];
+                bvh_hit h;
+                surface sf;
+                camera_ray(&cf, &s.cam, 8 + 16 * i, 8 + 16 * j, d);
+                if (!bvh_intersect(&r.b, cf.eye, d, 0.0f, FLT_MAX, &h))
+                    continue;
+                surface_at(&s, cf.eye, d, &h, &sf);
+                cache_point(&sf, &pn[6 * k]);
+                memcpy(&pn[6 * k + 3], sf.nsm, sizeof sf.nsm);
+                k++;
+            }
+        renderer_free(&r);
+    }
+    free(img);
+    for (i = 0; i < 5 && k > 0; i++) {
+        double a = cornell_record_s(&s, 0u, pn, k), b = cornell_record_s(&s, both, pn, k);
+        if (a < 0.0 || b < 0.0)
+            break;
+        best[0] = a < best[0] ? a : best[0];
+        best[1] = b < best[1] ? b : best[1];
+    }
+    if (i == 5) {
+        printf("record_us_thread,bare,%d,,cornell 16x64,%.2f,us\n", k, 1e6 * best[0]);
+        printf("record_us_thread,trans+rot,%d,,cornell 16x64,%.2f,us\n", k, 1e6 * best[1]);
+        printf("gradient_share_of_record,trans+rot,%d,,cornell 16x64,%.4f,of thread time\n", k,
+               (best[1] - best[0]) / best[1]);
+    }
+    scene_free(&s);
+}
+
 int main(void)
 {
     static const struct { uint32_t f; const char *name; } sets[] = {
@@ -356,6 +476,8 @@ int main(void)
                cost_ratio(IRC_FEATURE_SH, IRC_FEATURE_SH | IRC_FEATURE_SH_GRADIENT,
                           strata[k][0], strata[k][1]));
     }
+    cornell_rows();
+    fflush(stdout);
     for (k = 0; k < 2; k++) {
         for (pi = 0; pi < 2; pi++) {
             irc_config cfg;

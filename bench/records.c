@@ -7,7 +7,7 @@
  * that two builds can be checked for the same records.
  *
  *   ./build/bench_records FEATURES K [M N]    FEATURES: bare | trans | rot |
- *                                             both | sh | shgrad
+ *                                             both | hess | sh | shgrad
  *
  * Instructions per record: run it under callgrind with K = 0 and K = 1000
  * and divide the difference by 1000 (README, "Speed and memory").
@@ -72,6 +72,7 @@ int main(int argc, char **argv)
         {"trans", IRC_FEATURE_TRANSLATION},
         {"rot", IRC_FEATURE_ROTATION},
         {"both", IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION},
+        {"hess", IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION | IRC_FEATURE_HESSIAN},
         {"sh", IRC_FEATURE_SH},
         {"shgrad", IRC_FEATURE_SH | IRC_FEATURE_SH_GRADIENT},
     };
@@ -82,7 +83,7 @@ int main(int argc, char **argv)
     double t0, t1, sum = 0.0;
     int kind = -1;
     if (argc != 3 && argc != 5) {
-        fprintf(stderr, "usage: %s bare|trans|rot|both|sh|shgrad K [M N]\n", argv[0]);
+        fprintf(stderr, "usage: %s bare|trans|rot|both|hess|sh|shgrad K [M N]\n", argv[0]);
         return 2;
     }
     for (k = 0; k < sizeof kinds / sizeof kinds[0]; k++)

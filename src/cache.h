@@ -384,10 +384,11 @@ typedef struct irc__cross {
 } irc__cross;
 
 /* A thread's scratch slot: the samples (slot_samples of them), one batch of
- * rays and hits, an inverse hit distance per stratum and five rows of
- * boundary weights (gradient.c); with IRC_FEATURE_VISIBILITY or SH each sample's direction and
- * hit normal; with VISIBILITY per stratum two edge indices and room for two
- * crossings (plus a spoke and a crossing per column). */
+ * rays and hits; with translational or rotational gradients an inverse hit
+ * distance per stratum and five rows of boundary weights (gradient.c);
+ * with IRC_FEATURE_VISIBILITY or SH each sample's direction and hit normal;
+ * with VISIBILITY per stratum two edge indices and room for two crossings
+ * (plus a spoke and a crossing per column). */
 static inline irc_ray *irc__slot_rays(const irc_cache *c, unsigned char *slot)
 {
     return (irc_ray *)(void *)(slot + (size_t)c->slot_samples * sizeof(irc__sample));
@@ -399,6 +400,14 @@ static inline irc_ray *irc__slot_rays(const irc_cache *c, unsigned char *slot)
 static inline uint32_t irc__pad4(uint32_t nphi)
 {
     return (nphi + 3u) / 4u * 4u + 4u;
+}
+
+/* Whether a cache has the gradients' table and scratch: irradiance records
+ * with a translational or rotational gradient. */
+static inline int irc__has_gtab(uint32_t features)
+{
+    return !(features & IRC_FEATURE_SH) &&
+           (features & (IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION));
 }
 
 /* Slot floats the gradients need: the strata's inverse distances and five
@@ -417,7 +426,8 @@ static inline float *irc__slot_inv(const irc_cache *c, const irc__sample *s)
 
 static inline float *irc__slot_dirs(const irc_cache *c, const irc__sample *s)
 {
-    return irc__slot_inv(c, s) + irc__gscratch_floats(c->strata, c->cfg.strata_phi);
+    return irc__slot_inv(c, s) +
+           (c->o_gtab ? irc__gscratch_floats(c->strata, c->cfg.strata_phi) : 0u);
 }
 
 static inline float *irc__slot_normals(const irc_cache *c, const irc__sample *s)

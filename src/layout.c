@@ -89,8 +89,11 @@ static uint64_t irc__slot_layout(const irc_config *cfg, irc__layout *l)
         geom += (uint64_t)l->samples * sizeof(float);
     return irc__up((uint64_t)l->samples * sizeof(irc__sample) +
                    (uint64_t)cfg->max_batch * (sizeof(irc_ray) + sizeof(irc_hit)) +
-                   irc__gscratch_floats(cfg->strata_theta * cfg->strata_phi, cfg->strata_phi) *
-                       sizeof(float) + geom);
+                   (irc__has_gtab(cfg->features)
+                        ? irc__gscratch_floats(cfg->strata_theta * cfg->strata_phi,
+                                               cfg->strata_phi) * sizeof(float)
+                        : 0u) +
+                   geom);
 }
 
 /* In 64-bit arithmetic, so that a 32-bit size_t is checked, not wrapped. */
@@ -117,8 +120,7 @@ static void irc__layout_of(const irc_config *cfg, uint32_t capacity, irc__layout
     if (cfg->evict == IRC_EVICT_CLOCK)
         at += irc__up(((uint64_t)capacity + 63u) / 64u * sizeof(uint64_t));
     l->gtab = 0;
-    if (!(cfg->features & IRC_FEATURE_SH) &&
-        (cfg->features & (IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION))) {
+    if (irc__has_gtab(cfg->features)) {
         l->gtab = at;
         at += irc__up(irc__gtab_bytes(cfg->strata_theta, cfg->strata_phi));
     }
