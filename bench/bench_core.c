@@ -28,18 +28,13 @@
 #include <time.h>
 
 #include "irrcache.h"
+#include "bench_util.h"
 #include "bvh.h"
 #include "camera.h"
 #include "render.h"
 #include "scene.h"
 #include "shade.h"
 
-static double now(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
 
 static unsigned long long rng = 1;
 static double urand(void)
@@ -56,29 +51,6 @@ static int no_trace(const irc_trace_args *a)
     return -1;
 }
 
-/* A host that costs next to nothing: a sky that brightens toward +z, every
- * tenth ray hitting a wall at distance 1, so the library's own work
- * (directions, checks, estimator, gradients) is what gets timed. */
-static int cheap_trace(const irc_trace_args *a)
-{
-    uint32_t i;
-    for (i = 0; i < a->count; i++) {
-        irc_hit *h = &a->hits[i];
-        float l = 1.0f + a->rays[i].dir[2];
-        if (i % 10 == 0) {
-            h->status = IRC_RAY_HIT;
-            h->dist = 1.0f;
-            h->normal[0] = 1.0f;
-            h->normal[1] = h->normal[2] = 0.0f;
-            l *= 0.25f;
-        } else {
-            h->status = IRC_RAY_ESCAPED;
-        }
-        h->radiance[0] = h->radiance[1] = h->radiance[2] = l;
-    }
-    return 0;
-}
-
 /* Microseconds of library time per record computed. */
 static double record_cost(uint32_t features, uint32_t m, uint32_t n, double seconds)
 {
@@ -88,7 +60,7 @@ static double record_cost(uint32_t features, uint32_t m, uint32_t n, double seco
     double t0, t1;
     long done = 0;
     memset(&cfg, 0, sizeof cfg);
-    cfg.trace = cheap_trace;
+    cfg.trace = bench_cheap_trace;
     cfg.features = features;
     cfg.strata_theta = m;
     cfg.strata_phi = n;
@@ -98,7 +70,7 @@ static double record_cost(uint32_t features, uint32_t m, uint32_t n, double seco
     cfg.buffer_size = bytes;
     cfg.sh_bands = (features & IRC_FEATURE_SH) ? 3u : 0u;
     irc_init(&cfg, 16, &c);
-    t0 = now();
+    t0 = bench_now();
     do {
         float p[3] = {(float)urand(), (float)urand(), 0.0f}, nn[3] = {0.0f, 0.0f, 1.0f};
         irc_record r;
@@ -107,7 +79,7 @@ static double record_cost(uint32_t features, uint32_t m, uint32_t n, double seco
                                         : irc_record_compute(c, p, nn, &r, NULL) != IRC_OK)
             return -1.0;
         done++;
-        t1 = now();
+        t1 = bench_now();
     } while (t1 - t0 < seconds);
     free(cfg.buffer);
     return 1e6 * (t1 - t0) / done;
@@ -141,25 +113,25 @@ static void snapshot_rates(irc_cache *c, const irc_config *cfg, uint32_t cap)
     if (irc_snapshot_size(c, &bytes) != IRC_OK || irc_cache_stats(c, &st) != IRC_OK ||
         !(buf = malloc(bytes)))
         return;
-    t0 = now();
+    t0 = bench_now();
     irc_snapshot_write(c, 1u, buf, bytes, NULL, NULL, NULL);
     printf("snapshot_write_per_s,trans+rot,%u,,,%.0f,records/s\n", cap,
-           st.records / (now() - t0));
+           st.records / (bench_now() - t0));
     irc_footprint(&c2, cap, &need);
     c2.buffer = malloc(need);
     c2.buffer_size = need;
     if (c2.buffer && irc_init(&c2, cap, &d) == IRC_OK) {
-        t0 = now();
+        t0 = bench_now();
         if (irc_snapshot_read(d, 1u, buf, bytes) == IRC_OK)
             printf("snapshot_read_per_s,trans+rot,%u,,,%.0f,records/s\n", cap,
-                   st.records / (now() - t0));
+                   st.records / (bench_now() - t0));
         /* A merge into an empty cache: every check, the canonical sort,
          * the index rebuilt. */
         irc_cache_clear(d);
-        t0 = now();
+        t0 = bench_now();
         if (irc_merge(d, 1u, buf, bytes) == IRC_OK)
             printf("merge_per_s,trans+rot,%u,,,%.0f,records/s\n", cap,
-                   st.records / (now() - t0));
+                   st.records / (bench_now() - t0));
         irc_fini(d);
     }
     free(c2.buffer);
@@ -192,7 +164,7 @@ static irc_cache *build(irc_config *cfg, uint32_t count, double *insert_rate)
     if (!cfg->buffer || irc_init(cfg, count, &c) != IRC_OK)
         return NULL;
     memset(&r, 0, sizeof r);
-    t0 = now();
+    t0 = bench_now();
     for (i = 0; i < count; i++) {
         face_point((int)(urand() * 6), urand(), urand(), r.p, r.n);
         r.e[0] = r.e[1] = r.e[2] = (float)(0.5 + urand());
@@ -201,7 +173,7 @@ static irc_cache *build(irc_config *cfg, uint32_t count, double *insert_rate)
         if (irc_cache_insert(c, &r) != IRC_OK)
             return NULL;
     }
-    *insert_rate = count / (now() - t0);
+    *insert_rate = count / (bench_now() - t0);
     return c;
 }
 
@@ -237,7 +209,7 @@ typedef struct looper {
 static void *lookup_loop(void *arg)
 {
     looper *l = (looper *)arg;
-    double t0 = now(), t1, sink = 0.0;
+    double t0 = bench_now(), t1, sink = 0.0;
     int i;
     l->done = l->hits = 0;
     do {
@@ -248,7 +220,7 @@ static void *lookup_loop(void *arg)
             sink += rgb[0];
         }
         l->done += Q;
-        t1 = now();
+        t1 = bench_now();
     } while (t1 - t0 < 1.0);
     l->seconds = t1 - t0;
     if (sink < 0.0)
@@ -364,11 +336,11 @@ static double cornell_record_s(const scene *s, uint32_t features, const float *p
     int i;
     if (cornell_opts(&r, s, features) < 0)
         return -1.0;
-    t0 = now();
+    t0 = bench_now();
     for (i = 0; i < k; i++)
         if (render_record(&r, &pn[6 * i], &pn[6 * i + 3], &rec) != IRC_OK)
             break;
-    t = (now() - t0) / k;
+    t = (bench_now() - t0) / k;
     renderer_free(&r);
     return i == k ? t : -1.0;
 }

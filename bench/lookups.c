@@ -19,24 +19,11 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include "bench_util.h"
 #include "cache.h" /* irc__index_query: entries scanned and passed */
 
 static unsigned long long rng = 1;
 
-static double urand(void)
-{
-    rng ^= rng << 13;
-    rng ^= rng >> 7;
-    rng ^= rng << 17;
-    return (double)(rng >> 11) * (1.0 / 9007199254740992.0);
-}
-
-static double now(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
 
 static int no_trace(const irc_trace_args *a)
 {
@@ -59,7 +46,7 @@ static void query(int scanline, uint32_t i, float p[3], float n[3])
         face_point((int)(i >> 8) % 6, (double)(i & 255) / 4096.0 + 0.3,
                    (double)((i >> 8) % 97) / 100.0, p, n);
     else
-        face_point((int)(urand() * 6), urand(), urand(), p, n);
+        face_point((int)(bench_xorshift(&rng) * 6), bench_xorshift(&rng), bench_xorshift(&rng), p, n);
 }
 
 static void face_point(int f, double u, double v, float p[3], float n[3])
@@ -108,21 +95,21 @@ int main(int argc, char **argv)
     reach = sqrt(36.0 / (3.14159265 * count));
     memset(&r, 0, sizeof r);
     for (i = 0; i < count; i++) {
-        face_point((int)(urand() * 6), urand(), urand(), r.p, r.n);
-        r.e[0] = r.e[1] = r.e[2] = (float)(0.5 + urand());
+        face_point((int)(bench_xorshift(&rng) * 6), bench_xorshift(&rng), bench_xorshift(&rng), r.p, r.n);
+        r.e[0] = r.e[1] = r.e[2] = (float)(0.5 + bench_xorshift(&rng));
         r.grad_t[0][0] = 0.1f;
-        r.radius = (float)(reach / 0.2 * exp((urand() - 0.5) * 1.4));
+        r.radius = (float)(reach / 0.2 * exp((bench_xorshift(&rng) - 0.5) * 1.4));
         if (irc_cache_insert(c, &r) != IRC_OK)
             return 1;
     }
-    t0 = now();
+    t0 = bench_now();
     for (i = 0; i < (uint32_t)nl; i++) {
         float p[3], n[3], rgb[3], w;
         query(scanline, i, p, n);
         hits += irc_cache_lookup(c, p, n, rgb, &w) == IRC_OK;
         sum += rgb[0];
     }
-    t1 = now();
+    t1 = bench_now();
     for (i = 0; argc == 5 && i < (uint32_t)nl; i++) {
         float p[3], n[3];
         query(scanline, i, p, n);

@@ -16,45 +16,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
-#include "irrcache.h"
+#include "bench_util.h"
 
 static unsigned long long rng = 1;
-
-static double urand(void)
-{
-    rng ^= rng << 13;
-    rng ^= rng >> 7;
-    rng ^= rng << 17;
-    return (double)(rng >> 11) * (1.0 / 9007199254740992.0);
-}
-
-static double now(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
-
-static int cheap_trace(const irc_trace_args *a)
-{
-    uint32_t i;
-    for (i = 0; i < a->count; i++) {
-        irc_hit *h = &a->hits[i];
-        float l = 1.0f + a->rays[i].dir[2];
-        if (i % 10 == 0) {
-            h->status = IRC_RAY_HIT;
-            h->dist = 1.0f;
-            h->normal[0] = 1.0f;
-            h->normal[1] = h->normal[2] = 0.0f;
-            l *= 0.25f;
-        } else {
-            h->status = IRC_RAY_ESCAPED;
-        }
-        h->radiance[0] = h->radiance[1] = h->radiance[2] = l;
-    }
-    return 0;
-}
 
 static double sum_of(const float *v, size_t n)
 {
@@ -93,7 +57,7 @@ int main(int argc, char **argv)
     if (kind < 0 || count < 0)
         return 2;
     memset(&cfg, 0, sizeof cfg);
-    cfg.trace = cheap_trace;
+    cfg.trace = bench_cheap_trace;
     cfg.features = kinds[kind].f;
     cfg.strata_theta = argc == 5 ? (uint32_t)atol(argv[3]) : 16u;
     cfg.strata_phi = argc == 5 ? (uint32_t)atol(argv[4]) : 64u;
@@ -105,9 +69,9 @@ int main(int argc, char **argv)
     cfg.buffer_size = bytes;
     if (!cfg.buffer || irc_init(&cfg, 16, &c) != IRC_OK)
         return 1;
-    t0 = now();
+    t0 = bench_now();
     for (i = 0; i < count; i++) {
-        float p[3] = {(float)urand(), (float)urand(), 0.0f}, n[3] = {0.0f, 0.0f, 1.0f};
+        float p[3] = {(float)bench_xorshift(&rng), (float)bench_xorshift(&rng), 0.0f}, n[3] = {0.0f, 0.0f, 1.0f};
         irc_record r;
         irc_sh sh;
         if (cfg.features & IRC_FEATURE_SH) {
@@ -122,7 +86,7 @@ int main(int argc, char **argv)
                    sum_of(&r.grad_r[0][0], 9) + r.radius;
         }
     }
-    t1 = now();
+    t1 = bench_now();
     printf("%s %ldx (%ux%u): %.1f us a record, sum %.9g\n", argv[1], count, cfg.strata_theta,
            cfg.strata_phi, count ? 1e6 * (t1 - t0) / (double)count : 0.0, sum);
     free(cfg.buffer);
