@@ -407,7 +407,8 @@ typedef struct irc_config {
      (size_t)(records) * (((features) & IRC_FEATURE_HESSIAN) ? 85u : 77u) +     \
      ((size_t)(records) / 8u + 16u) * 128u)
 #define IRC_SH_FOOTPRINT_BOUND(records, bands, ch, s, t, b)                      \
-    (8192u + (size_t)(t) * (128u + (size_t)(s) * 112u + (size_t)(b) * 56u) +     \
+    (8192u + (size_t)(s) * 40u +                                                 \
+     (size_t)(t) * (128u + (size_t)(s) * 112u + (size_t)(b) * 56u) +             \
      (size_t)(records) * (32u + 16u * (size_t)(bands) * (bands) * (ch) + 4u + 1u) + \
      ((size_t)(records) / 8u + 16u) * 128u)
 

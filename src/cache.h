@@ -193,7 +193,7 @@ struct irc_cache {
     /* Offsets from the address of home. */
     size_t o_lock, o_scratch, o_records, o_ix, o_nodes, o_ctr,
            o_used,           /* o_used 0: no CLOCK */
-           o_gtab;           /* the gradients' table (gradient.c), 0 = none */
+           o_gtab;           /* the strata's table (gradient.c) */
     /* Mutable under the write lock; read and written through home. */
     uint32_t count;          /* records in slots [0, count) */
     uint32_t nodes_used;
@@ -265,10 +265,6 @@ int irc__port_ok(const irc_port *p);
 typedef struct irc__rng { uint64_t key; } irc__rng;
 irc__rng irc__rng_for(const float p[3], const float n[3], uint64_t seed);
 int irc__accept_hit(const irc_hit *h, irc__sample *s);
-void irc__direction(const irc__rng *rng, uint32_t j, uint32_t k, uint32_t m,
-                    uint32_t nphi, int uniform, const double n[3], const double t1[3],
-                    const double t2[3], float dir[3]);
-void irc__rng_pair(const irc__rng *rng, uint32_t i, double *u1, double *u2);
 void irc__frame(const double n[3], double t1[3], double t2[3]);
 int irc__cast(irc__call *k, irc_ray *rays, irc_hit *hits, uint32_t count);
 int irc__sample_hemisphere(irc__call *k, const double n[3], const double t1[3],
@@ -402,9 +398,9 @@ static inline uint32_t irc__pad4(uint32_t nphi)
     return (nphi + 3u) / 4u * 4u + 4u;
 }
 
-/* Whether a cache has the gradients' table and scratch: irradiance records
+/* Whether a cache's slots carry the gradients' scratch: irradiance records
  * with a translational or rotational gradient. */
-static inline int irc__has_gtab(uint32_t features)
+static inline int irc__has_gscratch(uint32_t features)
 {
     return !(features & IRC_FEATURE_SH) &&
            (features & (IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION));
@@ -426,8 +422,9 @@ static inline float *irc__slot_inv(const irc_cache *c, const irc__sample *s)
 
 static inline float *irc__slot_dirs(const irc_cache *c, const irc__sample *s)
 {
-    return irc__slot_inv(c, s) +
-           (c->o_gtab ? irc__gscratch_floats(c->strata, c->cfg.strata_phi) : 0u);
+    return irc__slot_inv(c, s) + (irc__has_gscratch(c->cfg.features)
+                                      ? irc__gscratch_floats(c->strata, c->cfg.strata_phi)
+                                      : 0u);
 }
 
 static inline float *irc__slot_normals(const irc_cache *c, const irc__sample *s)

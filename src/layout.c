@@ -6,8 +6,8 @@
  * the cache, which sits on the first 64-byte boundary after byte 0; from
  * there on:
  *   struct irc_cache | lock | scratch slots | records | index entries | nodes |
- *   counter stripes | CLOCK bits (only with eviction) | the gradients' table
- *   (only with translational or rotational gradients in irradiance records)
+ *   counter stripes | CLOCK bits (only with eviction) | the strata's table
+ *   (the columns' angles for the sampler and the gradients' weights)
  * each part on a 64-byte boundary, reached by its offset from the cache.
  * So the footprint carries 64 bytes of slack, and irc_attach can find the
  * cache in a block copied to any address.
@@ -89,7 +89,7 @@ static uint64_t irc__slot_layout(const irc_config *cfg, irc__layout *l)
         geom += (uint64_t)l->samples * sizeof(float);
     return irc__up((uint64_t)l->samples * sizeof(irc__sample) +
                    (uint64_t)cfg->max_batch * (sizeof(irc_ray) + sizeof(irc_hit)) +
-                   (irc__has_gtab(cfg->features)
+                   (irc__has_gscratch(cfg->features)
                         ? irc__gscratch_floats(cfg->strata_theta * cfg->strata_phi,
                                                cfg->strata_phi) * sizeof(float)
                         : 0u) +
@@ -119,11 +119,8 @@ static void irc__layout_of(const irc_config *cfg, uint32_t capacity, irc__layout
     l->used = at;
     if (cfg->evict == IRC_EVICT_CLOCK)
         at += irc__up(((uint64_t)capacity + 63u) / 64u * sizeof(uint64_t));
-    l->gtab = 0;
-    if (irc__has_gtab(cfg->features)) {
-        l->gtab = at;
-        at += irc__up(irc__gtab_bytes(cfg->strata_theta, cfg->strata_phi));
-    }
+    l->gtab = at;
+    at += irc__up(irc__gtab_bytes(cfg->strata_theta, cfg->strata_phi));
     l->total = at;
 }
 
@@ -235,8 +232,7 @@ int irc_init(const irc_config *cfg, uint32_t max_records, irc_cache **out)
     }
     irc__port_name(c->port, c->port_name);
     irc__index_reset(c);
-    if (c->o_gtab)
-        irc__gtab_fill(c, irc__part(c, c->o_gtab));
+    irc__gtab_fill(c, irc__part(c, c->o_gtab));
     if (c->port->lock_init(irc__lock(c)) < 0)
         return IRC_ERR_PORT;
     c->magic = IRC__MAGIC;

@@ -56,6 +56,80 @@ TEST(test_uniform_sky)
     }
 }
 
+/* Every ray lands in its own stratum: the host sees rays in the order
+ * s = j N + k, and with n = +z the frame is t1 = x, t2 = y, so ray s must
+ * have sin^2(theta) in [j/M, (j+1)/M] (SH records: cos(theta) in
+ * [1 - (j+1)/M, 1 - j/M]) and phi in [2 pi k/N, 2 pi (k+1)/N], and unit
+ * length.  Column counts below 8 take the sampler's other sine path. */
+typedef struct dir_log {
+    uint32_t count, bad;
+    uint32_t m, n;
+    int uniform;
+} dir_log;
+
+static int log_dirs(const irc_trace_args *a)
+{
+    dir_log *g = (dir_log *)a->host;
+    uint32_t i;
+    for (i = 0; i < a->count; i++, g->count++) {
+        const float *d = a->rays[i].dir;
+        const uint32_t j = g->count / g->n, k = g->count % g->n;
+        const double s2 = (double)d[0] * d[0] + (double)d[1] * d[1];
+        double phi = atan2(d[1], d[0]), row = g->uniform ? 1.0 - d[2] : s2;
+        if (phi < 0.0)
+            phi += 2.0 * TPI;
+        /* The last column's phi may wrap to just above 0. */
+        if (k == g->n - 1 && phi < 1e-5)
+            phi += 2.0 * TPI;
+        if (fabs(len3(d) - 1.0) > 1e-6 || row < (double)j / g->m - 1e-6 ||
+            row > (j + 1.0) / g->m + 1e-6 || phi < 2.0 * TPI * k / g->n - 1e-5 ||
+            phi > 2.0 * TPI * (k + 1.0) / g->n + 1e-5) {
+            if (g->bad++ < 3)
+                printf("  ray %u (row %u, column %u of %ux%u): %g %g %g\n", g->count, j, k,
+                       g->m, g->n, d[0], d[1], d[2]);
+        }
+        a->hits[i].status = IRC_RAY_ESCAPED;
+        a->hits[i].radiance[0] = a->hits[i].radiance[1] = a->hits[i].radiance[2] = 1.0f;
+    }
+    return 0;
+}
+
+TEST(test_strata_directions)
+{
+    static const uint32_t strata[][2] = {{1, 1}, {4, 3}, {3, 7}, {4, 8}, {16, 64}, {5, 129}};
+    size_t i;
+    int sh;
+    for (sh = 0; sh < 2; sh++)
+        for (i = 0; i < sizeof strata / sizeof strata[0]; i++) {
+            tscene s;
+            irc_config cfg;
+            irc_cache *c;
+            dir_log g;
+            const float p[3] = {0.25f, 0.5f, 0.75f}, n[3] = {0, 0, 1};
+            int st = IRC_ERR_CONFIG;
+            scene_init(&s);
+            cfg = scene_config(&s, sh ? IRC_FEATURE_SH : 0u, strata[i][0], strata[i][1]);
+            cfg.trace = log_dirs;
+            cfg.sh_bands = sh ? 3u : 0u;
+            memset(&g, 0, sizeof g);
+            g.m = strata[i][0];
+            g.n = strata[i][1];
+            g.uniform = sh;
+            c = block_cache(&cfg, 16, 0);
+            if (c && sh) {
+                irc_sh r;
+                st = irc_sh_compute(c, p, n, &r, &g);
+            } else if (c) {
+                irc_record r;
+                st = irc_record_compute(c, p, n, &r, &g);
+            }
+            CHECK(st == IRC_OK, "compute %ux%u: %s", g.m, g.n, irc_strerror(st));
+            CHECK(g.count == g.m * g.n && g.bad == 0, "%ux%u%s: %u rays, %u outside their stratum",
+                  g.m, g.n, sh ? " (SH)" : "", g.count, g.bad);
+            block_free(&cfg);
+        }
+}
+
 /* The five documented points of the sphere-over-plane case: a black sphere
  * of radius 1 centred at (0, 0, 2) above the plane z = 0, sky L = 1.  The
  * sphere never crosses any point's horizon. */
