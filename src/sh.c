@@ -53,6 +53,64 @@ static void irc__sh_legendre(int bands, double z, double q[][IRC__SH_MAX_BANDS],
     }
 }
 
+/* The part of a polynomial's gradient g tangent to the unit sphere at u,
+ * over |s|: g - (g.u) u, where g.u = p (Euler: p = the degree times the
+ * polynomial's value, for a homogeneous polynomial). */
+static void irc__sh_tangent(double out[3], double gx, double gy, double gz, double p,
+                            const double u[3], double il)
+{
+    out[0] = (gx - p * u[0]) * il;
+    out[1] = (gy - p * u[1]) * il;
+    out[2] = (gz - p * u[2]) * il;
+}
+
+/* Bands 0-2 (L <= 3, SH records' default) as the Cartesian polynomials the
+ * recurrence below makes for them, with the same constants: y_1m = (a y,
+ * b z, a x) with a = K_11 Q_1^1, b = K_10; y_2m = (2 c x y, d y z,
+ * e (3z^2 - 1)/2, d x z, c (x^2 - y^2)) with c = K_22 Q_2^2, d = 3 K_21
+ * Q_1^1 (Q_2^1 = 3 z Q_1^1), e = K_20.  For the gradient y_20 is taken as
+ * e (z^2 - (x^2 + y^2)/2), equal on the sphere and homogeneous like the
+ * others, so every g.u is the degree times the value.  Straight-line
+ * code: no branch and no recurrence, for SH records' inner loop.  Writes
+ * L*L values. */
+static void irc__sh_eval3(int bands, const double u[3], double il, double *y,
+                          double (*grad)[3])
+{
+    const double x = u[0], v = u[1], z = u[2];
+    const double a = irc__sh_k[1][1] * irc__sh_qmm[1], b = irc__sh_k[1][0];
+    const double c = irc__sh_k[2][2] * irc__sh_qmm[2], d = 3.0 * irc__sh_k[2][1] * irc__sh_qmm[1];
+    const double e = irc__sh_k[2][0];
+    double t[9];
+    int l;
+    t[0] = irc__sh_k[0][0];
+    t[1] = a * v;
+    t[2] = b * z;
+    t[3] = a * x;
+    t[4] = 2.0 * c * x * v;
+    t[5] = d * v * z;
+    t[6] = e * (1.5 * z * z - 0.5);
+    t[7] = d * x * z;
+    t[8] = c * (x * x - v * v);
+    for (l = 0; l < bands * bands; l++)
+        y[l] = t[l];
+    if (!grad)
+        return;
+    grad[0][0] = grad[0][1] = grad[0][2] = 0.0;
+    if (bands < 2)
+        return;
+    irc__sh_tangent(grad[1], 0.0, a, 0.0, t[1], u, il);
+    irc__sh_tangent(grad[2], 0.0, 0.0, b, t[2], u, il);
+    irc__sh_tangent(grad[3], a, 0.0, 0.0, t[3], u, il);
+    if (bands < 3)
+        return;
+    irc__sh_tangent(grad[4], 2.0 * c * v, 2.0 * c * x, 0.0, 2.0 * t[4], u, il);
+    irc__sh_tangent(grad[5], 0.0, d * z, d * v, 2.0 * t[5], u, il);
+    irc__sh_tangent(grad[6], -e * x, -e * v, 2.0 * e * z,
+                    e * (2.0 * z * z - x * x - v * v), u, il);
+    irc__sh_tangent(grad[7], d * z, 0.0, d * x, 2.0 * t[7], u, il);
+    irc__sh_tangent(grad[8], 2.0 * c * x, -2.0 * c * v, 0.0, 2.0 * t[8], u, il);
+}
+
 /* y[i] = y_i(s/|s|) for the L*L basis functions and, when grad is not
  * NULL, grad[i] = the gradient of y_i(s/|s|) with respect to s.  s must be
  * finite and nonzero; 1 <= L <= IRC__SH_MAX_BANDS.  The polynomial
@@ -69,6 +127,10 @@ void irc__sh_eval(int bands, const double s[3], double *y, double (*grad)[3])
     int l, m, k;
     for (k = 0; k < 3; k++)
         u[k] = s[k] * il;
+    if (bands <= 3) {
+        irc__sh_eval3(bands, u, il, y, grad);
+        return;
+    }
     irc__sh_legendre(bands, u[2], q, grad ? dq : NULL);
     for (m = 0; m < bands; m++) {
         for (l = m; l < bands; l++) {

@@ -195,7 +195,7 @@ static void irc__sh_add(const irc_cache *c, irc__shsum *a, const irc__sample *x,
 static void irc__sh_accumulate(const irc_cache *c, const irc__grid *g, const double *n,
                                irc__shsum *a)
 {
-    const double dw = 2.0 * IRC_PI / c->strata, dphi = 2.0 * IRC_PI / g->n;
+    const double dw = 2.0 * IRC_PI / c->strata, idw = 1.0 / dw, dphi = 2.0 * IRC_PI / g->n;
     const double cd = IRC_COS(dphi), sd = IRC_SIN(dphi), ch = IRC_COS(0.5 * dphi),
                  sh = IRC_SIN(0.5 * dphi);
     int64_t jj;
@@ -230,7 +230,7 @@ static void irc__sh_accumulate(const irc_cache *c, const irc__grid *g, const dou
                 if (c->off_shg) {
                     irc__edge_vector(g, k, &cell, e);
                     for (q = 0; q < 3; q++)
-                        e[q] /= dw;
+                        e[q] *= idw;
                 }
                 irc__sh_add(c, a, &g->s[i], w, n, e);
             }
