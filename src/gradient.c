@@ -7,7 +7,8 @@
  * weights sit in a table made once at irc_init (cache.h, irc__gtab): a
  * record costs no transcendental call here, one float division a stratum
  * (its inverse hit distance, shared by its two boundaries) and a few
- * multiply-adds.
+ * multiply-adds.  Every cache has the table: the sampler (sampler.c) takes
+ * its columns' boundary angles from it too.
  */
 #include "cache.h"
 
