@@ -10,7 +10,10 @@
  *                                             both | hess | sh | shgrad
  *
  * Instructions per record: run it under callgrind with K = 0 and K = 1000
- * and divide the difference by 1000 (README, "Speed and memory").
+ * and divide the difference by 1000 (README, "Speed and memory").  Built
+ * with -DBENCH_PRINT_GRADIENTS it prints each irradiance record's
+ * gradients, one line a channel, so that two builds can be compared record
+ * by record.
  */
 #define _POSIX_C_SOURCE 200809L
 #include <stdio.h>
@@ -82,6 +85,14 @@ int main(int argc, char **argv)
         } else {
             if (irc_record_compute(c, p, n, &r, NULL) != IRC_OK)
                 return 1;
+#ifdef BENCH_PRINT_GRADIENTS /* to compare two builds record by record */
+            {
+                int ch;
+                for (ch = 0; ch < 3; ch++)
+                    printf("t %.9g %.9g %.9g r %.9g %.9g %.9g\n", r.grad_t[ch][0], r.grad_t[ch][1],
+                           r.grad_t[ch][2], r.grad_r[ch][0], r.grad_r[ch][1], r.grad_r[ch][2]);
+            }
+#endif
             sum += sum_of(r.e, 3) + sum_of(&r.grad_t[0][0], 9) +
                    sum_of(&r.grad_r[0][0], 9) + r.radius;
         }
