@@ -22,7 +22,7 @@ CFLAGS_LIB = -std=c99 $(WARN) $(OPT) $(PIC) -fvisibility=hidden -Iinclude $(CFLA
 PIC = $(if $(filter none,$(PORT)),,-fPIC)
 
 SRC = src/status.c src/check.c src/config.c src/layout.c src/store.c src/kind_irr.c src/gradient.c \
-      src/kind_sh.c src/sampler.c src/irradiance.c src/octa.c src/weight.c src/index.c \
+      src/kind_sh.c src/sampler.c src/irradiance.c src/octa.c src/weight.c src/index.c src/compact.c \
       src/visibility.c src/hessian.c src/sh.c src/shgrad.c src/snapshot.c src/merge.c \
       src/pass.c
 # The chosen port, and the single-threaded one (it needs nothing).

@@ -1,14 +1,17 @@
 /*
  * lookups.c -- one lookup workload, small enough to profile: N trans+rot
  * records on the six faces of a unit box (as bench_core.c builds them),
- * then L lookups in scanline or random order.  Prints the lookup rate, the
+ * then L lookups in scanline or random order.  The records are inserted
+ * in random order, freely (ids scattered in space) or with "pass" in one
+ * fill pass, whose end lays them out in the index's order (compact.c).
+ * Prints the lookup rate, the
  * index nodes used per record, the index entries a lookup scans and those
  * that pass the entry test (with "count": a second pass over queries of
  * the same kind, not timed), and the
  * sum of the returned values with 9 digits, so that two builds can be
  * checked for the same answers.
  *
- *   ./build/bench_lookups ORDER L N [count]     ORDER: scanline | random
+ *   ./build/bench_lookups ORDER L N [pass] [count]   ORDER: scanline | random
  *
  * Instructions per lookup: run it under callgrind with L = 0 and L = 10000
  * and divide the difference by 10000 (README, "Speed and memory").
@@ -70,10 +73,17 @@ int main(int argc, char **argv)
     long nl, hits = 0;
     unsigned long long scanned = 0, passed = 0;
     double reach, sum = 0.0, t0, t1;
-    int scanline;
-    if (argc < 4 || argc > 5 || (argc == 5 && strcmp(argv[4], "count")) ||
-        (strcmp(argv[1], "scanline") && strcmp(argv[1], "random"))) {
-        fprintf(stderr, "usage: %s scanline|random LOOKUPS RECORDS [count]\n", argv[0]);
+    int scanline, pass = 0, counting = 0, a;
+    for (a = 4; a < argc; a++) {
+        if (!strcmp(argv[a], "pass"))
+            pass = 1;
+        else if (!strcmp(argv[a], "count"))
+            counting = 1;
+        else
+            break;
+    }
+    if (argc < 4 || a < argc || (strcmp(argv[1], "scanline") && strcmp(argv[1], "random"))) {
+        fprintf(stderr, "usage: %s scanline|random LOOKUPS RECORDS [pass] [count]\n", argv[0]);
         return 2;
     }
     scanline = !strcmp(argv[1], "scanline");
@@ -94,6 +104,8 @@ int main(int argc, char **argv)
         return 1;
     reach = sqrt(36.0 / (3.14159265 * count));
     memset(&r, 0, sizeof r);
+    if (pass && irc_pass_begin(c) != IRC_OK)
+        return 1;
     for (i = 0; i < count; i++) {
         face_point((int)(bench_xorshift(&rng) * 6), bench_xorshift(&rng), bench_xorshift(&rng), r.p, r.n);
         r.e[0] = r.e[1] = r.e[2] = (float)(0.5 + bench_xorshift(&rng));
@@ -102,6 +114,8 @@ int main(int argc, char **argv)
         if (irc_cache_insert(c, &r) != IRC_OK)
             return 1;
     }
+    if (pass && irc_pass_end(c, NULL) != IRC_OK)
+        return 1;
     t0 = bench_now();
     for (i = 0; i < (uint32_t)nl; i++) {
         float p[3], n[3], rgb[3], w;
@@ -110,14 +124,14 @@ int main(int argc, char **argv)
         sum += rgb[0];
     }
     t1 = bench_now();
-    for (i = 0; argc == 5 && i < (uint32_t)nl; i++) {
+    for (i = 0; counting && i < (uint32_t)nl; i++) {
         float p[3], n[3];
         query(scanline, i, p, n);
         scanned += irc__index_query(c, p, count_passed, &passed);
     }
     irc_cache_stats(c, &st);
-    printf("%s order, %u records: %ld lookups, %ld hits, %.3f M/s, %.3f index nodes a record, "
-           "%.1f entries scanned and %.1f passed a lookup, sum %.9g\n", argv[1], count, nl, hits,
+    printf("%s order, %u records (%s): %ld lookups, %ld hits, %.3f M/s, %.3f index nodes a record, "
+           "%.1f entries scanned and %.1f passed a lookup, sum %.9g\n", argv[1], count, pass ? "one pass" : "free fill", nl, hits,
            nl > 0 ? nl / (t1 - t0) / 1e6 : 0.0, (double)st.index_nodes / count,
            nl > 0 ? (double)scanned / nl : 0.0, nl > 0 ? (double)passed / nl : 0.0, sum);
     free(cfg.buffer);

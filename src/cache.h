@@ -69,6 +69,12 @@ typedef struct irc__node {
     float reach;     /* largest a*R_i of any record in this subtree */
 } irc__node;
 
+/* The deepest node below the root, growth included: a root that grows
+ * makes every node one deeper, and refuses to once that would pass this
+ * (records then stay in the root's list); a walk's stack holds a frame a
+ * level (index.c, compact.c). */
+#define IRC__LEVELS 48
+
 /* A record's entry in the index, by id: its list link and its position and
  * reach a*R_i quantized against the cube (centre c, half edge h) of the
  * node whose list holds it, in steps of 2h/65535.  A query tests these
@@ -357,6 +363,7 @@ typedef void (*irc__visit_fn)(void *ud, uint32_t id);
 void irc__index_reset(irc_cache *c);
 void irc__index_insert(irc_cache *c, uint32_t id);
 void irc__index_remove(irc_cache *c, uint32_t id);
+void irc__index_compact(irc_cache *c); /* compact.c */
 /* Returns the index entries it scanned (the work; tests check it). */
 uint32_t irc__index_query(const irc_cache *c, const float p[3], irc__visit_fn fn,
                           void *ud);

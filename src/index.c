@@ -33,11 +33,6 @@
 #endif
 #define IRC__DEPTH 40    /* with the root's h >= |c|/32: centres within 2^45 of
                             their size, so exact in double */
-#define IRC__LEVELS 48   /* deepest node below the root, growth included: a
-                            root that grows makes every node one deeper, and
-                            refuses to once that would pass this (records
-                            then stay in the root's list); a query's stack
-                            holds a frame a level */
 #define IRC__ROOT_MAX 1e39
 
 typedef struct irc__cube {

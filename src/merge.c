@@ -109,6 +109,7 @@ int irc_merge(irc_cache *c, uint64_t fingerprint, const void *data, size_t size)
     c->home->count = kept;
     for (i = 0; i < kept; i++)
         irc__index_insert(c, i);
+    irc__index_compact(c);
     c->port->write_unlock(irc__lock(c));
     return IRC_OK;
 }

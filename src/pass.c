@@ -3,7 +3,8 @@
  * the index, so every lookup of the pass sees the same frozen cache, and
  * join it at the end in the canonical order of merges.  The records a
  * pass adds then depend only on the cache it began with and the queries
- * made, not on how many threads made them or in what order.
+ * made, not on how many threads made them or in what order.  The end of a
+ * pass also renumbers every record in the index's order (compact.c).
  */
 #include "cache.h"
 
@@ -50,6 +51,7 @@ int irc_pass_end(irc_cache *c, uint32_t *added)
         c->home->count = c->home->pass_base + i + 1;
         irc__commit_locked(c, c->home->pass_base + i);
     }
+    irc__index_compact(c);
     c->home->pass_open = 0;
     c->port->store(&c->home->pending, 0);
     c->port->write_unlock(irc__lock(c));

@@ -23,7 +23,7 @@
     X(test_snapshot_round_trip) X(test_snapshot_round_trip_sh) X(test_snapshot_rejects) X(test_snapshot_by_hand) X(test_merge_order_free) \
     X(test_pass_order_free) X(test_pass_frozen) X(test_pass_full) X(test_pass_state) \
     X(test_share_processes) X(test_join_refused) \
-    X(test_safe_defaults) X(test_index_clamped)
+    X(test_safe_defaults) X(test_index_clamped) X(test_index_compact)
 
 TESTS(TEST_DECL)
 
