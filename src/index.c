@@ -417,42 +417,47 @@ static uint32_t irc__scan(const irc_cache *c, uint32_t id, const irc__cube *q,
 /* The children of node n (cube q) a probe must enter, as bits by octant:
  * those whose cube lies within the subtree's reach (or the range) of p (a
  * record lies inside its node's cube, the root's list excepted, which is
- * always scanned). */
+ * always scanned).  Distances are in units of the child's edge, in float:
+ * the bound is widened by a relative 4e-6 (the roundings of the squares
+ * and sums, about 1e-6) and 1e-6 of an edge (underflow of tiny terms), so
+ * the test admits a superset of the exact one; a square too large for a
+ * float rejects only a child beyond FLT_MAX edges, which no reach below
+ * that passes either. */
 static unsigned irc__children(const irc_cache *c, const irc__node *n, const irc__cube *q,
                               const irc__probe *pr)
 {
     const irc__node *ch = &irc__nodes(c)[n->child];
-    const double hc = 0.5 * q->h, pad = hc * 1e-9, s = pr->scale * (1.0 + 1e-6);
-    double part[3][2], xy[4], fixed = pr->range + pad;
+    const double hc = 0.5 * q->h, unit = 1.0 / hc;
+    const float s = pr->range >= 0.0 ? 0.0f : (float)(pr->scale * (1.0 + 4e-6) * unit),
+                fixed = pr->range >= 0.0 ? (float)(pr->range * (1.0 + 4e-6) * unit) + 1e-6f
+                                          : 1e-6f;
+    float part[3][2], xy[4];
     unsigned mask = 0;
-    int oct, i;
+    int i;
     /* Squared distance from p to each child's cube, axis by axis: child
      * bit k of axis i spans [c_i - h, c_i] (k = 0) or [c_i, c_i + h]. */
     for (i = 0; i < 3; i++) {
         double below = (q->c[i] - q->h) - pr->p[i], above = pr->p[i] - (q->c[i] + q->h),
                lo = pr->p[i] - q->c[i], hi = q->c[i] - pr->p[i];
-        lo = lo > below ? lo : below; /* outside [c - h, c] */
-        hi = hi > above ? hi : above; /* outside [c, c + h] */
-        part[i][0] = lo > 0.0 ? lo * lo : 0.0;
-        part[i][1] = hi > 0.0 ? hi * hi : 0.0;
+        lo = (lo > below ? lo : below) * unit; /* outside [c - h, c] */
+        hi = (hi > above ? hi : above) * unit; /* outside [c, c + h] */
+        part[i][0] = lo > 0.0 ? (float)(lo * lo) : 0.0f;
+        part[i][1] = hi > 0.0 ? (float)(hi * hi) : 0.0f;
     }
-    /* By the octant's low two bits (x, y), then z added per child. */
+    /* By the octant's low two bits (x, y), then z added per child; an
+     * empty child's reach is -1, which its own test must not let by. */
     xy[0] = part[0][0] + part[1][0];
     xy[1] = part[0][1] + part[1][0];
     xy[2] = part[0][0] + part[1][1];
     xy[3] = part[0][1] + part[1][1];
-    if (pr->range >= 0.0) {
-        for (oct = 0; oct < 8; oct++)
-            if (ch[oct].reach >= 0.0f && xy[oct & 3] + part[2][oct >> 2] <= fixed * fixed)
-                mask |= 1u << oct;
-        return mask;
-    }
-    for (oct = 0; oct < 8; oct++) {
-        /* The pad covers the float rounding of the stored reach. */
-        double r = s * (double)ch[oct].reach + pad;
-        if (ch[oct].reach >= 0.0f && xy[oct & 3] + part[2][oct >> 2] <= r * r)
-            mask |= 1u << oct;
-    }
+#define IRC__CHILD(o)                                                         \
+    do {                                                                      \
+        float r = ch[o].reach * s + fixed, d2 = xy[(o) & 3] + part[2][(o) >> 2]; \
+        mask |= ((unsigned)(ch[o].reach >= 0.0f) & (unsigned)(d2 <= r * r)) << (o); \
+    } while (0)
+    IRC__CHILD(0); IRC__CHILD(1); IRC__CHILD(2); IRC__CHILD(3);
+    IRC__CHILD(4); IRC__CHILD(5); IRC__CHILD(6); IRC__CHILD(7);
+#undef IRC__CHILD
     return mask;
 }
 
