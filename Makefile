@@ -205,8 +205,8 @@ bench-core: $(BUILD)/bench_core
 # One lookup workload for profilers (README: "Where the lookup time goes"):
 # rates, entries scanned and passed, and a checksum of the answers.
 bench-lookups: $(BUILD)/bench_lookups
-	for o in scanline random; do for n in 100000 1000000; do \
-	  $(BUILD)/bench_lookups $$o 200000 $$n count || exit 1; done; done
+	for o in scanline random; do for n in 100000 1000000; do for f in "" pass; do \
+	  $(BUILD)/bench_lookups $$o 200000 $$n $$f count || exit 1; done; done; done
 
 # One record workload for profilers (README: "Speed and memory"): time a
 # record and a checksum of the records, per feature set.

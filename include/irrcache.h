@@ -653,7 +653,9 @@ IRC_API int irc_cache_lookup_or_compute_px(irc_cache *cache, const float p[3],
  * The ids (slot numbers) of the records a lookup at (p, n) would use, in no
  * particular order: up to cap of them in ids, and how many there are in
  * *count (which may exceed cap).  Either kind of cache (n NULL in an SH
- * cache: free points).  For debugging and visualisation.  Returns IRC_OK,
+ * cache: free points).  For debugging and visualisation.  An id stays a
+ * record's until irc_pass_end, irc_merge or irc_cache_clear (which
+ * renumber or remove records) or its eviction.  Returns IRC_OK,
  * or a negative error code on failure.
  */
 IRC_API int irc_cache_neighbours(irc_cache *cache, const float p[3], const float n[3],
@@ -722,10 +724,11 @@ IRC_API int irc_snapshot_read(irc_cache *cache, uint64_t fingerprint, const void
  * checks (the same statuses, the cache unchanged on any of them;
  * IRC_ERR_FULL when the cache's records and the snapshot's together,
  * duplicates counted, exceed its capacity).  The result does not depend
- * on the order of merges: afterwards the records sit in one canonical
- * order (field by field in the format's order, each field as an unsigned
- * integer), records equal in every byte are kept once, and the index is
- * rebuilt from that order; so merging a set of snapshots into an empty
+ * on the order of merges: the records are put in one canonical order
+ * (field by field in the format's order, each field as an unsigned
+ * integer), records equal in every byte are kept once, the index is
+ * rebuilt from that order, and the records are then renumbered in the
+ * index's order (as at irc_pass_end); so merging a set of snapshots into an empty
  * cache in any order gives caches whose snapshots are byte-identical, and
  * merging one twice adds nothing.  Records from different snapshots that
  * differ in any bit are all kept (two tiles that computed a record at the
@@ -756,8 +759,9 @@ IRC_API int irc_merge(irc_cache *cache, uint64_t fingerprint, const void *data, 
  * should hold no two queries within a record's reach of each other (the
  * demo shades pixels P apart in P^2 passes, P above a record's reach in
  * pixels; all pixels at strides 8, 4, 2, 1 in 4 passes made 1.5x the
- * records of a free fill, README "Fill passes").  Not concurrent with
- * other calls on the cache.  Returns IRC_OK, IRC_ERR_STATE when a pass is
+ * records of a free fill, README "Fill passes").  Lookups in a pass take
+ * no lock (nothing they read can change before irc_pass_end).  Not
+ * concurrent with other calls on the cache.  Returns IRC_OK, IRC_ERR_STATE when a pass is
  * already open, or a negative error code.
  */
 IRC_API int irc_pass_begin(irc_cache *cache);
@@ -766,7 +770,13 @@ IRC_API int irc_pass_begin(irc_cache *cache);
  * Closes the open pass: its records, sorted in merge's canonical order
  * (see irc_merge) with exact duplicates kept once, are inserted one by one
  * in that order (neighbour clamping, when on, applies in that order too)
- * and become visible.  *added (optional) gets how many.  Not concurrent
+ * and become visible.  Then every record of the cache is renumbered in the
+ * order lookups visit the index (depth first), which puts the records a
+ * lookup reads side by side in memory: lookups answer bit for bit as
+ * before, faster (README, "Speed and memory"), but record ids change, and
+ * the end of a pass costs a move of every record (a pass with no records,
+ * begun and ended at once, does only that, for a cache filled without
+ * passes).  *added (optional) gets how many.  Not concurrent
  * with other calls on the cache: every thread of the pass must be done.
  * Returns IRC_OK, IRC_ERR_STATE when no pass is open, or a negative error
  * code.  While a pass is open, irc_cache_clear, irc_snapshot_read and

@@ -2,7 +2,8 @@
  * store.c -- the one record store behind every public call: the handle
  * check, scratch slots, insert with CLOCK eviction, the lookup driver
  * (index query, weighting, accumulation through the record kind's table),
- * lookup-or-compute, and the counters.  Lookups hold the port's read lock;
+ * lookup-or-compute, and the counters.  Lookups hold the port's read lock
+ * (none in a fill pass);
  * anything that changes records or the index holds its write lock; the
  * host's callback runs with no lock held.  Counters are updated only once
  * a call has succeeded, so a call that fails leaves the block as it was.
@@ -313,12 +314,20 @@ static void irc__visit(void *ud, uint32_t id)
     }
 }
 
+/* In an open pass nothing a lookup reads can change until irc_pass_end,
+ * which no other call may overlap (irrcache.h), and the pass's own records
+ * go to slots no lookup reads: lookups then take no lock, so threads on
+ * other cores write no shared line but the counters' stripes and CLOCK
+ * bits not yet set.  pass_open itself changes only in irc_pass_begin and
+ * irc_pass_end, outside any lookup. */
 static int irc__walk_index(irc_cache *c, irc__walk *v)
 {
-    if (c->port->read_lock(irc__lock(c)) < 0)
+    int lock = !c->home->pass_open;
+    if (lock && c->port->read_lock(irc__lock(c)) < 0)
         return IRC_ERR_PORT;
     irc__index_query(c, v->q->p, irc__visit, v);
-    c->port->read_unlock(irc__lock(c));
+    if (lock)
+        c->port->read_unlock(irc__lock(c));
     return IRC_OK;
 }
 

@@ -226,3 +226,55 @@ TEST(test_pass_state)
           "NULL");
     block_free(&cfg);
 }
+
+/* Read locks taken, by a port that counts them. */
+static int read_locks;
+
+static int counting_read_lock(void *lock)
+{
+    read_locks++;
+    return irc_port_none.read_lock(lock);
+}
+
+/* Lookups outside a pass take the read lock; inside one, where nothing the
+ * index holds can change until irc_pass_end, they take none, and answer
+ * as before. */
+TEST(test_pass_lock_free)
+{
+    tscene s;
+    irc_config cfg;
+    irc_port port = irc_port_none;
+    irc_cache *c;
+    const float up[3] = {0, 0, 1};
+    float out[2][16][4];
+    int i, k, before;
+    memset(out, 0, sizeof out);
+    port.read_lock = counting_read_lock;
+    scene_sphere_plane(&s);
+    cfg = scene_config(&s, IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION, 8, 32);
+    cfg.port = &port;
+    c = block_cache(&cfg, 256, 0);
+    CHECK(c != NULL, "init");
+    if (!c) return;
+    for (k = 0; k < 2; k++) { /* fill, then the same queries hit */
+        before = read_locks;
+        for (i = 0; i < 16; i++) {
+            float p[3];
+            query(i * 97 % (GRID * GRID), p);
+            out[0][i][3] = (float)irc_cache_lookup_or_compute(c, p, up, out[0][i], NULL, NULL);
+        }
+        CHECK(read_locks - before == 16, "free fill: %d read locks for 16 lookups",
+              read_locks - before);
+    }
+    CHECK(irc_pass_begin(c) == IRC_OK, "begin");
+    before = read_locks;
+    for (i = 0; i < 16; i++) {
+        float p[3];
+        query(i * 97 % (GRID * GRID), p);
+        out[1][i][3] = (float)irc_cache_lookup_or_compute(c, p, up, out[1][i], NULL, NULL);
+    }
+    CHECK(read_locks == before, "in a pass: %d read locks", read_locks - before);
+    CHECK(memcmp(out[0], out[1], sizeof out[0]) == 0, "a pass's lookups answer otherwise");
+    CHECK(irc_pass_end(c, NULL) == IRC_OK, "end");
+    block_free(&cfg);
+}
