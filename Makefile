@@ -93,6 +93,38 @@ test:
 coverage:
 	sh tests/coverage.sh
 
+# ---------------------------------------------------------------- embedded
+# The library for a Cortex-M4F (single-precision FPU) with the none port,
+# and a host of the project's own run under QEMU's mps2-an386 board with
+# semihosting (README, "Embedded").  embedded/need.sh installs the
+# compiler, newlib and QEMU from Debian's packages when they are missing.
+CROSS ?= arm-none-eabi-
+M4_FLAGS = -mcpu=cortex-m4 -mfpu=fpv4-sp-d16 -mfloat-abi=hard -mthumb
+M4_OPT = $(M4_FLAGS) -Os -ffunction-sections -fdata-sections
+M4_BUILD = build-m4
+QEMU_M4 = qemu-system-arm -M mps2-an386 -nographic -monitor none -serial none \
+          -semihosting-config enable=on,target=native -icount shift=0
+
+cross:
+	@sh embedded/need.sh
+	$(MAKE) -s CC=$(CROSS)gcc AR=$(CROSS)ar PORT=none BUILD=$(M4_BUILD) OPT="$(M4_OPT)" lib
+
+$(M4_BUILD)/host.elf: cross embedded/host.c embedded/board.c embedded/board.h embedded/mps2.ld
+	$(CROSS)gcc -std=c99 $(WARN) $(M4_OPT) -Iinclude -Iembedded embedded/host.c \
+	  embedded/board.c $(M4_BUILD)/libirrcache.a --specs=rdimon.specs -nostartfiles \
+	  -T embedded/mps2.ld -Wl,--gc-sections -lm -o $@
+
+embedded-test: $(M4_BUILD)/host.elf
+	timeout 300 $(QEMU_M4) -kernel $(M4_BUILD)/host.elf
+
+# The same host on the build machine (no counter, no stack painting).
+$(BUILD)/embedded_host: embedded/host.c embedded/board.c embedded/board.h $(LIBA)
+	$(CC) -std=c99 $(WARN) $(OPT) -Iinclude -Iembedded embedded/host.c embedded/board.c \
+	  $(LIBA) -o $@ -lm $(THREAD_LIBS)
+
+embedded-host: $(BUILD)/embedded_host
+	$(BUILD)/embedded_host
+
 # ---------------------------------------------------------------- demo
 # The demo tracer: every demo/*.c but the two stand-alone programs.
 DEMO_LIB_SRC = $(filter-out demo/main.c,$(wildcard demo/*.c))
@@ -242,4 +274,4 @@ install: all
 clean:
 	rm -rf build build-*
 
-.PHONY: all lib examples test coverage demo fig15 sh-experiments fuzz replay bench-core bench-lookups bench-records bench bench-fill farm-demo install clean
+.PHONY: all lib cross embedded-test embedded-host examples test coverage demo fig15 sh-experiments fuzz replay bench-core bench-lookups bench-records bench bench-fill farm-demo install clean
