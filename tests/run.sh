@@ -17,6 +17,9 @@
 #            microcontroller)
 #   stage 6  line and branch coverage of src/ (gcov), printed; at least
 #            90% of lines and 80% of branches
+#   stage 7  the library built for a Cortex-M4F and its host run under
+#            QEMU (make embedded-test; embedded/need.sh installs the Arm
+#            compiler, newlib and QEMU when missing)
 set -u
 cd "$(dirname "$0")/.."
 P=0
@@ -220,6 +223,10 @@ coverage_target() {
     tail -1 "$LOG/coverage-report.log" | awk '$1 == "total" { l = $2 + 0; b = $3 + 0; ok = l >= 90 && b >= 80 } END { exit !ok }'
 }
 check coverage coverage_target
+
+echo "== stage 7: Cortex-M4F under QEMU"
+check embedded-need sh embedded/need.sh
+suite m4 $MAKE -s embedded-test
 
 echo "$P passed, $F failed"
 [ "$F" -eq 0 ]
