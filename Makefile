@@ -6,6 +6,9 @@
 #   make demo       build the demo tracer and render the Cornell box
 #   make test       every test; ends with "N passed, N failed"
 #   make bench-core the core benchmark (CSV on stdout)
+#   make cross      libirrcache.a for a Cortex-M4F (CROSS=arm-none-eabi-)
+#   make embedded-test  that library's host run under QEMU (mps2-an386)
+#   make size       code, data and stack per object and entry point
 #   make fuzz       libFuzzer harnesses for FUZZ_SECONDS each (clang)
 #   make install    PREFIX=/usr/local
 
@@ -116,6 +119,11 @@ $(M4_BUILD)/host.elf: cross embedded/host.c embedded/board.c embedded/board.h em
 
 embedded-test: $(M4_BUILD)/host.elf
 	timeout 300 $(QEMU_M4) -kernel $(M4_BUILD)/host.elf
+
+# Code, data and stack per object and entry point, x86-64 and Cortex-M4F;
+# fails if the library can recurse (embedded/size.sh).
+size:
+	sh embedded/size.sh
 
 # The same host on the build machine (no counter, no stack painting).
 $(BUILD)/embedded_host: embedded/host.c embedded/board.c embedded/board.h $(LIBA)
@@ -274,4 +282,4 @@ install: all
 clean:
 	rm -rf build build-*
 
-.PHONY: all lib cross embedded-test embedded-host examples test coverage demo fig15 sh-experiments fuzz replay bench-core bench-lookups bench-records bench bench-fill farm-demo install clean
+.PHONY: all lib cross embedded-test embedded-host size examples test coverage demo fig15 sh-experiments fuzz replay bench-core bench-lookups bench-records bench bench-fill farm-demo install clean

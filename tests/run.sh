@@ -19,7 +19,8 @@
 #            90% of lines and 80% of branches
 #   stage 7  the library built for a Cortex-M4F and its host run under
 #            QEMU (make embedded-test; embedded/need.sh installs the Arm
-#            compiler, newlib and QEMU when missing)
+#            compiler, newlib and QEMU when missing), and make size
+#            (fails if the library can recurse)
 set -u
 cd "$(dirname "$0")/.."
 P=0
@@ -227,6 +228,7 @@ check coverage coverage_target
 echo "== stage 7: Cortex-M4F under QEMU"
 check embedded-need sh embedded/need.sh
 suite m4 $MAKE -s embedded-test
+check size sh embedded/size.sh
 
 echo "$P passed, $F failed"
 [ "$F" -eq 0 ]
