@@ -259,6 +259,21 @@ static inline irc__rec *irc__rec_at(const irc_cache *c, uint32_t id)
     return (irc__rec *)(void *)irc__part(c, c->o_records + (size_t)id * c->rec_size);
 }
 
+/* Swaps records i and j through a 64-byte buffer: the stack holds no
+ * record of the largest kind (1.2 KB; README, "Embedded"). */
+static inline void irc__rec_swap(const irc_cache *c, uint32_t i, uint32_t j)
+{
+    unsigned char *a = (unsigned char *)irc__rec_at(c, i), *b = (unsigned char *)irc__rec_at(c, j);
+    unsigned char tmp[64];
+    uint32_t at, n;
+    for (at = 0; at < c->rec_size; at += n) {
+        n = c->rec_size - at < 64u ? c->rec_size - at : 64u;
+        IRC_MEMCPY(tmp, a + at, n);
+        IRC_MEMCPY(a + at, b + at, n);
+        IRC_MEMCPY(b + at, tmp, n);
+    }
+}
+
 /* check.c */
 int irc__check_vec(const float v[3]);
 int irc__check_normal(const float n[3], double unit[3]);

@@ -112,16 +112,11 @@ static void irc__swap_used(irc_cache *c, uint32_t a, uint32_t b)
  * puts one record (with its entry and bit) at its new id for good. */
 static void irc__permute(irc_cache *c, uint32_t count)
 {
-    union { irc__rec head; unsigned char b[IRC__REC_MAX]; } tmp;
     irc__ixe *ix = irc__ix(c), e;
     uint32_t i, to;
     for (i = 0; i < count; i++)
         while ((to = ix[i].next) != i) {
-            unsigned char *a = (unsigned char *)irc__rec_at(c, i),
-                          *b = (unsigned char *)irc__rec_at(c, to);
-            IRC_MEMCPY(tmp.b, a, c->rec_size);
-            IRC_MEMCPY(a, b, c->rec_size);
-            IRC_MEMCPY(b, tmp.b, c->rec_size);
+            irc__rec_swap(c, i, to);
             e = ix[i];
             ix[i] = ix[to];
             ix[to] = e;

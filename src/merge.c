@@ -27,17 +27,8 @@ static unsigned char *irc__bytes(const irc_cache *c, uint32_t id)
     return (unsigned char *)irc__rec_at(c, id);
 }
 
-static void irc__swap(irc_cache *c, uint32_t i, uint32_t j, unsigned char *tmp)
-{
-    unsigned char *a = irc__bytes(c, i), *b = irc__bytes(c, j);
-    IRC_MEMCPY(tmp, a, c->rec_size);
-    IRC_MEMCPY(a, b, c->rec_size);
-    IRC_MEMCPY(b, tmp, c->rec_size);
-}
-
 /* Heap positions are relative to first. */
-static void irc__sift(irc_cache *c, uint32_t first, uint32_t root, uint32_t n,
-                      unsigned char *tmp)
+static void irc__sift(irc_cache *c, uint32_t first, uint32_t root, uint32_t n)
 {
     for (;;) {
         uint32_t child = 2 * root + 1;
@@ -48,21 +39,20 @@ static void irc__sift(irc_cache *c, uint32_t first, uint32_t root, uint32_t n,
             child++;
         if (irc__order(c, irc__bytes(c, first + root), irc__bytes(c, first + child)) >= 0)
             return;
-        irc__swap(c, first + root, first + child, tmp);
+        irc__rec_swap(c, first + root, first + child);
         root = child;
     }
 }
 
-/* Heap sort in the record pool itself: no memory beyond one record. */
+/* Heap sort in the record pool itself: no memory beyond 64 bytes. */
 void irc__sort(irc_cache *c, uint32_t first, uint32_t n)
 {
-    union { irc__rec head; unsigned char b[IRC__REC_MAX]; } tmp;
     uint32_t i;
     for (i = n / 2; i-- > 0;)
-        irc__sift(c, first, i, n, tmp.b);
+        irc__sift(c, first, i, n);
     for (i = n; i-- > 1;) {
-        irc__swap(c, first, first + i, tmp.b);
-        irc__sift(c, first, 0, i, tmp.b);
+        irc__rec_swap(c, first, first + i);
+        irc__sift(c, first, 0, i);
     }
 }
 
