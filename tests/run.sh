@@ -15,6 +15,8 @@
 #            libirrcache.a; no thread or I/O header in src/
 #   stage 2c the suite built for 32 bits (-m32: size_t and pointers of a
 #            microcontroller)
+#   stage 2d the suite with assertions compiled out (-DIRC_NO_ASSERT: IRC_ASSERT
+#            does nothing, as in a release firmware)
 #   stage 6  line and branch coverage of src/ (gcov), printed; at least
 #            90% of lines and 80% of branches
 #   stage 7  the library built for a Cortex-M4F and its host run under
@@ -133,6 +135,10 @@ check bench-records ./build/bench_records shgrad 3
 echo "== stage 2c: suite at 32 bits"
 check build-m32 $MAKE -s CC="gcc -m32" BUILD=build-m32 build-m32/irc_tests
 suite m32 IRC_TEST_QUICK=1 ./build-m32/irc_tests
+
+echo "== stage 2d: suite with the library's assertions compiled out"
+check build-ndebug $MAKE -s BUILD=build-ndebug OPT="-O2 -DIRC_NO_ASSERT" build-ndebug/irc_tests
+suite ndebug IRC_TEST_QUICK=1 ./build-ndebug/irc_tests
 
 echo "== stage 2b: demo tracer"
 check build-demo $MAKE -s BUILD=build build/irc_demo build/demo_tests build/t_image build/t_loader build/t_exr
