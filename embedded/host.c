@@ -71,6 +71,20 @@ static void check(int ok, const char *what, double got, double want)
 static unsigned char irr_block[96 * 1024], sh_block[128 * 1024];
 static irc_sh sh_out;
 
+/* 16 x 64 strata, rays in batches of 64, the single-threaded port; an
+ * open sky's records get the largest radius the scene needs. */
+static void settings(irc_config *cfg, uint32_t features)
+{
+    memset(cfg, 0, sizeof *cfg);
+    cfg->trace = trace;
+    cfg->max_batch = 64;
+    cfg->features = features;
+    cfg->strata_theta = 16;
+    cfg->strata_phi = 64;
+    cfg->max_radius = 4.0f;
+    cfg->port = &irc_port_none;
+}
+
 static irc_cache *make(irc_config *cfg, unsigned char *block, size_t size, uint32_t records)
 {
     irc_cache *c = NULL;
@@ -119,14 +133,7 @@ static void irradiance(void)
     float rgb[3], w;
     uint64_t t0, t1;
     int st;
-    memset(&cfg, 0, sizeof cfg);
-    cfg.trace = trace;
-    cfg.max_batch = 64;
-    cfg.features = IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION;
-    cfg.strata_theta = 16;
-    cfg.strata_phi = 64;
-    cfg.max_radius = 4.0f;
-    cfg.port = &irc_port_none;
+    settings(&cfg, IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION);
     if (!(c = make(&cfg, irr_block, sizeof irr_block, 64)))
         return;
     sphere_on = 0;
@@ -165,14 +172,7 @@ static void sh(void)
     const float p[3] = {0.0f, 0.0f, 0.0f}, n[3] = {0.0f, 0.0f, 1.0f};
     float rgb[3], w;
     int st;
-    memset(&cfg, 0, sizeof cfg);
-    cfg.trace = trace;
-    cfg.max_batch = 64;
-    cfg.features = IRC_FEATURE_SH | IRC_FEATURE_SH_GRADIENT;
-    cfg.strata_theta = 16;
-    cfg.strata_phi = 64;
-    cfg.max_radius = 4.0f;
-    cfg.port = &irc_port_none;
+    settings(&cfg, IRC_FEATURE_SH | IRC_FEATURE_SH_GRADIENT);
     if (!(c = make(&cfg, sh_block, sizeof sh_block, 64)))
         return;
     sphere_on = 0;
