@@ -118,13 +118,11 @@ typedef struct irc__query {
     int free;
 } irc__query;
 
-/* A lookup's running sums, by kind. */
-typedef union irc__acc {
-    double irr[3];
-    struct {
-        double c[3][IRC__NC], g[3][IRC__NC][3], e[3];
-    } sh;
-} irc__acc;
+/* A lookup's running sums live in the frame of the kind's find (3 doubles
+ * for irradiance, 2.4 KB for SH), passed on as void *: a union of every
+ * kind's would put the largest on every kind's stack, and a frame that
+ * outlived the lookup would sit under the record computation that may
+ * follow it. */
 
 /* One record computation in progress: the cache, its claimed scratch
  * slot, the host's per-call pointer, the query, and rays cast so far. */
@@ -148,12 +146,14 @@ typedef struct irc__kind {
     void (*unpack)(const irc_cache *c, const void *src, void *rec);
     int (*weigh)(const irc_cache *c, const irc__rec *r, const irc__query *q, double *w,
                  float ni[3]);
-    void (*begin)(const irc_cache *c, irc__acc *a);
+    void (*begin)(const irc_cache *c, void *acc);
     void (*accumulate)(const irc_cache *c, const irc__rec *r, const irc__query *q, double w,
-                       const float ni[3], irc__acc *a);
-    int (*finish)(const irc_cache *c, const irc__query *q, const irc__acc *a, double w,
+                       const float ni[3], void *acc);
+    int (*finish)(const irc_cache *c, const irc__query *q, const void *acc, double w,
                   void *out);
     void (*answer)(const irc_cache *c, const void *rec, void *out);
+    /* irc__lookup_once with an accumulator of the kind's own. */
+    int (*find)(irc_cache *c, const irc__query *q, void *out, float *weight);
 } irc__kind;
 
 /* The block stores which kind it holds by number (a pointer to the table
@@ -364,10 +364,12 @@ int irc__snap_check(const irc_cache *c, uint64_t fingerprint, const unsigned cha
 void irc__convert(const irc_cache *c, const unsigned char *src, unsigned char *dst, int to_le);
 unsigned irc__field_width(const irc_cache *c, uint32_t at);
 uint64_t irc__native_get(const unsigned char *p, unsigned width);
+int irc__lookup_once(irc_cache *c, const irc__query *q, void *out, float *weight, void *acc);
 int irc__lookup(irc_cache *c, const irc__kind *want, const float p[3], const float n[3],
                 void *out, float *weight);
+/* rec: room for the kind's public record (irc_record, irc_sh). */
 int irc__lookup_or_compute(irc_cache *c, const irc__kind *want, float footprint, const float p[3],
-                           const float n[3], void *out, float *weight, void *host);
+                           const float n[3], void *out, float *weight, void *host, void *rec);
 int irc__record_get(irc_cache *c, const irc__kind *want, uint32_t id, void *out);
 void irc__count(irc_cache *c, int which, uint64_t v);
 

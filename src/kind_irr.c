@@ -192,31 +192,34 @@ static int irc__irr_weigh(const irc_cache *c, const irc__rec *r, const irc__quer
     return irc__weigh(c, r, q->p, q->n, w, ni);
 }
 
-static void irc__irr_begin(const irc_cache *c, irc__acc *a)
+/* The accumulator: the weighted sum of E per channel. */
+static void irc__irr_begin(const irc_cache *c, void *acc)
 {
+    double *a = (double *)acc;
     (void)c;
-    a->irr[0] = a->irr[1] = a->irr[2] = 0.0;
+    a[0] = a[1] = a[2] = 0.0;
 }
 
 static void irc__irr_accumulate(const irc_cache *c, const irc__rec *r, const irc__query *q,
-                                double w, const float ni[3], irc__acc *a)
+                                double w, const float ni[3], void *acc)
 {
-    double v[3];
+    double v[3], *a = (double *)acc;
     irc__extrapolate(c, r, ni, q->p, q->n, v);
-    a->irr[0] += w * v[0];
-    a->irr[1] += w * v[1];
-    a->irr[2] += w * v[2];
+    a[0] += w * v[0];
+    a[1] += w * v[1];
+    a[2] += w * v[2];
 }
 
-static int irc__irr_finish(const irc_cache *c, const irc__query *q, const irc__acc *a,
+static int irc__irr_finish(const irc_cache *c, const irc__query *q, const void *acc,
                            double w, void *out)
 {
+    const double *a = (const double *)acc;
     float *rgb = (float *)out;
     int ch;
     (void)c;
     (void)q;
     for (ch = 0; ch < 3; ch++)
-        rgb[ch] = w > 0.0 ? (float)(a->irr[ch] / w) : 0.0f;
+        rgb[ch] = w > 0.0 ? (float)(a[ch] / w) : 0.0f;
     /* Records with irradiance and gradients near FLT_MAX can extrapolate
      * past it. */
     if (!irc__finite3(rgb))
@@ -234,10 +237,16 @@ static void irc__irr_answer(const irc_cache *c, const void *rec, void *out)
     rgb[2] = r->e[2];
 }
 
+static int irc__irr_find(irc_cache *c, const irc__query *q, void *out, float *weight)
+{
+    double acc[3];
+    return irc__lookup_once(c, q, out, weight, acc);
+}
+
 const irc__kind irc__kind_irr = {
     0, irc__irr_compute, irc__irr_check,
     irc__irr_pack, irc__irr_unpack, irc__irr_weigh, irc__irr_begin,
-    irc__irr_accumulate, irc__irr_finish, irc__irr_answer};
+    irc__irr_accumulate, irc__irr_finish, irc__irr_answer, irc__irr_find};
 
 int irc_record_compute(irc_cache *c, const float p[3], const float n[3], irc_record *out,
                        void *host)
@@ -259,13 +268,14 @@ int irc_cache_lookup(irc_cache *c, const float p[3], const float n[3], float rgb
 int irc_cache_lookup_or_compute(irc_cache *c, const float p[3], const float n[3],
                                 float rgb[3], float *weight, void *host)
 {
-    return irc__lookup_or_compute(c, &irc__kind_irr, 0.0f, p, n, rgb, weight, host);
+    return irc_cache_lookup_or_compute_px(c, p, n, 0.0f, rgb, weight, host);
 }
 
 int irc_cache_lookup_or_compute_px(irc_cache *c, const float p[3], const float n[3],
                                    float footprint, float rgb[3], float *weight, void *host)
 {
-    return irc__lookup_or_compute(c, &irc__kind_irr, footprint, p, n, rgb, weight, host);
+    irc_record rec;
+    return irc__lookup_or_compute(c, &irc__kind_irr, footprint, p, n, rgb, weight, host, &rec);
 }
 
 int irc_cache_record(irc_cache *c, uint32_t id, irc_record *out)

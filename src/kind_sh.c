@@ -137,16 +137,22 @@ static int irc__sh_weigh(const irc_cache *c, const irc__rec *r, const irc__query
     return 1;
 }
 
-static void irc__sh_begin(const irc_cache *c, irc__acc *a)
+/* A lookup's running sums: coefficients, their gradients, E. */
+typedef struct irc__sh_acc {
+    double c[3][IRC__NC], g[3][IRC__NC][3], e[3];
+} irc__sh_acc;
+
+static void irc__sh_begin(const irc_cache *c, void *acc)
 {
     (void)c;
-    IRC_MEMSET(&a->sh, 0, sizeof a->sh);
+    IRC_MEMSET(acc, 0, sizeof(irc__sh_acc));
 }
 
 /* Eq. 15: each accepted record extrapolated to p (Eq. 14), weighted. */
 static void irc__sh_gather(const irc_cache *c, const irc__rec *r, const irc__query *q,
-                               double w, const float ni[3], irc__acc *a)
+                               double w, const float ni[3], void *acc)
 {
+    irc__sh_acc *a = (irc__sh_acc *)acc;
     const unsigned char *b = (const unsigned char *)r;
     const float *cf = (const float *)(const void *)(b + c->off_sh);
     const float *gf = c->off_shg ? (const float *)(const void *)(b + c->off_shg) : NULL;
@@ -155,7 +161,7 @@ static void irc__sh_gather(const irc_cache *c, const irc__rec *r, const irc__que
     (void)ni;
     for (k = 0; k < 3; k++) {
         d[k] = (double)q->p[k] - r->p[k];
-        a->sh.e[k] += w * r->e[k];
+        a->e[k] += w * r->e[k];
     }
     for (ch = 0; ch < c->sh_ch; ch++)
         for (i = 0; i < c->sh_n; i++) {
@@ -163,11 +169,11 @@ static void irc__sh_gather(const irc_cache *c, const irc__rec *r, const irc__que
             if (gf) {
                 for (k = 0; k < 3; k++) {
                     v += gf[k] * d[k];
-                    a->sh.g[ch][i][k] += w * gf[k];
+                    a->g[ch][i][k] += w * gf[k];
                 }
                 gf += 3;
             }
-            a->sh.c[ch][i] += w * v;
+            a->c[ch][i] += w * v;
         }
 }
 
@@ -184,9 +190,10 @@ static void irc__sh_blank(const irc_cache *c, const irc__query *q, irc_sh *out)
     }
 }
 
-static int irc__sh_end(const irc_cache *c, const irc__query *q, const irc__acc *a, double w,
+static int irc__sh_end(const irc_cache *c, const irc__query *q, const void *acc, double w,
                        void *dst)
 {
+    const irc__sh_acc *a = (const irc__sh_acc *)acc;
     irc_sh *out = (irc_sh *)dst;
     uint32_t ch, i, k;
     int st;
@@ -194,13 +201,13 @@ static int irc__sh_end(const irc_cache *c, const irc__query *q, const irc__acc *
     if (!(w > 0.0))
         return IRC_MISS;
     for (k = 0; k < 3; k++)
-        out->e[k] = (float)(a->sh.e[k] / w);
+        out->e[k] = (float)(a->e[k] / w);
     st = irc__finite3(out->e) ? IRC_OK : IRC_ERR_NONFINITE;
     for (ch = 0; ch < c->sh_ch; ch++)
         for (i = 0; i < c->sh_n; i++) {
-            out->c[ch][i] = (float)(a->sh.c[ch][i] / w);
+            out->c[ch][i] = (float)(a->c[ch][i] / w);
             for (k = 0; k < 3; k++)
-                out->grad[ch][i][k] = (float)(a->sh.g[ch][i][k] / w);
+                out->grad[ch][i][k] = (float)(a->g[ch][i][k] / w);
             /* Huge gradients far from their record can overflow float. */
             if (!irc__finite(out->c[ch][i]) || !irc__finite3(out->grad[ch][i]))
                 st = IRC_ERR_NONFINITE;
@@ -234,10 +241,16 @@ static int irc__sh_compute(irc__call *k, void *rec)
     return irc__sh_check(c, out, un);
 }
 
+static int irc__sh_find(irc_cache *c, const irc__query *q, void *out, float *weight)
+{
+    irc__sh_acc acc;
+    return irc__lookup_once(c, q, out, weight, &acc);
+}
+
 const irc__kind irc__kind_sh = {
     1, irc__sh_compute, irc__sh_check,
     irc__sh_pack, irc__sh_unpack, irc__sh_weigh, irc__sh_begin,
-    irc__sh_gather, irc__sh_end, irc__sh_answer};
+    irc__sh_gather, irc__sh_end, irc__sh_answer, irc__sh_find};
 
 int irc_sh_compute(irc_cache *c, const float p[3], const float n[3], irc_sh *out, void *host)
 {
@@ -258,7 +271,8 @@ int irc_sh_lookup(irc_cache *c, const float p[3], const float n[3], irc_sh *out,
 int irc_sh_lookup_or_compute(irc_cache *c, const float p[3], const float n[3], irc_sh *out,
                              float *weight, void *host)
 {
-    return irc__lookup_or_compute(c, &irc__kind_sh, 0.0f, p, n, out, weight, host);
+    irc_sh rec;
+    return irc__lookup_or_compute(c, &irc__kind_sh, 0.0f, p, n, out, weight, host, &rec);
 }
 
 int irc_sh_record(irc_cache *c, uint32_t id, irc_sh *out)

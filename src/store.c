@@ -214,27 +214,35 @@ void irc__commit_locked(irc_cache *c, uint32_t id)
     irc__count(c, IRC__C_INSERTS, 1);
 }
 
+/* A checked record packed straight into its slot: no packed copy of the
+ * largest kind on the stack. */
+static void irc__pack_at(irc_cache *c, const void *rec, const double un[3], uint32_t id)
+{
+    IRC_MEMSET(irc__rec_at(c, id), 0, c->rec_size);
+    c->kind->pack(c, rec, un, irc__rec_at(c, id));
+}
+
 /* In an open pass a record waits, unindexed, in a slot of its own past the
  * frozen records until irc_pass_end; the slot is reserved atomically, so
  * no lock is taken and lookups, which see only indexed records, are not
  * disturbed.  A pass never evicts (that would change what its lookups
  * see): without a free slot the record is not stored. */
-static int irc__defer(irc_cache *c, const void *packed)
+static int irc__defer(irc_cache *c, const void *rec, const double un[3])
 {
     uint64_t k = c->port->fetch_add(&c->home->pending, 1);
     if (k >= (uint64_t)(c->capacity - c->home->pass_base))
         return IRC_ERR_FULL;
-    IRC_MEMCPY(irc__rec_at(c, c->home->pass_base + (uint32_t)k), packed, c->rec_size);
+    irc__pack_at(c, rec, un, c->home->pass_base + (uint32_t)k);
     return IRC_OK;
 }
 
-/* Stores a packed record (rec_size bytes, already checked) in a free slot,
- * or in CLOCK's victim. */
-static int irc__store(irc_cache *c, const void *packed)
+/* Stores a checked record (un: its unit normal) in a free slot, or in
+ * CLOCK's victim. */
+static int irc__store(irc_cache *c, const void *rec, const double un[3])
 {
     uint32_t id;
     if (c->home->pass_open)
-        return irc__defer(c, packed);
+        return irc__defer(c, rec, un);
     if (c->port->write_lock(irc__lock(c)) < 0)
         return IRC_ERR_PORT;
     if (c->home->count < c->capacity) {
@@ -247,7 +255,7 @@ static int irc__store(irc_cache *c, const void *packed)
         c->port->write_unlock(irc__lock(c));
         return IRC_ERR_FULL;
     }
-    IRC_MEMCPY(irc__rec_at(c, id), packed, c->rec_size);
+    irc__pack_at(c, rec, un, id);
     irc__commit_locked(c, id);
     c->port->write_unlock(irc__lock(c));
     return IRC_OK;
@@ -255,13 +263,11 @@ static int irc__store(irc_cache *c, const void *packed)
 
 static int irc__insert_checked(irc_cache *c, const void *rec)
 {
-    union { irc__rec head; float f[IRC__REC_MAX / sizeof(float)]; } packed;
     double un[3];
     int st;
     if ((st = c->kind->check(c, rec, un)) < 0)
         return st;
-    c->kind->pack(c, rec, un, &packed);
-    return irc__store(c, &packed);
+    return irc__store(c, rec, un);
 }
 
 int irc__insert(irc_cache *c, const irc__kind *want, const void *rec)
@@ -289,7 +295,7 @@ static void irc__mark_used(irc_cache *c, uint32_t id)
 typedef struct irc__walk {
     irc_cache *c;
     const irc__query *q;
-    irc__acc *acc;
+    void *acc;
     double w;
     uint32_t *ids, cap, found;
 } irc__walk;
@@ -331,21 +337,20 @@ static int irc__walk_index(irc_cache *c, irc__walk *v)
     return IRC_OK;
 }
 
-static int irc__lookup_once(irc_cache *c, const irc__query *q, void *out, float *weight)
+int irc__lookup_once(irc_cache *c, const irc__query *q, void *out, float *weight, void *acc)
 {
-    irc__acc acc;
     irc__walk v;
     int st;
     IRC_MEMSET(&v, 0, sizeof v);
     v.c = c;
     v.q = q;
-    v.acc = &acc;
-    c->kind->begin(c, &acc);
+    v.acc = acc;
+    c->kind->begin(c, acc);
     if ((st = irc__walk_index(c, &v)) < 0)
         return st;
     if (weight)
         *weight = (float)v.w;
-    return c->kind->finish(c, q, &acc, v.w, out);
+    return c->kind->finish(c, q, acc, v.w, out);
 }
 
 /* Counts a lookup that returned st (and a hit when it answered).  Errors
@@ -367,7 +372,7 @@ int irc__lookup(irc_cache *c, const irc__kind *want, const float p[3], const flo
     int st = irc__open(c, want, out, p, n, &q);
     if (st < 0)
         return st;
-    return irc__count_lookup(c, irc__lookup_once(c, &q, out, weight));
+    return irc__count_lookup(c, c->kind->find(c, &q, out, weight));
 }
 
 /* The end of a miss: the computed record offered to the pool.  A full
@@ -388,9 +393,8 @@ static int irc__keep(irc_cache *c, const void *rec, void *out, float *weight)
 
 int irc__lookup_or_compute(irc_cache *c, const irc__kind *want, float footprint,
                            const float p[3], const float n[3], void *out, float *weight,
-                           void *host)
+                           void *host, void *rec)
 {
-    union { irc_record irr; irc_sh sh; } rec;
     irc__call k;
     uint32_t t;
     int st, waited = 0;
@@ -401,19 +405,19 @@ int irc__lookup_or_compute(irc_cache *c, const irc__kind *want, float footprint,
     if (footprint < 0.0f)
         return IRC_ERR_RANGE;
     k.footprint = footprint;
-    if ((st = irc__lookup_once(c, &k.q, out, weight)) != IRC_MISS)
+    if ((st = c->kind->find(c, &k.q, out, weight)) != IRC_MISS)
         return irc__count_lookup(c, st);
     if ((st = irc__slot_claim(c, &t, &waited)) < 0)
         return st;
     /* While this thread waited, another may have stored a record here. */
-    if (waited && (st = irc__lookup_once(c, &k.q, out, weight)) != IRC_MISS) {
+    if (waited && (st = c->kind->find(c, &k.q, out, weight)) != IRC_MISS) {
         irc__slot_release(c, t);
         return irc__count_lookup(c, st);
     }
-    if ((st = irc__run(c, &k, t, host, c->kind->compute, &rec)) < 0)
+    if ((st = irc__run(c, &k, t, host, c->kind->compute, rec)) < 0)
         return st;
     irc__count_compute(c, &k, 1, waited);
-    return irc__keep(c, &rec, out, weight);
+    return irc__keep(c, rec, out, weight);
 }
 
 int irc__record_get(irc_cache *c, const irc__kind *want, uint32_t id, void *out)
