@@ -4,8 +4,9 @@
  * (index query, weighting, accumulation through the record kind's table),
  * lookup-or-compute, and the counters.  Lookups hold the port's read lock
  * (none in a fill pass); anything that changes records or the index holds
- * its write lock; the host's callback runs with no lock held.  Counters are updated only once
- * a call has succeeded, so a call that fails leaves the block as it was.
+ * its write lock; the host's callback runs with no lock held.  Counters
+ * are updated only once a call has succeeded, so a call that fails leaves
+ * the block as it was.
  */
 #include "cache.h"
 
