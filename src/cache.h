@@ -81,7 +81,8 @@ typedef struct irc__node {
  * before it touches the record, and most candidates fail the test: it
  * reads 12 bytes, not a record's line.  Entries sit at their records'
  * ids, so one lookup's entries share lines only as far as their ids are
- * near (README, "Where the lookup time goes").  12 bytes. */
+ * near: after a pass's end each list is a run of ids (compact.c).  12
+ * bytes. */
 #define IRC__IX_ANY 0xffffu  /* rq: no bound in this cube's steps (a root
                                 record outside the cube, or a reach of
                                 2h or more): always a candidate */
