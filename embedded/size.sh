@@ -9,7 +9,10 @@
 #   3. block bytes per record for each feature set, and per index node;
 #   4. the worst-case stack of every public entry point on the M4F
 #      (embedded/stack.awk), and fails if any library function can reach
-#      itself (no recursion).
+#      itself (no recursion);
+#   5. double precision on the M4F (single-precision FPU): -Wdouble-promotion
+#      warnings per file of src/, and calls to libgcc's double routines in
+#      the irradiance host.
 set -eu
 cd "$(dirname "$0")/.."
 CROSS=${CROSS:-arm-none-eabi-}
@@ -97,4 +100,13 @@ awk -v kind=sh -v map=embedded/indirect.txt -v entries="$shs $irr" -f embedded/s
     $B/m4/*.ci > $B/stack-sh.txt || st=1
 sed 's/^/    /' $B/stack-sh.txt
 [ $st -eq 0 ] && echo "  no recursion" || echo "  FAIL: recursion (above)"
+
+echo "5. double precision on the Cortex-M4F"
+for f in src/*.c; do
+    ${CROSS}gcc -std=c99 $M4 -Os -Iinclude -Wdouble-promotion -c "$f" -o /dev/null 2>&1
+done | grep 'warning:' | cut -d: -f1 | sort | uniq -c | sort -rn |
+    awk '{ printf "  %-22s %4d -Wdouble-promotion warnings\n", $2, $1; t += $1 }
+         END { printf "  %-22s %4d\n", "total", t }'
+printf '  %-22s %4d calls to __aeabi_d* (software double)\n' "irradiance host" \
+    "$(${CROSS}objdump -d $B/irr.elf | grep -c 'bl.*<__aeabi_d')"
 exit $st
