@@ -20,8 +20,12 @@ BUILD ?= build
 OPT ?= -O2 -g
 WARN = -Wall -Wextra -Wpedantic -Werror -Wmissing-prototypes -Wshadow
 PORT ?= posix
-# Only the library's documented API leaves the shared library.
-CFLAGS_LIB = -std=c99 $(WARN) $(OPT) $(PIC) -fvisibility=hidden -Iinclude $(CFLAGS)
+# Only the library's documented API leaves the shared library.  The
+# library computes in float (double only in the index's cube arithmetic,
+# explicitly), so a float promoted to double is an error; it never reads
+# errno, so sqrtf may be the one instruction the FPU has.
+CFLAGS_LIB = -std=c99 $(WARN) -Wdouble-promotion $(OPT) $(PIC) -fno-math-errno \
+             -fvisibility=hidden -Iinclude $(CFLAGS)
 PIC = $(if $(filter none,$(PORT)),,-fPIC)
 
 SRC = src/status.c src/check.c src/config.c src/layout.c src/store.c src/kind_irr.c src/gradient.c \

@@ -19,7 +19,7 @@ CROSS=${CROSS:-arm-none-eabi-}
 CC=${CC:-cc}
 B=build-size
 M4="-mcpu=cortex-m4 -mfpu=fpv4-sp-d16 -mfloat-abi=hard -mthumb"
-FLAGS="-std=c99 -Iinclude -fstack-usage -fcallgraph-info=su"
+FLAGS="-std=c99 -Iinclude -fno-math-errno -fstack-usage -fcallgraph-info=su"
 sh embedded/need.sh
 rm -rf $B
 mkdir -p $B/x86 $B/m4

@@ -17,7 +17,7 @@
 
 /* What a block must agree on to be re-attached (irc_attach): the layout's
  * version, pointer and size_t widths, byte order. */
-#define IRC__LAYOUT_VERSION 7u
+#define IRC__LAYOUT_VERSION 8u
 #define IRC__ABI                                                           \
     (IRC__LAYOUT_VERSION | (uint32_t)sizeof(void *) << 8 |                 \
      (uint32_t)sizeof(size_t) << 16 | (uint32_t)sizeof(double) << 24)
@@ -53,13 +53,13 @@ typedef struct irc__aniso {
 /* The sector (of 16, 22.5 degrees each, counter-clockwise from x) holding
  * the tangent direction (x, y), from signs and comparisons with tan(22.5
  * degrees): the leak guard's lookups need no trig. */
-static inline int irc__sector(double x, double y)
+static inline int irc__sector(float x, float y)
 {
-    const double t = 0.41421356237309503, ax = x < 0.0 ? -x : x, ay = y < 0.0 ? -y : y;
+    const float t = 0.41421356237309503f, ax = x < 0.0f ? -x : x, ay = y < 0.0f ? -y : y;
     int sub = ay < t * ax ? 0 : ay < ax ? 1 : ax > t * ay ? 2 : 3;
-    if (y >= 0.0)
-        return x >= 0.0 ? sub : 7 - sub;
-    return x < 0.0 ? 8 + sub : 15 - sub;
+    if (y >= 0.0f)
+        return x >= 0.0f ? sub : 7 - sub;
+    return x < 0.0f ? 8 + sub : 15 - sub;
 }
 
 /* Octree node.  Its cube is implied by the path from the root.  12 bytes. */
@@ -111,11 +111,10 @@ typedef struct irc__sample {
 #define IRC__REC_MAX (32u + IRC__NC * 3u * 4u * 4u)
 
 /* A validated query: the point, and the unit normal (zero for a free
- * point) in float as lookups use it and in double as sampling does. */
+ * point). */
 typedef struct irc__query {
     float p[3];
     float n[3];
-    double un[3];
     int free;
 } irc__query;
 
@@ -142,15 +141,15 @@ typedef struct irc__call {
 typedef struct irc__kind {
     int free_points;        /* queries may omit the normal */
     int (*compute)(irc__call *k, void *rec);
-    int (*check)(const irc_cache *c, const void *rec, double un[3]);
-    void (*pack)(const irc_cache *c, const void *rec, const double un[3], void *dst);
+    int (*check)(const irc_cache *c, const void *rec, float un[3]);
+    void (*pack)(const irc_cache *c, const void *rec, const float un[3], void *dst);
     void (*unpack)(const irc_cache *c, const void *src, void *rec);
-    int (*weigh)(const irc_cache *c, const irc__rec *r, const irc__query *q, double *w,
+    int (*weigh)(const irc_cache *c, const irc__rec *r, const irc__query *q, float *w,
                  float ni[3]);
     void (*begin)(const irc_cache *c, void *acc);
-    void (*accumulate)(const irc_cache *c, const irc__rec *r, const irc__query *q, double w,
+    void (*accumulate)(const irc_cache *c, const irc__rec *r, const irc__query *q, float w,
                        const float ni[3], void *acc);
-    int (*finish)(const irc_cache *c, const irc__query *q, const void *acc, double w,
+    int (*finish)(const irc_cache *c, const irc__query *q, const void *acc, float w,
                   void *out);
     void (*answer)(const irc_cache *c, const void *rec, void *out);
     /* irc__lookup_once with an accumulator of the kind's own. */
@@ -277,7 +276,7 @@ static inline void irc__rec_swap(const irc_cache *c, uint32_t i, uint32_t j)
 
 /* check.c */
 int irc__check_vec(const float v[3]);
-int irc__check_normal(const float n[3], double unit[3]);
+int irc__check_normal(const float n[3], float unit[3]);
 
 /* layout.c: the block's parts, and the config rules (config.c) */
 int irc__config_resolve(const irc_config *in, irc_config *out);
@@ -287,51 +286,51 @@ int irc__port_ok(const irc_port *p);
 typedef struct irc__rng { uint64_t key; } irc__rng;
 irc__rng irc__rng_for(const float p[3], const float n[3], uint64_t seed);
 int irc__accept_hit(const irc_hit *h, irc__sample *s);
-void irc__frame(const double n[3], double t1[3], double t2[3]);
+void irc__frame(const float n[3], float t1[3], float t2[3]);
 int irc__cast(irc__call *k, irc_ray *rays, irc_hit *hits, uint32_t count);
-int irc__sample_hemisphere(irc__call *k, const double n[3], const double t1[3],
-                           const double t2[3], uint32_t first, uint32_t *used);
+int irc__sample_hemisphere(irc__call *k, const float n[3], const float t1[3],
+                           const float t2[3], uint32_t first, uint32_t *used);
 
 /* sh.c */
-void irc__sh_eval(int bands, const double s[3], double *y, double (*grad)[3]);
+void irc__sh_eval(int bands, const float s[3], float *y, float (*grad)[3]);
 
-/* shgrad.c: an SH record's samples summed, in double. */
+/* shgrad.c: an SH record's samples summed. */
 typedef struct irc__shsum {
-    double c[3][IRC__NC];
-    double g[3][3 * IRC__NC]; /* d c_i / dp at [3 i + k] */
-    double e[3];
-    double inv_d;
+    float c[3][IRC__NC];
+    float g[3][3 * IRC__NC]; /* d c_i / dp at [3 i + k] */
+    float e[3];
+    float inv_d;
     uint32_t used, total;
 } irc__shsum;
 int irc__sh_sample(irc__call *k, irc__shsum *a);
 
 /* hessian.c */
 void irc__hessian(const irc_cache *c, const irc__sample *s, const float *dirs,
-                  const double n[3], double h[3][6]);
-void irc__eigen2(double a, double b, double c, double *l0, double *l1, double u[2]);
+                  const float n[3], float h[3][6]);
+void irc__eigen2(float a, float b, float c, float *l0, float *l1, float u[2]);
 
 /* visibility.c */
-int irc__grad_visibility(irc__call *k, int netvis, double g[3][3]);
+int irc__grad_visibility(irc__call *k, int netvis, float g[3][3]);
 
 /* irradiance.c: the irradiance record's estimator */
 int irc__irr_compute(irc__call *k, void *rec);
-int irc__hemisphere(irc__call *k, double t1[3], double t2[3]);
+int irc__hemisphere(irc__call *k, float t1[3], float t2[3]);
 uint64_t irc__gtab_bytes(uint32_t m, uint32_t nphi);
 void irc__gtab_fill(const irc_cache *c, void *tab);
-void irc__gradients(const irc_cache *c, const irc__sample *s, const double mean[3],
-                    const double t1[3], const double t2[3], double gt[3][3], double gr[3][3]);
+void irc__gradients(const irc_cache *c, const irc__sample *s, const float mean[3],
+                    const float t1[3], const float t2[3], float gt[3][3], float gr[3][3]);
 
 /* octa.c: the normal codec */
-uint32_t irc__oct_encode(const double n[3]);
+uint32_t irc__oct_encode(const float n[3]);
 void irc__oct_decode(uint32_t code, float n[3]);
-void irc__oct_frame(uint32_t code, double t1[3], double t2[3]);
+void irc__oct_frame(uint32_t code, float t1[3], float t2[3]);
 
 /* weight.c */
 int irc__weigh(const irc_cache *c, const irc__rec *r, const float p[3],
-               const float n[3], double *w, float ni[3]);
+               const float n[3], float *w, float ni[3]);
 void irc__extrapolate(const irc_cache *c, const irc__rec *r, const float ni[3],
-                      const float p[3], const float n[3], double out[3]);
-double irc__grad_scale(const irc__grad *g, int ch);
+                      const float p[3], const float n[3], float out[3]);
+float irc__grad_scale(const irc__grad *g, int ch);
 
 /* store.c: the handle, scratch slots, insert and eviction, the lookup
  * driver, counters; every public call goes through it. */
@@ -385,7 +384,7 @@ void irc__index_compact(irc_cache *c); /* compact.c */
 /* Returns the index entries it scanned (the work; tests check it). */
 uint32_t irc__index_query(const irc_cache *c, const float p[3], irc__visit_fn fn,
                           void *ud);
-void irc__index_range(const irc_cache *c, const float p[3], double range, irc__visit_fn fn,
+void irc__index_range(const irc_cache *c, const float p[3], float range, irc__visit_fn fn,
                       void *ud);
 
 /* A visibility discontinuity on an edge between two neighbouring strata:
@@ -481,8 +480,8 @@ static inline float *irc__slot_depths(const irc_cache *c, const irc__sample *s)
  * candidates fail it, and it needs only the record's first 16 bytes. */
 static inline int irc__within_reach(const irc_cache *c, const irc__rec *r, const float p[3])
 {
-    double dx = (double)p[0] - r->p[0], dy = (double)p[1] - r->p[1],
-           dz = (double)p[2] - r->p[2], ra = (double)c->cfg.accuracy * r->r;
+    float dx = (float)p[0] - r->p[0], dy = (float)p[1] - r->p[1],
+           dz = (float)p[2] - r->p[2], ra = (float)c->cfg.accuracy * r->r;
     return dx * dx + dy * dy + dz * dz < ra * ra;
 }
 

@@ -10,24 +10,24 @@ int irc__check_vec(const float v[3])
     return irc__finite3(v) ? IRC_OK : IRC_ERR_NONFINITE;
 }
 
-/* Normalises in double after dividing by the largest component, so that a
+/* Normalises in float after dividing by the largest component, so that a
  * normal made of denormals is still a direction and not a zero. */
-int irc__check_normal(const float n[3], double unit[3])
+int irc__check_normal(const float n[3], float unit[3])
 {
-    double m, len;
+    float m, len;
     int i;
     if (!n)
         return IRC_ERR_NULL;
     if (!irc__finite3(n))
         return IRC_ERR_NORMAL;
-    m = IRC_FABS((double)n[0]);
-    if (IRC_FABS((double)n[1]) > m) m = IRC_FABS((double)n[1]);
-    if (IRC_FABS((double)n[2]) > m) m = IRC_FABS((double)n[2]);
-    if (m == 0.0)
+    m = IRC_FABSF(n[0]);
+    if (IRC_FABSF(n[1]) > m) m = IRC_FABSF(n[1]);
+    if (IRC_FABSF(n[2]) > m) m = IRC_FABSF(n[2]);
+    if (m == 0.0f)
         return IRC_ERR_NORMAL;
     for (i = 0; i < 3; i++)
-        unit[i] = (double)n[i] / m;
-    len = IRC_SQRT(irc__dot3d(unit, unit));
+        unit[i] = n[i] / m;
+    len = IRC_SQRTF(irc__dot3(unit, unit));
     for (i = 0; i < 3; i++)
         unit[i] /= len;
     return IRC_OK;

@@ -14,7 +14,7 @@
 
 /* The table: four padded rows of floats, cos and sin of each column's
  * centre phi_c = 2 pi (k + 1/2)/N and of its first boundary phi_b =
- * 2 pi k/N (entry N repeats entry 0); then, in double, per row j the
+ * 2 pi k/N (entry N repeats entry 0); then per row j the
  * translational weights of its lower boundary (U_j) and of its column
  * boundaries (V_j) and the rotational weight W_j, and the two constants of
  * the rotation that turns (cos phi_b, sin phi_b) into a column's integral
@@ -22,16 +22,16 @@
 void irc__gtab_fill(const irc_cache *c, void *tab)
 {
     const uint32_t m = c->cfg.strata_theta, nphi = c->cfg.strata_phi, np = irc__pad4(nphi);
-    const double dphi = 2.0 * IRC_PI / nphi, half = IRC_SIN(0.5 * dphi);
+    const float dphi = 2.0f * IRC_PI / nphi, half = IRC_SINF(0.5f * dphi);
     float *col = (float *)tab;
-    double *row = (double *)(void *)(col + 4u * np), th0 = 0.0, sc0 = 0.0;
+    float *row = (float *)(void *)(col + 4u * np), th0 = 0.0f, sc0 = 0.0f;
     uint32_t j, k;
     for (k = 0; k <= nphi; k++) {
-        double phc = 2.0 * IRC_PI * (k + 0.5) / nphi, phb = 2.0 * IRC_PI * (k % nphi) / nphi;
-        col[k] = (float)IRC_COS(phc);
-        col[np + k] = (float)IRC_SIN(phc);
-        col[2 * np + k] = (float)IRC_COS(phb);
-        col[3 * np + k] = (float)IRC_SIN(phb);
+        float phc = 2.0f * IRC_PI * (k + 0.5f) / nphi, phb = 2.0f * IRC_PI * (k % nphi) / nphi;
+        col[k] = (float)IRC_COSF(phc);
+        col[np + k] = (float)IRC_SINF(phc);
+        col[2 * np + k] = (float)IRC_COSF(phb);
+        col[3 * np + k] = (float)IRC_SINF(phb);
     }
     for (j = 0; j < m; j++) {
         /* Translational (Krivanek et al. 2005, stratified form): the
@@ -39,36 +39,36 @@ void irc__gtab_fill(const irc_cache *c, void *tab)
          * sweeps solid angle at (2 pi/N) cos^2(theta_j-) sin(theta_j-) / d;
          * a column boundary at cos(theta_j) (cos theta_j- - cos theta_j+) /
          * (sin(theta_j) d), theta_j the row's centre. */
-        double s2lo = (double)j / m, s2hi = (double)(j + 1) / m, s2c = (j + 0.5) / m;
+        float s2lo = (float)j / m, s2hi = (float)(j + 1) / m, s2c = (j + 0.5f) / m;
         /* Rotational (Ward-Heckbert 1992, integrated exactly over the row):
          * W_j = integral of sin^2(theta) dtheta = [theta/2 - sin(2 theta)/4]. */
-        double th1 = IRC_ASIN(IRC_SQRT(s2hi)), sc1 = IRC_SQRT(s2hi * (1.0 - s2hi));
-        row[3 * j] = dphi * (1.0 - s2lo) * IRC_SQRT(s2lo);
-        row[3 * j + 1] = nphi > 1 ? IRC_SQRT(1.0 - s2c) *
-                                        (IRC_SQRT(1.0 - s2lo) - IRC_SQRT(1.0 - s2hi)) /
-                                        IRC_SQRT(s2c)
-                                  : 0.0; /* one column: no column boundary */
-        row[3 * j + 2] = 0.5 * (th1 - th0) - 0.5 * (sc1 - sc0);
+        float th1 = IRC_ASINF(IRC_SQRTF(s2hi)), sc1 = IRC_SQRTF(s2hi * (1.0f - s2hi));
+        row[3 * j] = dphi * (1.0f - s2lo) * IRC_SQRTF(s2lo);
+        row[3 * j + 1] = nphi > 1 ? IRC_SQRTF(1.0f - s2c) *
+                                        (IRC_SQRTF(1.0f - s2lo) - IRC_SQRTF(1.0f - s2hi)) /
+                                        IRC_SQRTF(s2c)
+                                  : 0.0f; /* one column: no column boundary */
+        row[3 * j + 2] = 0.5f * (th1 - th0) - 0.5f * (sc1 - sc0);
         th0 = th1;
         sc0 = sc1;
     }
     /* V_k = [[cos dphi - 1, -sin dphi], [sin dphi, cos dphi - 1]] (cos phi_b,
      * sin phi_b); cos dphi - 1 as -2 sin^2(dphi/2), which keeps its digits
      * when N is large. */
-    row[3 * m] = -2.0 * half * half;
-    row[3 * m + 1] = IRC_SIN(dphi);
+    row[3 * m] = -2.0f * half * half;
+    row[3 * m + 1] = IRC_SINF(dphi);
 }
 
 /* Bytes of the table (irc__gtab_fill). */
 uint64_t irc__gtab_bytes(uint32_t m, uint32_t nphi)
 {
     return (uint64_t)irc__pad4(nphi) * 4u * sizeof(float) +
-           (3u * (uint64_t)m + 2u) * sizeof(double);
+           (3u * (uint64_t)m + 2u) * sizeof(float);
 }
 
-static const double *irc__gtab_rows(const irc_cache *c)
+static const float *irc__gtab_rows(const irc_cache *c)
 {
-    return (const double *)(const void *)((const float *)irc__gtab(c) +
+    return (const float *)(const void *)((const float *)irc__gtab(c) +
                                           4u * irc__pad4(c->cfg.strata_phi));
 }
 
@@ -127,7 +127,7 @@ static void irc__row_weights(const irc_cache *c, const irc__vis_edges *v, uint32
                              float *restrict left)
 {
     const uint32_t nphi = c->cfg.strata_phi;
-    const double *rw = irc__gtab_rows(c);
+    const float *rw = irc__gtab_rows(c);
     const float *ia = inv + j * nphi, *ib = j ? ia - nphi : ia;
     const float U = j ? (float)rw[3 * j] : 0.0f, V = (float)rw[3 * j + 1];
     uint32_t k;
@@ -189,12 +189,11 @@ static void irc__row_coeffs(const irc_cache *c, const float *restrict below,
 
 /* One row's sums, four lanes wide: a sample is 16 bytes (three radiances
  * and the distance), so each lane is one channel and the fourth, the
- * distance's, is computed and dropped.  Float: a row is at most 4096
- * terms, and the rows are summed in double.  The radiances are taken
+ * distance's, is computed and dropped.  The radiances are taken
  * relative to ref (the mean): every sum here is one of radiance times
  * coefficients whose total is zero (over the sphere for the boundaries,
  * over each row for the cosines), so a constant changes nothing but would
- * cancel: in bench/records.c's scene the largest change against the sums
+ * cancel: in bench/records.c's scene the largest change against sums
  * in double was 1.5e-4 of the translational gradient's length (2.9e-4 of
  * the rotational's) without it, 1.6e-5 (1.1e-4) with it (README, "Where
  * the record time goes"). */
@@ -239,14 +238,14 @@ static void irc__row_sum(const irc_cache *c, const irc__sample *a, const float *
  * (-sin phi_b, cos phi_b) in the frame t1, t2.  Rotational: grad_r =
  * integral of L(w) (n x w) dw with n x w = sin(theta) v(phi).  Rows are
  * taken top down, so that a row's boundary above is already known. */
-void irc__gradients(const irc_cache *c, const irc__sample *s, const double mean[3],
-                    const double t1[3], const double t2[3], double gt[3][3], double gr[3][3])
+void irc__gradients(const irc_cache *c, const irc__sample *s, const float mean[3],
+                    const float t1[3], const float t2[3], float gt[3][3], float gr[3][3])
 {
     const uint32_t m = c->cfg.strata_theta, nphi = c->cfg.strata_phi, np = irc__pad4(nphi);
-    const double *rw = irc__gtab_rows(c);
+    const float *rw = irc__gtab_rows(c);
     float *inv = irc__slot_inv(c, s), *below = inv + c->strata, *up = below + np,
           *left = up + np, *alpha = left + np, *beta = alpha + np, *t;
-    double tr[3][2] = {{0, 0}, {0, 0}, {0, 0}}, ro[3][2] = {{0, 0}, {0, 0}, {0, 0}};
+    float tr[3][2] = {{0, 0}, {0, 0}, {0, 0}}, ro[3][2] = {{0, 0}, {0, 0}, {0, 0}};
     irc__vis_edges v = {NULL, NULL, NULL};
     irc__row_sums o;
     const float ref[4] = {(float)mean[0], (float)mean[1], (float)mean[2], 0.0f};
@@ -274,8 +273,8 @@ void irc__gradients(const irc_cache *c, const irc__sample *s, const double mean[
         }
     }
     for (ch = 0; ch < 3; ch++) {
-        const double cm1 = rw[3 * m], sd = rw[3 * m + 1];
-        const double a = cm1 * ro[ch][0] - sd * ro[ch][1], b = sd * ro[ch][0] + cm1 * ro[ch][1];
+        const float cm1 = rw[3 * m], sd = rw[3 * m + 1];
+        const float a = cm1 * ro[ch][0] - sd * ro[ch][1], b = sd * ro[ch][0] + cm1 * ro[ch][1];
         for (i = 0; i < 3; i++) {
             if (gt)
                 gt[ch][i] = tr[ch][0] * t1[i] + tr[ch][1] * t2[i];

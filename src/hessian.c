@@ -16,61 +16,61 @@
 /* Escaped rays get a hit point this many times the record's farthest hit
  * away: far enough that their triangles' derivatives vanish, finite so
  * that the edges along a silhouette against the sky are formed. */
-#define IRC__FAR 1e3
+#define IRC__FAR 1e3f
 /* Black occluders: every triangle's radiance is lifted by this fraction of
  * the record's mean radiance, so a black blocker against a black wall
  * still bends E (notes: Radiance adds 1%). */
-#define IRC__FLOOR 0.01
+#define IRC__FLOOR 0.01f
 
 /* One edge r0 -> r1 (relative to x) of a triangle shining with l: adds
  * l H F_e to h (hessian.md: I1, I2, J2, I3, J3, K3, g, M). */
-static void irc__edge_hessian(const double r0[3], const double r1[3], const double n[3],
-                              const double l[3], double h[3][6])
+static void irc__edge_hessian(const float r0[3], const float r1[3], const float n[3],
+                              const float l[3], float h[3][6])
 {
-    double e[3], c[3], nxe[3], g[3], m[6], d00, d11, ee, cc, er0, er1, cs, i1, i2, j2, i3, j3,
+    float e[3], c[3], nxe[3], g[3], m[6], d00, d11, ee, cc, er0, er1, cs, i1, i2, j2, i3, j3,
         k3, nc, f[6];
     int i, ch;
     for (i = 0; i < 3; i++)
         e[i] = r1[i] - r0[i];
-    irc__cross3d(r0, r1, c);
-    cc = irc__dot3d(c, c);
-    ee = irc__dot3d(e, e);
-    d00 = irc__dot3d(r0, r0);
-    d11 = irc__dot3d(r1, r1);
+    irc__cross3(r0, r1, c);
+    cc = irc__dot3(c, c);
+    ee = irc__dot3(e, e);
+    d00 = irc__dot3(r0, r0);
+    d11 = irc__dot3(r1, r1);
     /* Degenerate edges (a point, or collinear with x) carry no form factor. */
-    if (!(cc > 1e-24 * d00 * d11) || !(ee > 0.0))
+    if (!(cc > 1e-24f * d00 * d11) || !(ee > 0.0f))
         return;
-    er0 = irc__dot3d(e, r0);
-    er1 = irc__dot3d(e, r1);
+    er0 = irc__dot3(e, r0);
+    er1 = irc__dot3(e, r1);
     /* I1 = angle(r0, r1)/|c| = atan(x)/(x r0.r1), x = |c|/(r0.r1): the
      * grid's edges span a few degrees, where the series in x^2 is exact
      * to 1e-8 (x < 1/4) and needs no square root or arc function; wider
      * ones take atan2, which stays accurate where acos of the cosine
      * loses half its digits. */
-    cs = irc__dot3d(r0, r1);
-    if (cs > 0.0 && cc < 0.0625 * cs * cs) {
-        double x2 = cc / (cs * cs);
-        i1 = (1.0 - x2 * (1.0 / 3 - x2 * (1.0 / 5 - x2 * (1.0 / 7 - x2 * (1.0 / 9 -
-              x2 * (1.0 / 11 - x2 / 13)))))) / cs;
+    cs = irc__dot3(r0, r1);
+    if (cs > 0.0f && cc < 0.0625f * cs * cs) {
+        float x2 = cc / (cs * cs);
+        i1 = (1.0f - x2 * (1.0f / 3 - x2 * (1.0f / 5 - x2 * (1.0f / 7 - x2 * (1.0f / 9 -
+              x2 * (1.0f / 11 - x2 / 13)))))) / cs;
     } else
-        i1 = IRC_ATAN2(IRC_SQRT(cc), cs) / IRC_SQRT(cc);
-    i2 = (er1 / d11 - er0 / d00 + ee * i1) / (2.0 * cc);
-    j2 = (0.5 * (1.0 / d00 - 1.0 / d11) - er0 * i2) / ee;
-    i3 = (er1 / (d11 * d11) - er0 / (d00 * d00) + 3.0 * ee * i2) / (4.0 * cc);
-    j3 = (0.25 * (1.0 / (d00 * d00) - 1.0 / (d11 * d11)) - er0 * i3) / ee;
-    k3 = (i2 - d00 * i3 - 2.0 * er0 * j3) / ee;
+        i1 = IRC_ATAN2F(IRC_SQRTF(cc), cs) / IRC_SQRTF(cc);
+    i2 = (er1 / d11 - er0 / d00 + ee * i1) / (2.0f * cc);
+    j2 = (0.5f * (1.0f / d00 - 1.0f / d11) - er0 * i2) / ee;
+    i3 = (er1 / (d11 * d11) - er0 / (d00 * d00) + 3.0f * ee * i2) / (4.0f * cc);
+    j3 = (0.25f * (1.0f / (d00 * d00) - 1.0f / (d11 * d11)) - er0 * i3) / ee;
+    k3 = (i2 - d00 * i3 - 2.0f * er0 * j3) / ee;
     for (i = 0; i < 3; i++)
         g[i] = i2 * r0[i] + j2 * e[i];
     /* M = I3 r0 r0^T + J3 (r0 e^T + e r0^T) + K3 e e^T, packed xx xy xz yy yz zz */
     {
         static const int a[6] = {0, 0, 0, 1, 1, 2}, b[6] = {0, 1, 2, 1, 2, 2};
-        irc__cross3d(n, e, nxe);
-        nc = irc__dot3d(n, c);
+        irc__cross3(n, e, nxe);
+        nc = irc__dot3(n, c);
         for (i = 0; i < 6; i++) {
             m[i] = i3 * r0[a[i]] * r0[b[i]] + j3 * (r0[a[i]] * e[b[i]] + e[a[i]] * r0[b[i]]) +
                    k3 * e[a[i]] * e[b[i]];
             f[i] = (nxe[a[i]] * g[b[i]] + g[a[i]] * nxe[b[i]] +
-                    nc * (4.0 * m[i] - (a[i] == b[i] ? i2 : 0.0))) / IRC_PI;
+                    nc * (4.0f * m[i] - (a[i] == b[i] ? i2 : 0.0f))) / IRC_PI;
         }
     }
     /* E = pi sum L_T F_T, and the closed forms give -H F_e (Radiance's
@@ -82,7 +82,7 @@ static void irc__edge_hessian(const double r0[3], const double r1[3], const doub
 
 /* A vertex of the grid: its hit point relative to x. */
 typedef struct irc__vtx {
-    double r[3];
+    float r[3];
 } irc__vtx;
 
 /* The grid the vertices come from. */
@@ -91,7 +91,7 @@ typedef struct irc__mesh {
     const float *dirs, *nrm;
     float *depth;           /* each vertex's depth, once (irc__depths) */
     uint32_t m, n;
-    double far, fill, floor_l;
+    float far, fill, floor_l;
 } irc__mesh;
 
 static int irc__escaped_at(const irc__mesh *g, int64_t j, int64_t k)
@@ -102,10 +102,10 @@ static int irc__escaped_at(const irc__mesh *g, int64_t j, int64_t k)
     return !(g->s[j * g->n + k].d < HUGE_VALF);
 }
 
-static double irc__facing(const irc__mesh *g, uint32_t i)
+static float irc__facing(const irc__mesh *g, uint32_t i)
 {
     const float *w = g->dirs + 3 * i, *nn = g->nrm + 3 * i;
-    return IRC_FABS((double)w[0] * nn[0] + (double)w[1] * nn[1] + (double)w[2] * nn[2]);
+    return IRC_FABSF((float)w[0] * nn[0] + (float)w[1] * nn[1] + (float)w[2] * nn[2]);
 }
 
 /* A hit beside an escaped stratum lies inside a silhouette, nearer than
@@ -114,7 +114,7 @@ static double irc__facing(const irc__mesh *g, uint32_t i)
  * blocker's depth and facing both go as sqrt of the angle to the
  * silhouette), but only when the facing falls as fast as that (the SH
  * estimator's rule, shgrad.c); a polygon's edge keeps its depth. */
-static double irc__silhouette(const irc__mesh *g, uint32_t j, uint32_t k, double d)
+static float irc__silhouette(const irc__mesh *g, uint32_t j, uint32_t k, float d)
 {
     static const int dj[4] = {0, 0, 1, -1}, dk[4] = {1, -1, 0, 0};
     int q;
@@ -122,7 +122,7 @@ static double irc__silhouette(const irc__mesh *g, uint32_t j, uint32_t k, double
         if (irc__escaped_at(g, (int64_t)j + dj[q], (int64_t)k + dk[q])) {
             int64_t ij = (int64_t)j - dj[q], ik = ((int64_t)k - dk[q] + g->n) % g->n;
             uint32_t i = j * g->n + k, o;
-            double fi, fo, dout;
+            float fi, fo, dout;
             if (ij < 0 || ij >= (int64_t)g->m)
                 return d;
             o = (uint32_t)(ij * g->n + ik);
@@ -131,7 +131,7 @@ static double irc__silhouette(const irc__mesh *g, uint32_t j, uint32_t k, double
                 return d;
             fi = irc__facing(g, i);
             fo = irc__facing(g, o);
-            if (!(fo * fo >= 1.25 * fi * fi))
+            if (!(fo * fo >= 1.25f * fi * fi))
                 return d;
             d += fi * (d - dout) / (fo - fi);
             return d;
@@ -147,14 +147,14 @@ static void irc__depths(const irc__mesh *g)
     uint32_t j, k;
     for (j = 0; j < g->m; j++)
         for (k = 0; k < g->n; k++) {
-            double d = g->s[j * g->n + k].d;
+            float d = g->s[j * g->n + k].d;
             if (d != d)
                 d = g->fill;
             else if (!(d < HUGE_VALF))
                 d = g->far;
             else {
-                double x = irc__silhouette(g, j, k, d);
-                d = x < d ? d : x > 2.0 * d ? 2.0 * d : x;
+                float x = irc__silhouette(g, j, k, d);
+                d = x < d ? d : x > 2.0f * d ? 2.0f * d : x;
             }
             g->depth[j * g->n + k] = (float)d;
         }
@@ -163,7 +163,7 @@ static void irc__depths(const irc__mesh *g)
 static void irc__vertex(const irc__mesh *g, uint32_t j, uint32_t k, irc__vtx *v)
 {
     uint32_t i = j * g->n + k;
-    double d = g->depth[i];
+    float d = g->depth[i];
     int q;
     for (q = 0; q < 3; q++)
         v->r[q] = d * g->dirs[3 * i + q];
@@ -201,14 +201,14 @@ static void irc__cell(const irc__mesh *g, int64_t j, uint32_t k, const float **l
  * each edge once with weight la - lb, and edges inside a region of one
  * radiance drop out. */
 static void irc__shared_edge(const irc__mesh *g, const irc__vtx *p0, const irc__vtx *p1,
-                             const float *la, const float *lb, const double n[3],
-                             double h[3][6])
+                             const float *la, const float *lb, const float n[3],
+                             float h[3][6])
 {
-    double l[3];
+    float l[3];
     int ch, any = 0;
     for (ch = 0; ch < 3; ch++) {
-        l[ch] = (la ? la[ch] + g->floor_l : 0.0) - (lb ? lb[ch] + g->floor_l : 0.0);
-        any |= l[ch] != 0.0;
+        l[ch] = (la ? la[ch] + g->floor_l : 0.0f) - (lb ? lb[ch] + g->floor_l : 0.0f);
+        any |= l[ch] != 0.0f;
     }
     if (any)
         irc__edge_hessian(p0->r, p1->r, n, l, h);
@@ -216,8 +216,8 @@ static void irc__shared_edge(const irc__mesh *g, const irc__vtx *p0, const irc__
 
 /* The three edges vertex (j, k) starts: along its row to (j, k+1), the
  * diagonal (j, k+1) -> (j+1, k), and down its column (j+1, k) -> (j, k). */
-static void irc__vertex_edges(const irc__mesh *g, uint32_t j, uint32_t k, const double n[3],
-                              double h[3][6])
+static void irc__vertex_edges(const irc__mesh *g, uint32_t j, uint32_t k, const float n[3],
+                              float h[3][6])
 {
     const float *l1, *l2, *up2, *left1, *left2, *dummy;
     irc__vtx a, b, c;
@@ -238,21 +238,21 @@ static void irc__vertex_edges(const irc__mesh *g, uint32_t j, uint32_t k, const 
  * world space, from the samples and directions of one hemisphere (failed
  * strata carry the mean radiance and the mean hit distance). */
 void irc__hessian(const irc_cache *c, const irc__sample *s, const float *dirs,
-                  const double n[3], double h[3][6])
+                  const float n[3], float h[3][6])
 {
     const uint32_t m = c->cfg.strata_theta, nphi = c->cfg.strata_phi;
-    double far = 0.0, mean = 0.0, inv = 0.0;
+    float far = 0.0f, mean = 0.0f, inv = 0.0f;
     uint32_t i, j, k, hits = 0;
     irc__mesh g;
-    IRC_MEMSET(h, 0, 3 * 6 * sizeof(double));
+    IRC_MEMSET(h, 0, 3 * 6 * sizeof(float));
     for (i = 0; i < m * nphi; i++) {
         if (s[i].d == s[i].d && s[i].d < HUGE_VALF) {
             if (s[i].d > far)
                 far = s[i].d;
-            inv += 1.0 / s[i].d;
+            inv += 1.0f / s[i].d;
             hits++;
         }
-        mean += ((double)s[i].l[0] + s[i].l[1] + s[i].l[2]) / 3.0;
+        mean += ((float)s[i].l[0] + s[i].l[1] + s[i].l[2]) / 3.0f;
     }
     if (hits == 0 || m < 2 || nphi < 3)
         return;
@@ -275,19 +275,19 @@ void irc__hessian(const irc_cache *c, const irc__sample *s, const float *dirs,
  * |l| and the unit eigenvector (u[0], u[1]) of l0.  The angle comes from
  * atan2 of the signed entries (notes: Radiance's slope from |l| rotates the
  * axes when the smaller eigenvalue is negative). */
-void irc__eigen2(double a, double b, double c, double *l0, double *l1, double u[2])
+void irc__eigen2(float a, float b, float c, float *l0, float *l1, float u[2])
 {
-    double mid = 0.5 * (a + c), half = 0.5 * (a - c), r = IRC_SQRT(half * half + b * b);
-    double la = mid + r, lb = mid - r, ang = 0.5 * IRC_ATAN2(2.0 * b, a - c);
+    float mid = 0.5f * (a + c), half = 0.5f * (a - c), r = IRC_SQRTF(half * half + b * b);
+    float la = mid + r, lb = mid - r, ang = 0.5f * IRC_ATAN2F(2.0f * b, a - c);
     /* ang is the direction of la; swap so that l0 is the larger in size */
-    if (IRC_FABS(lb) > IRC_FABS(la)) {
-        double t = la;
+    if (IRC_FABSF(lb) > IRC_FABSF(la)) {
+        float t = la;
         la = lb;
         lb = t;
-        ang += 0.5 * IRC_PI;
+        ang += 0.5f * IRC_PI;
     }
     *l0 = la;
     *l1 = lb;
-    u[0] = IRC_COS(ang);
-    u[1] = IRC_SIN(ang);
+    u[0] = IRC_COSF(ang);
+    u[1] = IRC_SINF(ang);
 }

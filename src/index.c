@@ -57,18 +57,19 @@ void irc__index_reset(irc_cache *c)
 
 static double irc__reach(const irc_cache *c, uint32_t id)
 {
-    return (double)c->cfg.accuracy * irc__rec_at(c, id)->r;
+    return (double)c->cfg.accuracy * (double)irc__rec_at(c, id)->r;
 }
 
 static int irc__inside(const irc__cube *q, const float p[3])
 {
-    return IRC_FABS(p[0] - q->c[0]) <= q->h && IRC_FABS(p[1] - q->c[1]) <= q->h &&
-           IRC_FABS(p[2] - q->c[2]) <= q->h;
+    return IRC_FABS((double)p[0] - q->c[0]) <= q->h && IRC_FABS((double)p[1] - q->c[1]) <= q->h &&
+           IRC_FABS((double)p[2] - q->c[2]) <= q->h;
 }
 
 static int irc__octant(const irc__cube *q, const float p[3])
 {
-    return (p[0] >= q->c[0]) | (p[1] >= q->c[1]) << 1 | (p[2] >= q->c[2]) << 2;
+    return ((double)p[0] >= q->c[0]) | ((double)p[1] >= q->c[1]) << 1 |
+           ((double)p[2] >= q->c[2]) << 2;
 }
 
 static void irc__child_cube(const irc__cube *q, int oct, irc__cube *out)
@@ -105,7 +106,7 @@ static void irc__quantize(const irc_cache *c, uint32_t id, const irc__cube *q, d
         return;
     }
     for (i = 0; i < 3; i++)
-        e->q[i] = (uint16_t)IRC_FLOOR((p[i] - (q->c[i] - q->h)) * inv + 0.5);
+        e->q[i] = (uint16_t)IRC_FLOOR(((double)p[i] - (q->c[i] - q->h)) * inv + 0.5);
     e->rq = (uint16_t)r;
 }
 
@@ -143,7 +144,7 @@ static void irc__push(irc_cache *c, irc__node *n, const irc__cube *q, uint32_t i
     irc__quantize(c, id, q, reach);
     irc__ix(c)[id].next = n->head;
     n->head = id;
-    if (reach > n->reach)
+    if (reach > (double)n->reach)
         n->reach = (float)reach;
 }
 
@@ -156,7 +157,7 @@ static irc__node *irc__home(irc_cache *c, const float p[3], double reach,
     irc__root_cube(c, q);
     *depth = 0;
     for (;;) {
-        if (grow && reach > n->reach)
+        if (grow && reach > (double)n->reach)
             n->reach = (float)reach;
         if (!n->child || !irc__inside(q, p) || 0.5 * q->h < reach ||
             *depth >= IRC__DEPTH) {
@@ -277,7 +278,7 @@ static int irc__grow(irc_cache *c, const float p[3])
     nodes = irc__nodes(c);
     irc__root_cube(c, &old);
     for (i = 0; i < 3; i++) {
-        int below = p[i] < old.c[i];
+        int below = (double)p[i] < old.c[i];
         oct |= below << i;
         c->home->root_c[i] = old.c[i] + (below ? -old.h : old.h);
     }
@@ -397,9 +398,9 @@ static uint32_t irc__scan(const irc_cache *c, uint32_t id, const irc__cube *q,
     uint32_t n = 0;
     const irc__ixe *ix = irc__ix(c);
     const double inv = 32767.5 / q->h;
-    const float b0 = (float)((pr->p[0] - (q->c[0] - q->h)) * inv),
-                b1 = (float)((pr->p[1] - (q->c[1] - q->h)) * inv),
-                b2 = (float)((pr->p[2] - (q->c[2] - q->h)) * inv);
+    const float b0 = (float)(((double)pr->p[0] - (q->c[0] - q->h)) * inv),
+                b1 = (float)(((double)pr->p[1] - (q->c[1] - q->h)) * inv),
+                b2 = (float)(((double)pr->p[2] - (q->c[2] - q->h)) * inv);
     /* The bound is m rq + f steps: a reach times scale, or the range. */
     const float m = pr->range >= 0.0 ? 0.0f : (float)(pr->scale * (1.0 + 1e-5)),
                 f = pr->range >= 0.0 ? (float)(pr->range * inv * (1.0 + 1e-5)) + 1.0f : 1.0f;
@@ -437,8 +438,9 @@ static unsigned irc__children(const irc_cache *c, const irc__node *n, const irc_
     /* Squared distance from p to each child's cube, axis by axis: child
      * bit k of axis i spans [c_i - h, c_i] (k = 0) or [c_i, c_i + h]. */
     for (i = 0; i < 3; i++) {
-        double below = (q->c[i] - q->h) - pr->p[i], above = pr->p[i] - (q->c[i] + q->h),
-               lo = pr->p[i] - q->c[i], hi = q->c[i] - pr->p[i];
+        const double p = pr->p[i];
+        double below = (q->c[i] - q->h) - p, above = p - (q->c[i] + q->h), lo = p - q->c[i],
+               hi = q->c[i] - p;
         lo = (lo > below ? lo : below) * unit; /* outside [c - h, c] */
         hi = (hi > above ? hi : above) * unit; /* outside [c, c + h] */
         part[i][0] = lo > 0.0 ? (float)(lo * lo) : 0.0f;
@@ -523,13 +525,13 @@ uint32_t irc__index_query(const irc_cache *c, const float p[3], irc__visit_fn fn
 
 /* range >= 0: records within range of p; range < 0: records whose radius
  * R_i (reach / a) may hold p. */
-void irc__index_range(const irc_cache *c, const float p[3], double range, irc__visit_fn fn,
+void irc__index_range(const irc_cache *c, const float p[3], float range, irc__visit_fn fn,
                       void *ud)
 {
     irc__probe pr;
     pr.p = p;
     pr.range = range;
-    pr.scale = 1.0 / c->cfg.accuracy;
+    pr.scale = 1.0 / (double)c->cfg.accuracy;
     pr.fn = fn;
     pr.ud = ud;
     (void)irc__descend(c, &pr);

@@ -11,7 +11,7 @@
  * boundary term touches them. */
 static void irc__fill_failed(irc__sample *s, uint32_t total, uint32_t used)
 {
-    double sum[3] = {0, 0, 0};
+    float sum[3] = {0, 0, 0};
     uint32_t i;
     int c;
     if (used == total)
@@ -28,12 +28,12 @@ static void irc__fill_failed(irc__sample *s, uint32_t total, uint32_t used)
 
 /* One channel's Hessian on the tangent plane, t^T H t', from the packed
  * xx xy xz yy yz zz: a = t1 H t1, b = t1 H t2, d = t2 H t2. */
-static void irc__tangent_hessian(const double h[6], const double t1[3], const double t2[3],
-                                 double *a, double *b, double *d)
+static void irc__tangent_hessian(const float h[6], const float t1[3], const float t2[3],
+                                 float *a, float *b, float *d)
 {
     static const int ix[3][3] = {{0, 1, 2}, {1, 3, 4}, {2, 4, 5}};
     int x, y;
-    *a = *b = *d = 0.0;
+    *a = *b = *d = 0.0f;
     for (x = 0; x < 3; x++)
         for (y = 0; y < 3; y++) {
             *a += t1[x] * h[ix[x][y]] * t1[y];
@@ -53,43 +53,43 @@ static void irc__tangent_hessian(const double h[6], const double t1[3], const do
  * off-diagonal); each radius is the smallest over channels of that
  * channel's curvature along the axis.  rad[0] is the minor radius (across
  * the axis of strongest curvature), rad[1] the major, along axis. */
-static void irc__hessian_radii(const irc_cache *c, const irc__sample *s, const double n[3],
-                               const double t1[3], const double t2[3], irc_record *out,
-                               double rad[2], double axis[3])
+static void irc__hessian_radii(const irc_cache *c, const irc__sample *s, const float n[3],
+                               const float t1[3], const float t2[3], irc_record *out,
+                               float rad[2], float axis[3])
 {
-    double h[3][6], tq[3][3], best = -1.0, u[2] = {1.0, 0.0}, v[2];
+    float h[3][6], tq[3][3], best = -1.0f, u[2] = {1.0f, 0.0f}, v[2];
     int ch, i, k;
     irc__hessian(c, s, irc__slot_dirs(c, s), n, h);
     for (ch = 0; ch < 3; ch++) {
-        double l0, l1, w[2];
+        float l0, l1, w[2];
         for (i = 0; i < 6; i++)
             out->hessian[ch][i] = (float)h[ch][i];
         irc__tangent_hessian(h[ch], t1, t2, &tq[ch][0], &tq[ch][1], &tq[ch][2]);
         irc__eigen2(tq[ch][0], tq[ch][1], tq[ch][2], &l0, &l1, w);
-        if (out->e[ch] > 0.0f && IRC_FABS(l0) / out->e[ch] > best) {
-            best = IRC_FABS(l0) / out->e[ch];
+        if (out->e[ch] > 0.0f && IRC_FABSF(l0) / out->e[ch] > best) {
+            best = IRC_FABSF(l0) / out->e[ch];
             u[0] = w[0];
             u[1] = w[1];
         }
     }
     v[0] = -u[1];
     v[1] = u[0];
-    rad[0] = rad[1] = HUGE_VAL;
+    rad[0] = rad[1] = HUGE_VALF;
     for (ch = 0; ch < 3; ch++) {
-        const double *t = tq[ch], *dir[2];
+        const float *t = tq[ch], *dir[2];
         dir[0] = u;
         dir[1] = v;
         for (k = 0; k < 2; k++) {
-            double cu = IRC_FABS(t[0] * dir[k][0] * dir[k][0] +
-                                 2.0 * t[1] * dir[k][0] * dir[k][1] +
+            float cu = IRC_FABSF(t[0] * dir[k][0] * dir[k][0] +
+                                 2.0f * t[1] * dir[k][0] * dir[k][1] +
                                  t[2] * dir[k][1] * dir[k][1]);
-            if (out->e[ch] > 0.0f && cu > 0.0 && IRC_SQRT(2.0 * out->e[ch] / cu) < rad[k])
-                rad[k] = IRC_SQRT(2.0 * out->e[ch] / cu);
+            if (out->e[ch] > 0.0f && cu > 0.0f && IRC_SQRTF(2.0f * out->e[ch] / cu) < rad[k])
+                rad[k] = IRC_SQRTF(2.0f * out->e[ch] / cu);
         }
     }
     /* Another channel may curve more along v than the chosen one along u. */
     if (rad[1] < rad[0]) {
-        double t = rad[0];
+        float t = rad[0];
         rad[0] = rad[1];
         rad[1] = t;
         v[0] = u[0];
@@ -109,20 +109,20 @@ static void irc__hessian_radii(const irc_cache *c, const irc__sample *s, const d
  * nothing has no scale: it takes the host's max_radius if the host set
  * one, else the smallest radius (it then serves lookups at its own point
  * only); open scenes want a max_radius. */
-static double irc__split_sphere(const irc_cache *c, const irc__sample *s, double *far)
+static float irc__split_sphere(const irc_cache *c, const irc__sample *s, float *far)
 {
-    double inv = 0.0;
+    float inv = 0.0f;
     uint32_t i, hits = 0;
-    *far = 0.0;
+    *far = 0.0f;
     for (i = 0; i < c->strata; i++)
         if (s[i].d == s[i].d && s[i].d < HUGE_VALF) {
             hits++;
-            inv += 1.0 / (double)s[i].d;
+            inv += 1.0f / (float)s[i].d;
             if (s[i].d > *far)
                 *far = s[i].d;
         }
     if (hits == 0)
-        return *far = c->cfg.max_radius < IRC__CAP ? (double)c->cfg.max_radius : 0.0;
+        return *far = c->cfg.max_radius < IRC__CAP ? (float)c->cfg.max_radius : 0.0f;
     return hits / inv;
 }
 
@@ -132,55 +132,62 @@ static double irc__split_sphere(const irc_cache *c, const irc__sample *s, double
  * its horizontal distance d sin(theta) over the reach a R(phi) in that
  * direction (the ellipse's).  Row and column centres stand for the
  * jittered directions; the distance is rounded down, the safe way. */
-static uint64_t irc__leak_guard(const irc_cache *c, const irc__sample *s, const double un[3],
-                                const double t1[3], const double t2[3], const irc_record *rec)
+static uint64_t irc__leak_guard(const irc_cache *c, const irc__sample *s, const float un[3],
+                                const float t1[3], const float t2[3], const irc_record *rec)
 {
     const uint32_t m = c->cfg.strata_theta, nphi = c->cfg.strata_phi;
-    double o1[3], o2[3], near[16], ax[2] = {0.0, 0.0}, q = 1.0, w[3];
+    const float *cc = (const float *)irc__gtab(c), *sc = cc + irc__pad4(nphi),
+                inv_m = 1.0f / (float)m;
+    float o1[3], o2[3], near[16], ax[2] = {0.0f, 0.0f}, q = 1.0f, w[3];
     uint32_t j, k;
     uint64_t mask = 0;
     int i;
     irc__oct_frame(irc__oct_encode(un), o1, o2);
     for (i = 0; i < 16; i++)
-        near[i] = 1.0;
+        near[i] = 1.0f;
     if (rec->minor_radius < rec->radius) {
-        double a3[3] = {rec->axis[0], rec->axis[1], rec->axis[2]};
-        q = (double)rec->minor_radius / rec->radius;
-        ax[0] = irc__dot3d(a3, o1);
-        ax[1] = irc__dot3d(a3, o2);
+        float a3[3] = {rec->axis[0], rec->axis[1], rec->axis[2]};
+        q = (float)rec->minor_radius / rec->radius;
+        ax[0] = irc__dot3(a3, o1);
+        ax[1] = irc__dot3(a3, o2);
     }
     for (k = 0; k < nphi; k++) {
-        double ph = 2.0 * IRC_PI * (k + 0.5) / nphi, x, y, cu, reach;
+        /* The column's centre direction, its cosine and sine from the
+         * gradients' table (gradient.c). */
+        float x, y, cu, inv_reach;
+        int sec;
         for (i = 0; i < 3; i++)
-            w[i] = IRC_COS(ph) * t1[i] + IRC_SIN(ph) * t2[i];
-        x = irc__dot3d(w, o1);
-        y = irc__dot3d(w, o2);
+            w[i] = cc[k] * t1[i] + sc[k] * t2[i];
+        x = irc__dot3(w, o1);
+        y = irc__dot3(w, o2);
+        sec = irc__sector(x, y);
         cu = x * ax[0] + y * ax[1];
-        reach = c->cfg.accuracy * rec->radius / IRC_SQRT(cu * cu + (1.0 - cu * cu) / (q * q));
+        inv_reach = IRC_SQRTF(cu * cu + (1.0f - cu * cu) / (q * q)) /
+                    (c->cfg.accuracy * rec->radius);
         for (j = m / 2; j < m; j++) {
             const irc__sample *a = &s[j * nphi + k];
-            double f;
+            float f;
             if (!(a->d < HUGE_VALF)) /* escaped or failed */
                 continue;
-            f = a->d * IRC_SQRT((j + 0.5) / m) / reach;
-            if (f < near[irc__sector(x, y)])
-                near[irc__sector(x, y)] = f;
+            f = a->d * IRC_SQRTF(((float)j + 0.5f) * inv_m) * inv_reach;
+            if (f < near[sec])
+                near[sec] = f;
         }
     }
     for (i = 0; i < 16; i++)
-        if (near[i] < 1.0)
-            mask |= (uint64_t)(15 - (int)IRC_FLOOR(15.0 * near[i])) << (4 * i);
+        if (near[i] < 1.0f)
+            mask |= (uint64_t)(15 - (int)IRC_FLOORF(15.0f * near[i])) << (4 * i);
     return mask;
 }
 
 /* The record's radii: r (the split sphere, or E/|grad E|) for a disk, or
  * with HESSIAN the ellipse; then the screen-space bound (footprint fp) and
  * the host's world bounds. */
-static void irc__radii(const irc_cache *c, const irc__sample *s, const double n[3],
-                       const double t1[3], const double t2[3], double r, double far, float fp,
+static void irc__radii(const irc_cache *c, const irc__sample *s, const float n[3],
+                       const float t1[3], const float t2[3], float r, float far, float fp,
                        irc_record *out)
 {
-    double rad[2], axis[3];
+    float rad[2], axis[3];
     int k;
     rad[0] = rad[1] = r;
     if (c->cfg.features & IRC_FEATURE_HESSIAN) {
@@ -192,7 +199,7 @@ static void irc__radii(const irc_cache *c, const irc__sample *s, const double n[
          * box the split-sphere bound cost 1.7x in RMSE, 4 x the harmonic
          * mean 1.1x; the max-error law sqrt(2E/|l|) beat laws in |l|^-1/3
          * and |l|^-1/4, and ellipses beat disks by 1.14-1.31x.) */
-        const double cap = c->cfg.features & IRC_FEATURE_TRANSLATION ? far : r;
+        const float cap = c->cfg.features & IRC_FEATURE_TRANSLATION ? far : r;
         irc__hessian_radii(c, s, n, t1, t2, out, rad, axis);
         for (k = 0; k < 2; k++)
             if (rad[k] > cap)
@@ -201,9 +208,9 @@ static void irc__radii(const irc_cache *c, const irc__sample *s, const double n[
             rad[1] = IRC_ANISOTROPY * rad[0];
     }
     for (k = 0; k < 2; k++) {
-        if (rad[k] < (double)c->cfg.min_pixels * fp) rad[k] = (double)c->cfg.min_pixels * fp;
-        if (c->cfg.max_pixels > 0.0f && fp > 0.0f && rad[k] > (double)c->cfg.max_pixels * fp)
-            rad[k] = (double)c->cfg.max_pixels * fp;
+        if (rad[k] < (float)c->cfg.min_pixels * fp) rad[k] = (float)c->cfg.min_pixels * fp;
+        if (c->cfg.max_pixels > 0.0f && fp > 0.0f && rad[k] > (float)c->cfg.max_pixels * fp)
+            rad[k] = (float)c->cfg.max_pixels * fp;
         if (rad[k] < c->cfg.min_radius) rad[k] = c->cfg.min_radius;
         if (rad[k] > c->cfg.max_radius) rad[k] = c->cfg.max_radius;
         if (rad[k] < FLT_MIN) rad[k] = FLT_MIN;
@@ -218,11 +225,11 @@ static void irc__radii(const irc_cache *c, const irc__sample *s, const double n[
 }
 
 static void irc__record_build(const irc_cache *c, const irc__sample *s,
-                       const double n[3], const double t1[3],
-                       const double t2[3], double gvis[3][3], float fp, irc_record *out)
+                       const float n[3], const float t1[3],
+                       const float t2[3], float gvis[3][3], float fp, irc_record *out)
 {
     const uint32_t total = c->strata;
-    double sum[3] = {0, 0, 0}, mean[3], hm, far, r, g[3][3], gr[3][3];
+    float sum[3] = {0, 0, 0}, mean[3], hm, far, r, g[3][3], gr[3][3];
     const uint32_t f = c->cfg.features;
     uint32_t i, used = 0;
     int ch, k;
@@ -249,12 +256,12 @@ static void irc__record_build(const irc_cache *c, const irc__sample *s,
     if (f & IRC_FEATURE_TRANSLATION) {
         for (ch = 0; ch < 3; ch++)
             for (k = 0; k < 3; k++)
-                g[ch][k] += gvis ? gvis[ch][k] : 0.0;
+                g[ch][k] += gvis ? gvis[ch][k] : 0.0f;
         for (ch = 0; ch < 3; ch++) {
-            double len = IRC_SQRT(irc__dot3d(g[ch], g[ch]));
+            float len = IRC_SQRTF(irc__dot3(g[ch], g[ch]));
             /* R <= E/|grad E| per channel: the record's reach ends where
              * its first-order extrapolation would change E by 100%. */
-            if (len > 0.0 && out->e[ch] / len < r)
+            if (len > 0.0f && out->e[ch] / len < r)
                 r = out->e[ch] / len;
             for (k = 0; k < 3; k++)
                 out->grad_t[ch][k] = (float)g[ch][k];
@@ -275,25 +282,25 @@ static void irc__record_build(const irc_cache *c, const irc__sample *s,
 
 /* Samples the hemisphere around the query's normal into the call's slot;
  * t1, t2 get the frame the strata were laid in. */
-int irc__hemisphere(irc__call *k, double t1[3], double t2[3])
+int irc__hemisphere(irc__call *k, float t1[3], float t2[3])
 {
     uint32_t used = 0;
-    irc__frame(k->q.un, t1, t2);
-    return irc__sample_hemisphere(k, k->q.un, t1, t2, 0, &used);
+    irc__frame(k->q.n, t1, t2);
+    return irc__sample_hemisphere(k, k->q.n, t1, t2, 0, &used);
 }
 
 int irc__irr_compute(irc__call *k, void *rec)
 {
     irc_cache *c = k->c;
     irc_record *out = (irc_record *)rec;
-    double t1[3], t2[3], gvis[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+    float t1[3], t2[3], gvis[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
     const int vis = (c->cfg.features & IRC_FEATURE_VISIBILITY) != 0;
-    double un[3];
+    float un[3];
     int st;
     if ((st = irc__hemisphere(k, t1, t2)) < 0 ||
         (vis && (st = irc__grad_visibility(k, 0, gvis)) < 0))
         return st;
-    irc__record_build(c, (const irc__sample *)(void *)k->slot, k->q.un, t1, t2,
+    irc__record_build(c, (const irc__sample *)(void *)k->slot, k->q.n, t1, t2,
                       vis ? gvis : NULL, k->footprint, out);
 
     out->rays = k->rays;

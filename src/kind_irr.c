@@ -10,19 +10,19 @@
  * exponent: 2^ex is the smallest power of two with |v| < 2^(ex + 15) for
  * both components, so the larger keeps at least 14 bits (relative
  * precision 2^-14 per channel, whatever the other channels hold). */
-static void irc__grad_pack(const float g[3][3], const double t1[3], const double t2[3],
+static void irc__grad_pack(const float g[3][3], const float t1[3], const float t2[3],
                            irc__grad *out)
 {
     int ch, i;
     for (ch = 0; ch < 3; ch++) {
-        double gi[3], v[2], big, q;
+        float gi[3], v[2], big, q;
         int e = 0;
         gi[0] = g[ch][0]; gi[1] = g[ch][1]; gi[2] = g[ch][2];
-        v[0] = irc__dot3d(gi, t1);
-        v[1] = irc__dot3d(gi, t2);
-        big = IRC_FABS(v[0]) > IRC_FABS(v[1]) ? IRC_FABS(v[0]) : IRC_FABS(v[1]);
-        if (big > 0.0)
-            IRC_FREXP(big, &e);
+        v[0] = irc__dot3(gi, t1);
+        v[1] = irc__dot3(gi, t2);
+        big = IRC_FABSF(v[0]) > IRC_FABSF(v[1]) ? IRC_FABSF(v[0]) : IRC_FABSF(v[1]);
+        if (big > 0.0f)
+            IRC_FREXPF(big, &e);
         e -= 15;
         /* The int8 range reaches 2^-128: smaller gradients lose bits, as
          * float denormals do. */
@@ -30,19 +30,19 @@ static void irc__grad_pack(const float g[3][3], const double t1[3], const double
         if (e > 127) e = 127;
         out->ex[ch] = (int8_t)e;
         for (i = 0; i < 2; i++) {
-            q = IRC_FLOOR(IRC_LDEXP(v[i], -e) + 0.5);
-            out->g[2 * ch + i] = (int16_t)(q > 32767.0 ? 32767.0 : q < -32767.0 ? -32767.0 : q);
+            q = IRC_FLOORF(IRC_LDEXPF(v[i], -e) + 0.5f);
+            out->g[2 * ch + i] = (int16_t)(q > 32767.0f ? 32767.0f : q < -32767.0f ? -32767.0f : q);
         }
     }
     out->unused = 0;
 }
 
-static void irc__grad_unpack(const irc__grad *in, const double t1[3], const double t2[3],
+static void irc__grad_unpack(const irc__grad *in, const float t1[3], const float t2[3],
                              float g[3][3])
 {
     int ch, k;
     for (ch = 0; ch < 3; ch++) {
-        double s = irc__grad_scale(in, ch), a = in->g[2 * ch] * s, b = in->g[2 * ch + 1] * s;
+        float s = irc__grad_scale(in, ch), a = in->g[2 * ch] * s, b = in->g[2 * ch + 1] * s;
         for (k = 0; k < 3; k++)
             g[ch][k] = (float)(a * t1[k] + b * t2[k]);
     }
@@ -51,34 +51,34 @@ static void irc__grad_unpack(const irc__grad *in, const double t1[3], const doub
 /* A host's ellipse: minor/major in (0, 1] and the major axis projected on
  * the tangent plane; q = 1 (a disk) when minor_radius is 0 or not below
  * radius.  Returns 0, or -1 when the axis has no tangent direction. */
-static int irc__ellipse(const irc_record *r, const double un[3], double *q, double axis[3])
+static int irc__ellipse(const irc_record *r, const float un[3], float *q, float axis[3])
 {
-    double len;
+    float len;
     int k;
-    *q = 1.0;
-    axis[0] = axis[1] = axis[2] = 0.0;
+    *q = 1.0f;
+    axis[0] = axis[1] = axis[2] = 0.0f;
     if (!(r->minor_radius > 0.0f) || !(r->minor_radius < r->radius))
         return 0;
-    *q = (double)r->minor_radius / r->radius;
-    if (*q < 1.0 / IRC_ANISOTROPY)
-        *q = 1.0 / IRC_ANISOTROPY;
+    *q = (float)r->minor_radius / r->radius;
+    if (*q < 1.0f / IRC_ANISOTROPY)
+        *q = 1.0f / IRC_ANISOTROPY;
     for (k = 0; k < 3; k++)
         axis[k] = r->axis[k];
-    len = irc__dot3d(axis, un);
+    len = irc__dot3(axis, un);
     for (k = 0; k < 3; k++)
         axis[k] -= len * un[k];
-    len = IRC_SQRT(irc__dot3d(axis, axis));
-    if (!(len > 1e-6 * (IRC_FABS(r->axis[0]) + IRC_FABS(r->axis[1]) + IRC_FABS(r->axis[2]))))
+    len = IRC_SQRTF(irc__dot3(axis, axis));
+    if (!(len > 1e-6f * (IRC_FABSF(r->axis[0]) + IRC_FABSF(r->axis[1]) + IRC_FABSF(r->axis[2]))))
         return -1;
     for (k = 0; k < 3; k++)
         axis[k] /= len;
     return 0;
 }
 
-static int irc__irr_check(const irc_cache *c, const void *rec, double un[3])
+static int irc__irr_check(const irc_cache *c, const void *rec, float un[3])
 {
     const irc_record *r = (const irc_record *)rec;
-    double q, axis[3];
+    float q, axis[3];
     int st, ch;
     (void)c;
     if ((st = irc__check_vec(r->p)) < 0 || (st = irc__check_normal(r->n, un)) < 0)
@@ -102,30 +102,38 @@ static int irc__irr_check(const irc_cache *c, const void *rec, double un[3])
  * at most a fraction a at the edge of reach (Radiance caps its gradients
  * the same way).  A radius lifted past E/|grad E| would otherwise
  * extrapolate far past E. */
-static void irc__grad_limit(const irc_record *in, float r, double q, const double u[3],
+static void irc__grad_limit(const irc_record *in, float r, float q, const float u[3],
                             float g[3][3])
 {
     int ch, k;
     for (ch = 0; ch < 3; ch++) {
-        double len = 0.0, gu = 0.0;
+        /* In units of the largest component m: squares of gradients near
+         * FLT_MAX would overflow float. */
+        float m = 0.0f, len = 0.0f, gu = 0.0f, s;
         for (k = 0; k < 3; k++) {
             g[ch][k] = in->grad_t[ch][k];
-            len += (double)g[ch][k] * g[ch][k];
-            gu += (double)g[ch][k] * u[k];
+            if (IRC_FABSF(g[ch][k]) > m)
+                m = IRC_FABSF(g[ch][k]);
         }
-        len = IRC_SQRT(gu * gu + (len - gu * gu) * q * q) * r;
-        if (len > in->e[ch])
+        if (!(m > 0.0f))
+            continue;
+        for (k = 0; k < 3; k++) {
+            len += (g[ch][k] / m) * (g[ch][k] / m);
+            gu += (g[ch][k] / m) * u[k];
+        }
+        s = IRC_SQRTF(gu * gu + (len - gu * gu) * q * q) * r;
+        if (s * m > in->e[ch])
             for (k = 0; k < 3; k++)
-                g[ch][k] = (float)(g[ch][k] * (in->e[ch] / len));
+                g[ch][k] = g[ch][k] / m * (in->e[ch] / s);
     }
 }
 
-static void irc__irr_pack(const irc_cache *c, const void *rec, const double un[3], void *dst)
+static void irc__irr_pack(const irc_cache *c, const void *rec, const float un[3], void *dst)
 {
     const irc_record *in = (const irc_record *)rec;
     unsigned char *b = (unsigned char *)dst;
     irc__rec *r = (irc__rec *)dst;
-    double t1[3], t2[3], q, axis[3];
+    float t1[3], t2[3], q, axis[3];
     float g[3][3];
     int ch;
     IRC_MEMSET(dst, 0, c->rec_size);
@@ -138,11 +146,11 @@ static void irc__irr_pack(const irc_cache *c, const void *rec, const double un[3
     irc__oct_frame(r->n, t1, t2);
     (void)irc__ellipse(in, un, &q, axis); /* checked */
     if (!c->off_a)
-        q = 1.0;
+        q = 1.0f;
     else {
         irc__aniso *a = (irc__aniso *)(void *)(b + c->off_a);
         a->q = (float)q;
-        a->axis = q < 1.0 ? irc__oct_encode(axis) : 0u;
+        a->axis = q < 1.0f ? irc__oct_encode(axis) : 0u;
     }
     if (c->off_g)
         IRC_MEMCPY(b + c->off_g, &in->leak_guard, sizeof in->leak_guard);
@@ -159,7 +167,7 @@ static void irc__irr_unpack(const irc_cache *c, const void *src, void *rec)
     const unsigned char *b = (const unsigned char *)src;
     const irc__rec *r = (const irc__rec *)src;
     irc_record *out = (irc_record *)rec;
-    double t1[3], t2[3];
+    float t1[3], t2[3];
     int ch;
     IRC_MEMSET(out, 0, sizeof *out);
     for (ch = 0; ch < 3; ch++) {
@@ -187,44 +195,49 @@ static void irc__irr_unpack(const irc_cache *c, const void *src, void *rec)
 }
 
 static int irc__irr_weigh(const irc_cache *c, const irc__rec *r, const irc__query *q,
-                          double *w, float ni[3])
+                          float *w, float ni[3])
 {
     return irc__weigh(c, r, q->p, q->n, w, ni);
 }
 
-/* The accumulator: the weighted sum of E per channel. */
+/* The accumulator: the weighted mean of E per channel so far and its
+ * total weight, updated as m += (w / W)(v - m) (West 1979).  A sum of w v
+ * in float would overflow for records near FLT_MAX whose extrapolated
+ * mean does not; v >= 0, so v - m stays finite. */
 static void irc__irr_begin(const irc_cache *c, void *acc)
 {
-    double *a = (double *)acc;
+    float *a = (float *)acc;
     (void)c;
-    a[0] = a[1] = a[2] = 0.0;
+    a[0] = a[1] = a[2] = a[3] = 0.0f;
 }
 
 static void irc__irr_accumulate(const irc_cache *c, const irc__rec *r, const irc__query *q,
-                                double w, const float ni[3], void *acc)
+                                float w, const float ni[3], void *acc)
 {
-    double v[3], *a = (double *)acc;
+    float v[3], *a = (float *)acc, f;
+    int ch;
     irc__extrapolate(c, r, ni, q->p, q->n, v);
-    a[0] += w * v[0];
-    a[1] += w * v[1];
-    a[2] += w * v[2];
+    a[3] += w;
+    f = w / a[3];
+    for (ch = 0; ch < 3; ch++)
+        a[ch] += f * (v[ch] - a[ch]);
 }
 
 static int irc__irr_finish(const irc_cache *c, const irc__query *q, const void *acc,
-                           double w, void *out)
+                           float w, void *out)
 {
-    const double *a = (const double *)acc;
+    const float *a = (const float *)acc;
     float *rgb = (float *)out;
     int ch;
     (void)c;
     (void)q;
     for (ch = 0; ch < 3; ch++)
-        rgb[ch] = w > 0.0 ? (float)(a[ch] / w) : 0.0f;
+        rgb[ch] = w > 0.0f ? a[ch] : 0.0f;
     /* Records with irradiance and gradients near FLT_MAX can extrapolate
      * past it. */
     if (!irc__finite3(rgb))
         return IRC_ERR_NONFINITE;
-    return w > 0.0 ? IRC_OK : IRC_MISS;
+    return w > 0.0f ? IRC_OK : IRC_MISS;
 }
 
 static void irc__irr_answer(const irc_cache *c, const void *rec, void *out)
@@ -239,7 +252,7 @@ static void irc__irr_answer(const irc_cache *c, const void *rec, void *out)
 
 static int irc__irr_find(irc_cache *c, const irc__query *q, void *out, float *weight)
 {
-    double acc[3];
+    float acc[4];
     return irc__lookup_once(c, q, out, weight, acc);
 }
 

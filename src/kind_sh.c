@@ -7,14 +7,14 @@
 #include "cache.h"
 
 /* Cap on a free-point weight: a query on a record gives 1/0. */
-#define IRC__SH_W_MAX 1e6
+#define IRC__SH_W_MAX 1e6f
 
 /* The record from the sums: each usable sample stands for 2 pi/(M N)
  * steradians, scaled by total/used when some rays failed. */
 static void irc__sh_finish(const irc_cache *c, const irc__shsum *a, irc_sh *out)
 {
-    const double dw = 2.0 * IRC_PI / c->strata * ((double)a->total / a->used);
-    double hm = a->inv_d > 0.0 ? a->used / a->inv_d : HUGE_VAL, r = hm;
+    const float dw = 2.0f * IRC_PI / c->strata * ((float)a->total / a->used);
+    float hm = a->inv_d > 0.0f ? a->used / a->inv_d : HUGE_VALF, r = hm;
     uint32_t ch, i, k;
     out->bands = c->cfg.sh_bands;
     out->channels = c->sh_ch;
@@ -24,7 +24,7 @@ static void irc__sh_finish(const irc_cache *c, const irc__shsum *a, irc_sh *out)
     for (ch = 0; ch < 3; ch++)
         out->e[ch] = (float)(dw * a->e[ch]);
     for (ch = 0; ch < c->sh_ch; ch++) {
-        double len;
+        float len;
         for (i = 0; i < c->sh_n; i++) {
             out->c[ch][i] = (float)(dw * a->c[ch][i]);
             for (k = 0; k < 3; k++)
@@ -32,9 +32,9 @@ static void irc__sh_finish(const irc_cache *c, const irc__shsum *a, irc_sh *out)
         }
         /* R <= |c_0|/|grad c_0|: where first-order extrapolation would
          * change the mean radiance by 100%. */
-        len = dw * IRC_SQRT(irc__dot3d(a->g[ch], a->g[ch]));
-        if (len > 0.0 && dw * IRC_FABS(a->c[ch][0]) / len < r)
-            r = dw * IRC_FABS(a->c[ch][0]) / len;
+        len = dw * IRC_SQRTF(irc__dot3(a->g[ch], a->g[ch]));
+        if (len > 0.0f && dw * IRC_FABSF(a->c[ch][0]) / len < r)
+            r = dw * IRC_FABSF(a->c[ch][0]) / len;
     }
     if (r < c->cfg.min_radius) r = c->cfg.min_radius;
     if (r > c->cfg.max_radius) r = c->cfg.max_radius;
@@ -42,14 +42,14 @@ static void irc__sh_finish(const irc_cache *c, const irc__shsum *a, irc_sh *out)
     out->radius = (float)r;
 }
 
-static int irc__sh_check(const irc_cache *c, const void *rec, double un[3])
+static int irc__sh_check(const irc_cache *c, const void *rec, float un[3])
 {
     const irc_sh *r = (const irc_sh *)rec;
     uint32_t ch, i;
     int st;
     if ((st = irc__check_vec(r->p)) < 0)
         return st;
-    un[0] = un[1] = un[2] = 0.0;
+    un[0] = un[1] = un[2] = 0.0f;
     if ((r->n[0] != 0.0f || r->n[1] != 0.0f || r->n[2] != 0.0f) &&
         (st = irc__check_normal(r->n, un)) < 0)
         return st;
@@ -65,7 +65,7 @@ static int irc__sh_check(const irc_cache *c, const void *rec, double un[3])
                ? IRC_OK : IRC_ERR_RANGE;
 }
 
-static void irc__sh_pack(const irc_cache *c, const void *rec, const double un[3], void *out)
+static void irc__sh_pack(const irc_cache *c, const void *rec, const float un[3], void *out)
 {
     const irc_sh *in = (const irc_sh *)rec;
     unsigned char *dst = (unsigned char *)out;
@@ -79,7 +79,7 @@ static void irc__sh_pack(const irc_cache *c, const void *rec, const double un[3]
         r->e[k] = in->e[k];
     }
     r->r = in->radius > IRC__CAP ? IRC__CAP : in->radius;
-    r->n = un[0] == 0.0 && un[1] == 0.0 && un[2] == 0.0 ? IRC__FREE : irc__oct_encode(un);
+    r->n = un[0] == 0.0f && un[1] == 0.0f && un[2] == 0.0f ? IRC__FREE : irc__oct_encode(un);
     for (ch = 0; ch < c->sh_ch; ch++)
         for (i = 0; i < c->sh_n; i++) {
             *cf++ = in->c[ch][i];
@@ -120,18 +120,18 @@ static void irc__sh_unpack(const irc_cache *c, const void *rec, void *dst)
 /* Surface records: Ward-Heckbert (weight.c).  Free points: (R_j/d)^b
  * within a R_j (Eq. 16 made scale-free). */
 static int irc__sh_weigh(const irc_cache *c, const irc__rec *r, const irc__query *q,
-                         double *w, float ni[3])
+                         float *w, float ni[3])
 {
-    double dx = (double)q->p[0] - r->p[0], dy = (double)q->p[1] - r->p[1],
-           dz = (double)q->p[2] - r->p[2], d, ra = (double)c->cfg.accuracy * r->r;
+    float dx = (float)q->p[0] - r->p[0], dy = (float)q->p[1] - r->p[1],
+           dz = (float)q->p[2] - r->p[2], d, ra = (float)c->cfg.accuracy * r->r;
     if (!q->free)
         return irc__weigh(c, r, q->p, q->n, w, ni);
     if (r->n != IRC__FREE)
         return 0;
-    d = IRC_SQRT(dx * dx + dy * dy + dz * dz);
+    d = IRC_SQRTF(dx * dx + dy * dy + dz * dz);
     if (!(d < ra))
         return 0;
-    *w = d * IRC__SH_W_MAX > r->r ? IRC_POW(r->r / d, c->cfg.sh_power) : IRC__SH_W_MAX;
+    *w = d * IRC__SH_W_MAX > r->r ? IRC_POWF(r->r / d, c->cfg.sh_power) : IRC__SH_W_MAX;
     if (*w > IRC__SH_W_MAX)
         *w = IRC__SH_W_MAX;
     return 1;
@@ -139,7 +139,7 @@ static int irc__sh_weigh(const irc_cache *c, const irc__rec *r, const irc__query
 
 /* A lookup's running sums: coefficients, their gradients, E. */
 typedef struct irc__sh_acc {
-    double c[3][IRC__NC], g[3][IRC__NC][3], e[3];
+    float c[3][IRC__NC], g[3][IRC__NC][3], e[3];
 } irc__sh_acc;
 
 static void irc__sh_begin(const irc_cache *c, void *acc)
@@ -150,22 +150,22 @@ static void irc__sh_begin(const irc_cache *c, void *acc)
 
 /* Eq. 15: each accepted record extrapolated to p (Eq. 14), weighted. */
 static void irc__sh_gather(const irc_cache *c, const irc__rec *r, const irc__query *q,
-                               double w, const float ni[3], void *acc)
+                               float w, const float ni[3], void *acc)
 {
     irc__sh_acc *a = (irc__sh_acc *)acc;
     const unsigned char *b = (const unsigned char *)r;
     const float *cf = (const float *)(const void *)(b + c->off_sh);
     const float *gf = c->off_shg ? (const float *)(const void *)(b + c->off_shg) : NULL;
-    double d[3];
+    float d[3];
     uint32_t ch, i, k;
     (void)ni;
     for (k = 0; k < 3; k++) {
-        d[k] = (double)q->p[k] - r->p[k];
+        d[k] = (float)q->p[k] - r->p[k];
         a->e[k] += w * r->e[k];
     }
     for (ch = 0; ch < c->sh_ch; ch++)
         for (i = 0; i < c->sh_n; i++) {
-            double v = *cf++;
+            float v = *cf++;
             if (gf) {
                 for (k = 0; k < 3; k++) {
                     v += gf[k] * d[k];
@@ -190,7 +190,7 @@ static void irc__sh_blank(const irc_cache *c, const irc__query *q, irc_sh *out)
     }
 }
 
-static int irc__sh_end(const irc_cache *c, const irc__query *q, const void *acc, double w,
+static int irc__sh_end(const irc_cache *c, const irc__query *q, const void *acc, float w,
                        void *dst)
 {
     const irc__sh_acc *a = (const irc__sh_acc *)acc;
@@ -198,7 +198,7 @@ static int irc__sh_end(const irc_cache *c, const irc__query *q, const void *acc,
     uint32_t ch, i, k;
     int st;
     irc__sh_blank(c, q, out);
-    if (!(w > 0.0))
+    if (!(w > 0.0f))
         return IRC_MISS;
     for (k = 0; k < 3; k++)
         out->e[k] = (float)(a->e[k] / w);
@@ -226,7 +226,7 @@ static int irc__sh_compute(irc__call *k, void *rec)
     irc_cache *c = k->c;
     irc_sh *out = (irc_sh *)rec;
     irc__shsum a;
-    double un[3];
+    float un[3];
     int st, i;
     IRC_MEMSET(&a, 0, sizeof a);
     if ((st = irc__sh_sample(k, &a)) < 0)

@@ -5,19 +5,19 @@
  */
 #include "cache.h"
 
-uint32_t irc__oct_encode(const double n[3])
+uint32_t irc__oct_encode(const float n[3])
 {
-    double l1 = IRC_FABS(n[0]) + IRC_FABS(n[1]) + IRC_FABS(n[2]);
-    double x = n[0] / l1, y = n[1] / l1;
+    float l1 = IRC_FABSF(n[0]) + IRC_FABSF(n[1]) + IRC_FABSF(n[2]);
+    float x = n[0] / l1, y = n[1] / l1;
     uint32_t qx, qy;
-    if (n[2] < 0.0) {
-        double ox = (1.0 - IRC_FABS(y)) * (x >= 0.0 ? 1.0 : -1.0);
-        double oy = (1.0 - IRC_FABS(x)) * (y >= 0.0 ? 1.0 : -1.0);
+    if (n[2] < 0.0f) {
+        float ox = (1.0f - IRC_FABSF(y)) * (x >= 0.0f ? 1.0f : -1.0f);
+        float oy = (1.0f - IRC_FABSF(x)) * (y >= 0.0f ? 1.0f : -1.0f);
         x = ox;
         y = oy;
     }
-    qx = (uint32_t)IRC_FLOOR((x * 0.5 + 0.5) * 65535.0 + 0.5);
-    qy = (uint32_t)IRC_FLOOR((y * 0.5 + 0.5) * 65535.0 + 0.5);
+    qx = (uint32_t)IRC_FLOORF((x * 0.5f + 0.5f) * 65535.0f + 0.5f);
+    qy = (uint32_t)IRC_FLOORF((y * 0.5f + 0.5f) * 65535.0f + 0.5f);
     /* All ones is IRC__FREE; its neighbour is as good a normal. */
     return (qx | qy << 16) == IRC__FREE ? IRC__FREE - 1u : qx | qy << 16;
 }
@@ -41,10 +41,10 @@ void irc__oct_decode(uint32_t code, float out[3])
 }
 
 /* The frame of the decoded normal: what packing and unpacking agree on. */
-void irc__oct_frame(uint32_t code, double t1[3], double t2[3])
+void irc__oct_frame(uint32_t code, float t1[3], float t2[3])
 {
     float nf[3];
-    double n[3];
+    float n[3];
     irc__oct_decode(code, nf);
     n[0] = nf[0];
     n[1] = nf[1];

@@ -42,12 +42,12 @@ irc__rng irc__rng_for(const float p[3], const float n[3], uint64_t seed)
 
 /* Branchless orthonormal basis (Duff et al. 2017), right-handed:
  * t1 x t2 = n.  Continuous everywhere but across n.z = 0's sign flip. */
-void irc__frame(const double n[3], double t1[3], double t2[3])
+void irc__frame(const float n[3], float t1[3], float t2[3])
 {
-    double s = n[2] >= 0.0 ? 1.0 : -1.0;
-    double a = -1.0 / (s + n[2]);
-    double b = n[0] * n[1] * a;
-    t1[0] = 1.0 + s * n[0] * n[0] * a;
+    float s = n[2] >= 0.0f ? 1.0f : -1.0f;
+    float a = -1.0f / (s + n[2]);
+    float b = n[0] * n[1] * a;
+    t1[0] = 1.0f + s * n[0] * n[0] * a;
     t1[1] = s * b;
     t1[2] = -s * n[0];
     t2[0] = b;
@@ -57,7 +57,9 @@ void irc__frame(const double n[3], double t1[3], double t2[3])
 
 static int irc__nonneg3(const float v[3])
 {
-    return irc__finite3(v) && v[0] >= 0.0f && v[1] >= 0.0f && v[2] >= 0.0f;
+    /* Comparisons fail for NaN: two a component. */
+    return v[0] >= 0.0f && v[0] <= FLT_MAX && v[1] >= 0.0f && v[1] <= FLT_MAX &&
+           v[2] >= 0.0f && v[2] <= FLT_MAX;
 }
 
 /* Checks one hit and turns it into a sample.  Returns 1 usable, 0 failed
@@ -103,8 +105,8 @@ typedef struct irc__dirs {
     irc__rng rng;
 } irc__dirs;
 
-static void irc__dirs_init(const irc_cache *c, const double n[3], const double t1[3],
-                           const double t2[3], const irc__rng *rng, irc__dirs *g)
+static void irc__dirs_init(const irc_cache *c, const float n[3], const float t1[3],
+                           const float t2[3], const irc__rng *rng, irc__dirs *g)
 {
     const uint32_t np = irc__pad4(c->cfg.strata_phi);
     int i;
@@ -113,8 +115,8 @@ static void irc__dirs_init(const irc_cache *c, const double n[3], const double t
         g->t2[i] = (float)t2[i];
         g->n[i] = (float)n[i];
     }
-    g->inv_m = (float)(1.0 / c->cfg.strata_theta);
-    g->dphi = (float)(2.0 * IRC_PI / c->cfg.strata_phi);
+    g->inv_m = (float)(1.0f / c->cfg.strata_theta);
+    g->dphi = (float)(2.0f * IRC_PI / c->cfg.strata_phi);
     g->cb = (const float *)irc__gtab(c) + 2u * np;
     g->sb = g->cb + np;
     g->nphi = c->cfg.strata_phi;
@@ -178,7 +180,7 @@ static void irc__keep_geometry(const irc_cache *c, const irc__sample *s, uint32_
     for (k = 0; k < 3; k++)
         d[k] = dir[k];
     if (h->status == IRC_RAY_HIT) {
-        double v[3];
+        float v[3];
         float f[3];
         f[0] = h->normal[0]; f[1] = h->normal[1]; f[2] = h->normal[2];
         irc__check_normal(f, v);
@@ -219,8 +221,8 @@ int irc__cast(irc__call *k, irc_ray *rays, irc_hit *hits, uint32_t count)
  * hemisphere around n, casting rays in batches of cfg.max_batch.  *used
  * gets the number of usable samples.  Returns IRC_OK or a negative code
  * (the callback's own, passed through). */
-int irc__sample_hemisphere(irc__call *k, const double n[3], const double t1[3],
-                           const double t2[3], uint32_t first, uint32_t *used)
+int irc__sample_hemisphere(irc__call *k, const float n[3], const float t1[3],
+                           const float t2[3], uint32_t first, uint32_t *used)
 {
     irc_cache *c = k->c;
     irc__sample *base = (irc__sample *)(void *)k->slot, *out = base + first;

@@ -12,7 +12,7 @@
 typedef struct irc__grid {
     const irc__sample *s;
     const float *dir, *nrm;
-    const double *axis[2], *t1, *t2;
+    const float *axis[2], *t1, *t2;
     uint32_t m, n, halves;
 } irc__grid;
 
@@ -22,10 +22,10 @@ static int irc__hit(const irc__sample *x)
 }
 
 /* |n.w| at sample i: 1 facing the ray, 0 grazing (a silhouette). */
-static double irc__facing(const irc__grid *g, uint32_t i)
+static float irc__facing(const irc__grid *g, uint32_t i)
 {
     const float *w = g->dir + 3 * i, *n = g->nrm + 3 * i;
-    return IRC_FABS((double)w[0] * n[0] + (double)w[1] * n[1] + (double)w[2] * n[2]);
+    return IRC_FABSF((float)w[0] * n[0] + (float)w[1] * n[1] + (float)w[2] * n[2]);
 }
 
 /* Whether neighbouring samples a and b lie on one continuous surface:
@@ -36,20 +36,20 @@ static int irc__continuous(const irc__grid *g, uint32_t a, uint32_t b)
 {
     const float *wa = g->dir + 3 * a, *wb = g->dir + 3 * b;
     const float *na = g->nrm + 3 * a, *nb = g->nrm + 3 * b;
-    double sa, sb, dw, da = g->s[a].d, db = g->s[b].d, big, slant;
+    float sa, sb, dw, da = g->s[a].d, db = g->s[b].d, big, slant;
     int k;
     if (!irc__hit(&g->s[a]) || !irc__hit(&g->s[b]))
         return 0;
-    sa = (double)na[0] * wa[0] + (double)na[1] * wa[1] + (double)na[2] * wa[2];
-    sb = (double)nb[0] * wb[0] + (double)nb[1] * wb[1] + (double)nb[2] * wb[2];
-    if ((sa < 0.0) != (sb < 0.0) ||
-        (double)na[0] * nb[0] + (double)na[1] * nb[1] + (double)na[2] * nb[2] < 0.5)
+    sa = (float)na[0] * wa[0] + (float)na[1] * wa[1] + (float)na[2] * wa[2];
+    sb = (float)nb[0] * wb[0] + (float)nb[1] * wb[1] + (float)nb[2] * wb[2];
+    if ((sa < 0.0f) != (sb < 0.0f) ||
+        (float)na[0] * nb[0] + (float)na[1] * nb[1] + (float)na[2] * nb[2] < 0.5f)
         return 0;
-    for (dw = 0.0, k = 0; k < 3; k++)
-        dw += ((double)wa[k] - wb[k]) * ((double)wa[k] - wb[k]);
+    for (dw = 0.0f, k = 0; k < 3; k++)
+        dw += ((float)wa[k] - wb[k]) * ((float)wa[k] - wb[k]);
     big = da > db ? da : db;
-    slant = IRC_FABS(sa) > IRC_FABS(sb) ? IRC_FABS(sa) : IRC_FABS(sb);
-    return IRC_FABS(da - db) * slant <= 2.0 * IRC_SQRT(dw) * big;
+    slant = IRC_FABSF(sa) > IRC_FABSF(sb) ? IRC_FABSF(sa) : IRC_FABSF(sb);
+    return IRC_FABSF(da - db) * slant <= 2.0f * IRC_SQRTF(dw) * big;
 }
 
 /* The depth where the surface of sample i ends, past i on the side away
@@ -59,17 +59,17 @@ static int irc__continuous(const irc__grid *g, uint32_t a, uint32_t b)
  * reaches 0 within one stratum past i, the depth is extrapolated linearly
  * in |n.w| to |n.w| = 0.  Otherwise (an edge of the surface itself, a
  * polygon's outline) the edge's depth is i's. */
-static double irc__silhouette_depth(const irc__grid *g, uint32_t i, int64_t o)
+static float irc__silhouette_depth(const irc__grid *g, uint32_t i, int64_t o)
 {
-    double d = g->s[i].d, fi, fo, ds;
+    float d = g->s[i].d, fi, fo, ds;
     if (o < 0 || !irc__continuous(g, i, (uint32_t)o))
         return d;
     fi = irc__facing(g, i);
     fo = irc__facing(g, (uint32_t)o);
-    if (!(fo * fo >= 1.25 * fi * fi) || !(g->s[o].d < d))
+    if (!(fo * fo >= 1.25f * fi * fi) || !(g->s[o].d < d))
         return d;
     ds = d + fi * (d - g->s[o].d) / (fo - fi);
-    return ds < 2.0 * d ? ds : 2.0 * d;
+    return ds < 2.0f * d ? ds : 2.0f * d;
 }
 
 /* The singular part of Eq. 11: with dA = dw r^2/(n.w) (Eq. 13) the term
@@ -84,18 +84,18 @@ static double irc__silhouette_depth(const irc__grid *g, uint32_t i, int64_t o)
  * (irc__silhouette_depth), the farther side's surface continues behind.
  * w_out gets the vector for sample i. */
 static void irc__edge(const irc__grid *g, uint32_t i, int64_t o, int64_t back,
-                      double len, const double nu[3], double w_out[3])
+                      float len, const float nu[3], float w_out[3])
 {
-    double f, k;
+    float f, k;
     int c;
     if (o < 0 || !irc__hit(&g->s[i]) || g->s[o].d != g->s[o].d)
         return;
     if (irc__continuous(g, i, (uint32_t)o))
-        f = 0.5 * (1.0 / g->s[o].d - 1.0 / g->s[i].d);
+        f = 0.5f * (1.0f / g->s[o].d - 1.0f / g->s[i].d);
     else if (!(g->s[o].d > g->s[i].d))
         return;
     else
-        f = 1.0 / irc__silhouette_depth(g, i, back) - 1.0 / g->s[i].d;
+        f = 1.0f / irc__silhouette_depth(g, i, back) - 1.0f / g->s[i].d;
     k = f * len;
     for (c = 0; c < 3; c++)
         w_out[c] += k * nu[c];
@@ -120,23 +120,23 @@ static int64_t irc__at(const irc__grid *g, int64_t j, uint32_t k)
  * height) and a column's (cos, sin of its left edge, centre, right edge):
  * the callers advance them by recurrence, so no stratum needs trig. */
 typedef struct irc__cell {
-    double z0, z1, s0, s1, len;
-    double cl, sl, cc, sc, cr, sr;
-    const double *axis;
+    float z0, z1, s0, s1, len;
+    float cl, sl, cc, sc, cr, sr;
+    const float *axis;
     int64_t row, up, dn; /* first sample of the row, of the rows toward the
                             pole and toward the horizon (-1: none) */
 } irc__cell;
 
 /* The edge vector of the sample in column k of the row q describes. */
-static void irc__edge_vector(const irc__grid *g, uint32_t k, const irc__cell *q, double w[3])
+static void irc__edge_vector(const irc__grid *g, uint32_t k, const irc__cell *q, float w[3])
 {
-    const double dphi = 2.0 * IRC_PI / g->n;
+    const float dphi = 2.0f * IRC_PI / g->n;
     const uint32_t i = (uint32_t)q->row + k, kl = k ? k - 1 : g->n - 1,
                    kr = k + 1 < g->n ? k + 1 : 0;
     const int64_t up = q->up < 0 ? -1 : q->up + k, dn = q->dn < 0 ? -1 : q->dn + k;
-    double nu[3];
+    float nu[3];
     int c;
-    w[0] = w[1] = w[2] = 0.0;
+    w[0] = w[1] = w[2] = 0.0f;
     /* Left and right: meridian edges, unit normals along -/+ e_phi. */
     for (c = 0; c < 3; c++)
         nu[c] = q->sl * g->t1[c] - q->cl * g->t2[c];
@@ -162,11 +162,11 @@ static void irc__edge_vector(const irc__grid *g, uint32_t k, const irc__cell *q,
  * the singular part through the edge vector e (irc__edge), -L y_i e.  w
  * is the stratum's direction, dw = 1 (the caller scales). */
 static void irc__sh_add(const irc_cache *c, irc__shsum *a, const irc__sample *x,
-                        const double w[3], const double *n, const double e[3])
+                        const float w[3], const float *n, const float e[3])
 {
     const int nc = (int)c->sh_n, nch = (int)c->sh_ch, bands = (int)c->cfg.sh_bands;
     const int grad = c->off_shg != 0;
-    double y[IRC__NC], gy[IRC__NC][3], v[3 * IRC__NC], id;
+    float y[IRC__NC], gy[IRC__NC][3], v[3 * IRC__NC], id;
     int ch, i, k;
     irc__sh_eval(bands, w, y, grad ? gy : NULL);
     for (ch = 0; ch < nch; ch++)
@@ -174,50 +174,50 @@ static void irc__sh_add(const irc_cache *c, irc__shsum *a, const irc__sample *x,
             a->c[ch][i] += x->l[ch] * y[i];
     if (n)
         for (ch = 0; ch < 3; ch++)
-            a->e[ch] += x->l[ch] * irc__dot3d(w, n);
+            a->e[ch] += x->l[ch] * irc__dot3(w, n);
     if (!irc__hit(x))
         return;
-    id = 1.0 / x->d;
+    id = 1.0f / x->d;
     a->inv_d += id;
     if (!grad)
         return;
     /* One vector per sample, then a plain multiply-add per channel. */
     for (i = 0; i < nc; i++)
         for (k = 0; k < 3; k++)
-            v[3 * i + k] = (gy[i][k] - 2.0 * y[i] * w[k]) * id + y[i] * e[k];
+            v[3 * i + k] = (gy[i][k] - 2.0f * y[i] * w[k]) * id + y[i] * e[k];
     for (ch = 0; ch < nch; ch++) {
-        const double l = x->l[ch];
+        const float l = x->l[ch];
         for (i = 0; i < 3 * nc; i++)
             a->g[ch][i] -= l * v[i];
     }
 }
 
-static void irc__sh_accumulate(const irc_cache *c, const irc__grid *g, const double *n,
+static void irc__sh_accumulate(const irc_cache *c, const irc__grid *g, const float *n,
                                irc__shsum *a)
 {
-    const double dw = 2.0 * IRC_PI / c->strata, idw = 1.0 / dw, dphi = 2.0 * IRC_PI / g->n;
-    const double cd = IRC_COS(dphi), sd = IRC_SIN(dphi), ch = IRC_COS(0.5 * dphi),
-                 sh = IRC_SIN(0.5 * dphi);
+    const float dw = 2.0f * IRC_PI / c->strata, idw = 1.0f / dw, dphi = 2.0f * IRC_PI / g->n;
+    const float cd = IRC_COSF(dphi), sd = IRC_SINF(dphi), ch = IRC_COSF(0.5f * dphi),
+                 sh = IRC_SINF(0.5f * dphi);
     int64_t jj;
     uint32_t k;
     int q;
     for (jj = 0; jj < (int64_t)(g->halves * g->m); jj++) {
         const uint32_t j = jj < g->m ? (uint32_t)jj : g->m - 1 - (uint32_t)(jj - g->m);
         irc__cell cell;
-        cell.z0 = 1.0 - (double)j / g->m;
-        cell.z1 = 1.0 - (j + 1.0) / g->m;
-        cell.s0 = IRC_SQRT(1.0 - cell.z0 * cell.z0);
-        cell.s1 = IRC_SQRT(1.0 - cell.z1 * cell.z1);
-        cell.len = IRC_ACOS(cell.z1) - IRC_ACOS(cell.z0);
-        cell.cl = 1.0;
-        cell.sl = 0.0;
+        cell.z0 = 1.0f - (float)j / g->m;
+        cell.z1 = 1.0f - (j + 1.0f) / g->m;
+        cell.s0 = IRC_SQRTF(1.0f - cell.z0 * cell.z0);
+        cell.s1 = IRC_SQRTF(1.0f - cell.z1 * cell.z1);
+        cell.len = IRC_ACOSF(cell.z1) - IRC_ACOSF(cell.z0);
+        cell.cl = 1.0f;
+        cell.sl = 0.0f;
         cell.axis = g->axis[jj < g->m ? 0 : 1];
         cell.row = irc__at(g, jj, 0);
         cell.up = irc__at(g, jj < g->m ? jj - 1 : jj + 1, 0);
         cell.dn = irc__at(g, jj < g->m ? jj + 1 : jj - 1, 0);
         for (k = 0; k < g->n; k++) {
             const uint32_t i = (uint32_t)cell.row + k;
-            double w[3], e[3] = {0, 0, 0};
+            float w[3], e[3] = {0, 0, 0};
             cell.cc = cell.cl * ch - cell.sl * sh;
             cell.sc = cell.sl * ch + cell.cl * sh;
             cell.cr = cell.cl * cd - cell.sl * sd;
@@ -246,10 +246,10 @@ static void irc__sh_accumulate(const irc_cache *c, const irc__grid *g, const dou
  * them into *a. */
 int irc__sh_sample(irc__call *k, irc__shsum *a)
 {
-    static const double up[3] = {0, 0, 1}, down[3] = {0, 0, -1};
+    static const float up[3] = {0, 0, 1}, down[3] = {0, 0, -1};
     irc_cache *c = k->c;
-    const double *un = k->q.free ? NULL : k->q.un;
-    double t1[3], t2[3];
+    const float *un = k->q.free ? NULL : k->q.n;
+    float t1[3], t2[3];
     irc__grid g;
     uint32_t used, h;
     int st;

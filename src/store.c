@@ -33,14 +33,12 @@ static int irc__query_make(const irc_cache *c, const float p[3], const float n[3
     if (q->free) {
         if (!c->kind->free_points)
             return IRC_ERR_NULL;
-        q->un[0] = q->un[1] = q->un[2] = 0.0;
-    } else if ((st = irc__check_normal(n, q->un)) < 0) {
+        q->n[0] = q->n[1] = q->n[2] = 0.0f;
+    } else if ((st = irc__check_normal(n, q->n)) < 0) {
         return st;
     }
-    for (k = 0; k < 3; k++) {
+    for (k = 0; k < 3; k++)
         q->p[k] = p[k];
-        q->n[k] = (float)q->un[k];
-    }
     return IRC_OK;
 }
 
@@ -185,8 +183,8 @@ static void irc__clamp_visit(void *ud, uint32_t id)
 {
     irc__near *k = (irc__near *)ud;
     irc__rec *j = irc__rec_at(k->c, id);
-    double dx = (double)j->p[0] - k->r->p[0], dy = (double)j->p[1] - k->r->p[1],
-           dz = (double)j->p[2] - k->r->p[2], d = IRC_SQRT(dx * dx + dy * dy + dz * dz);
+    float dx = (float)j->p[0] - k->r->p[0], dy = (float)j->p[1] - k->r->p[1],
+           dz = (float)j->p[2] - k->r->p[2], d = IRC_SQRTF(dx * dx + dy * dy + dz * dz);
     if (!k->back && d < k->r->r && j->r + d < k->r->r)
         k->r->r = (float)(j->r + d);
     else if (k->back && d < j->r && k->r->r + d < j->r)
@@ -201,7 +199,7 @@ static void irc__clamp_neighbours(irc_cache *c, irc__rec *r)
     k.back = 0;
     irc__index_range(c, r->p, r->r, irc__clamp_visit, &k);
     k.back = 1;
-    irc__index_range(c, r->p, -1.0, irc__clamp_visit, &k);
+    irc__index_range(c, r->p, -1.0f, irc__clamp_visit, &k);
     if (r->r < c->cfg.min_radius)
         r->r = c->cfg.min_radius;
 }
@@ -216,7 +214,7 @@ void irc__commit_locked(irc_cache *c, uint32_t id)
 
 /* A checked record packed straight into its slot: no packed copy of the
  * largest kind on the stack. */
-static void irc__pack_at(irc_cache *c, const void *rec, const double un[3], uint32_t id)
+static void irc__pack_at(irc_cache *c, const void *rec, const float un[3], uint32_t id)
 {
     IRC_MEMSET(irc__rec_at(c, id), 0, c->rec_size);
     c->kind->pack(c, rec, un, irc__rec_at(c, id));
@@ -227,7 +225,7 @@ static void irc__pack_at(irc_cache *c, const void *rec, const double un[3], uint
  * no lock is taken and lookups, which see only indexed records, are not
  * disturbed.  A pass never evicts (that would change what its lookups
  * see): without a free slot the record is not stored. */
-static int irc__defer(irc_cache *c, const void *rec, const double un[3])
+static int irc__defer(irc_cache *c, const void *rec, const float un[3])
 {
     uint64_t k = c->port->fetch_add(&c->home->pending, 1);
     if (k >= (uint64_t)(c->capacity - c->home->pass_base))
@@ -238,7 +236,7 @@ static int irc__defer(irc_cache *c, const void *rec, const double un[3])
 
 /* Stores a checked record (un: its unit normal) in a free slot, or in
  * CLOCK's victim. */
-static int irc__store(irc_cache *c, const void *rec, const double un[3])
+static int irc__store(irc_cache *c, const void *rec, const float un[3])
 {
     uint32_t id;
     if (c->home->pass_open)
@@ -263,7 +261,7 @@ static int irc__store(irc_cache *c, const void *rec, const double un[3])
 
 static int irc__insert_checked(irc_cache *c, const void *rec)
 {
-    double un[3];
+    float un[3];
     int st;
     if ((st = c->kind->check(c, rec, un)) < 0)
         return st;
@@ -296,7 +294,7 @@ typedef struct irc__walk {
     irc_cache *c;
     const irc__query *q;
     void *acc;
-    double w;
+    float w;
     uint32_t *ids, cap, found;
 } irc__walk;
 
@@ -305,7 +303,7 @@ static void irc__visit(void *ud, uint32_t id)
     irc__walk *v = (irc__walk *)ud;
     const irc_cache *c = v->c;
     const irc__rec *r = irc__rec_at(c, id);
-    double w;
+    float w;
     float ni[3];
     if (!irc__within_reach(c, r, v->q->p) || !c->kind->weigh(c, r, v->q, &w, ni))
         return;

@@ -28,29 +28,8 @@
 #ifndef IRC_MEMSET
 #define IRC_MEMSET(d, v, n) memset((d), (v), (n))
 #endif
-#ifndef IRC_SQRT
-#define IRC_SQRT(x) sqrt(x)
-#endif
 #ifndef IRC_SQRTF
 #define IRC_SQRTF(x) sqrtf(x)
-#endif
-#ifndef IRC_SIN
-#define IRC_SIN(x) sin(x)
-#endif
-#ifndef IRC_COS
-#define IRC_COS(x) cos(x)
-#endif
-#ifndef IRC_TAN
-#define IRC_TAN(x) tan(x)
-#endif
-#ifndef IRC_ASIN
-#define IRC_ASIN(x) asin(x)
-#endif
-#ifndef IRC_ACOS
-#define IRC_ACOS(x) acos(x)
-#endif
-#ifndef IRC_ATAN2
-#define IRC_ATAN2(y, x) atan2((y), (x))
 #endif
 #ifndef IRC_SINF
 #define IRC_SINF(x) sinf(x)
@@ -58,23 +37,45 @@
 #ifndef IRC_COSF
 #define IRC_COSF(x) cosf(x)
 #endif
-#ifndef IRC_FABS
-#define IRC_FABS(x) fabs(x)
+#ifndef IRC_TANF
+#define IRC_TANF(x) tanf(x)
+#endif
+#ifndef IRC_ASINF
+#define IRC_ASINF(x) asinf(x)
+#endif
+#ifndef IRC_ACOSF
+#define IRC_ACOSF(x) acosf(x)
+#endif
+#ifndef IRC_ATAN2F
+#define IRC_ATAN2F(y, x) atan2f((y), (x))
 #endif
 #ifndef IRC_FABSF
 #define IRC_FABSF(x) fabsf(x)
 #endif
+#ifndef IRC_FLOORF
+#define IRC_FLOORF(x) floorf(x)
+#endif
+#ifndef IRC_FREXPF
+#define IRC_FREXPF(x, e) frexpf((x), (e))
+#endif
+#ifndef IRC_LDEXPF
+#define IRC_LDEXPF(x, e) ldexpf((x), (e))
+#endif
+#ifndef IRC_POWF
+#define IRC_POWF(x, y) powf((x), (y))
+#endif
+/* Double, for the index's exact cube arithmetic only (index.c). */
 #ifndef IRC_FLOOR
 #define IRC_FLOOR(x) floor(x)
+#endif
+#ifndef IRC_FABS
+#define IRC_FABS(x) fabs(x)
 #endif
 #ifndef IRC_FREXP
 #define IRC_FREXP(x, e) frexp((x), (e))
 #endif
 #ifndef IRC_LDEXP
 #define IRC_LDEXP(x, e) ldexp((x), (e))
-#endif
-#ifndef IRC_POW
-#define IRC_POW(x, y) pow((x), (y))
 #endif
 
 #ifndef IRC_ASSERT
@@ -86,7 +87,7 @@
 #endif
 #endif
 
-#define IRC_PI 3.14159265358979323846
+#define IRC_PI 3.14159265358979323846f
 
 /* Finite test that does not depend on the compiler honouring isfinite under
  * aggressive float options: exponent bits all ones means Inf or NaN. */
@@ -102,12 +103,12 @@ static inline int irc__finite3(const float v[3])
     return irc__finite(v[0]) && irc__finite(v[1]) && irc__finite(v[2]);
 }
 
-static inline double irc__dot3d(const double a[3], const double b[3])
+static inline float irc__dot3(const float a[3], const float b[3])
 {
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
-static inline void irc__cross3d(const double a[3], const double b[3], double out[3])
+static inline void irc__cross3(const float a[3], const float b[3], float out[3])
 {
     out[0] = a[1] * b[2] - a[2] * b[1];
     out[1] = a[2] * b[0] - a[0] * b[2];

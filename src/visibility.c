@@ -33,11 +33,11 @@
 #define IRC__BISECT 14        /* rounds at most: a bracket shrinks 2^14-fold; at 16 it reaches
                                  float precision and hits near tangency turn random */
 #ifndef IRC__VIS_BUDGET
-#define IRC__VIS_BUDGET 0.3   /* extra rays (zenith and bisection) per stratum at most */
+#define IRC__VIS_BUDGET 0.3f   /* extra rays (zenith and bisection) per stratum at most */
 #endif
-#define IRC__DEPTH_JUMP 1.25  /* a depth ratio above this may be an edge */
-#define IRC__CONTINUOUS 0.02  /* final brackets closer than this are one surface */
-#define IRC__SMOOTH 0.2       /* |n.w| below this: a smooth silhouette */
+#define IRC__DEPTH_JUMP 1.25f  /* a depth ratio above this may be an edge */
+#define IRC__CONTINUOUS 0.02f  /* final brackets closer than this are one surface */
+#define IRC__SMOOTH 0.2f       /* |n.w| below this: a smooth silhouette */
 
 static int irc__escaped(const irc__sample *a)
 {
@@ -144,12 +144,12 @@ static void irc__mid(const float a[3], const float b[3], float out[3])
  * being sky, within four times the blocker's depth). */
 static void irc__narrow(irc__cross *x, const irc_ray *r, const irc_hit *h, int netvis)
 {
-    double lim = x->dfar < HUGE_VALF ? IRC_SQRT((double)x->dnear * x->dfar) : 4.0 * x->dnear;
+    float lim = x->dfar < HUGE_VALF ? IRC_SQRTF((float)x->dnear * x->dfar) : 4.0f * x->dnear;
     int k;
     if (h->status == IRC_RAY_FAILED)
         return;
     if (h->status == IRC_RAY_HIT && h->dist < lim) {
-        double v[3];
+        float v[3];
         irc__check_normal(h->normal, v);
         for (k = 0; k < 3; k++) {
             x->wp[k] = x->wa[k];
@@ -183,34 +183,34 @@ static void irc__narrow(irc__cross *x, const irc_ray *r, const irc_hit *h, int n
  * depth. */
 static void irc__silhouette(irc__cross *x)
 {
-    double nw = 0.0, np = 0.0, ab = 0.0, pa = 0.0, dn = 0.0, t;
+    float nw = 0.0f, np = 0.0f, ab = 0.0f, pa = 0.0f, dn = 0.0f, t;
     int k;
     irc__mid(x->wa, x->wb, x->ws);
     x->ds = x->da;
     if (x->dp != x->dp)
         return;
     for (k = 0; k < 3; k++) {
-        nw += (double)x->na[k] * x->wa[k];
-        np += (double)x->np[k] * x->wp[k];
-        ab += ((double)x->wb[k] - x->wa[k]) * ((double)x->wb[k] - x->wa[k]);
-        pa += ((double)x->wa[k] - x->wp[k]) * ((double)x->wa[k] - x->wp[k]);
-        dn += ((double)x->na[k] - x->np[k]) * ((double)x->na[k] - x->np[k]);
+        nw += (float)x->na[k] * x->wa[k];
+        np += (float)x->np[k] * x->wp[k];
+        ab += ((float)x->wb[k] - x->wa[k]) * ((float)x->wb[k] - x->wa[k]);
+        pa += ((float)x->wa[k] - x->wp[k]) * ((float)x->wa[k] - x->wp[k]);
+        dn += ((float)x->na[k] - x->np[k]) * ((float)x->na[k] - x->np[k]);
     }
-    nw = IRC_FABS(nw);
-    np = IRC_FABS(np);
+    nw = IRC_FABSF(nw);
+    np = IRC_FABSF(np);
     if (!(nw < IRC__SMOOTH) || !(np > nw) || !(x->dp < x->da) || !(dn > pa))
         return;
     x->ds = (float)(x->da + (x->da - x->dp) * nw / (np - nw));
     if (x->ds > 1.5f * x->da)
         x->ds = 1.5f * x->da;
     /* nw^2 = K (eps_s - eps), eps along wp -> wa -> wb (chords for angles) */
-    t = nw * nw * IRC_SQRT(pa) / (np * np - nw * nw);
-    if (t > IRC_SQRT(ab))
-        t = IRC_SQRT(ab);
+    t = nw * nw * IRC_SQRTF(pa) / (np * np - nw * nw);
+    if (t > IRC_SQRTF(ab))
+        t = IRC_SQRTF(ab);
     {
         float w[3];
         for (k = 0; k < 3; k++)
-            w[k] = (float)(x->wa[k] + ((double)x->wb[k] - x->wa[k]) * t / IRC_SQRT(ab));
+            w[k] = (float)(x->wa[k] + ((float)x->wb[k] - x->wa[k]) * t / IRC_SQRTF(ab));
         irc__mid(w, w, x->ws);
     }
 }
@@ -221,9 +221,9 @@ static void irc__silhouette(irc__cross *x)
  * them. */
 static int irc__bisect(irc__call *k, irc__sample *s, uint32_t count, int netvis)
 {
-    const double budget = IRC__VIS_BUDGET * k->c->strata - 1.0;
+    const float budget = IRC__VIS_BUDGET * k->c->strata - 1.0f;
     const uint32_t rounds = count == 0 || budget < count ? 0u
-                            : budget >= (double)IRC__BISECT * count ? IRC__BISECT
+                            : budget >= (float)IRC__BISECT * count ? IRC__BISECT
                                                                     : (uint32_t)(budget / count);
     const irc_cache *c = k->c;
     irc__cross *x = irc__slot_cross(c, s);
@@ -262,45 +262,45 @@ static int irc__bisect(irc__call *k, irc__sample *s, uint32_t count, int netvis)
  * weight q = (L_vis - L_blk) cos(theta)/D per channel, and for a smooth
  * blocker the silhouette's normal nu (its own normal there, n.X ~ 0). */
 typedef struct irc__end {
-    double x[3], q[3], nu[3], e[3];
+    float x[3], q[3], nu[3], e[3];
     int smooth;
 } irc__end;
 
-static void irc__end_of(const irc__cross *c, const double n[3], int netvis, irc__end *o)
+static void irc__end_of(const irc__cross *c, const float n[3], int netvis, irc__end *o)
 {
     float xf[3];
-    double cs, nx = 0.0, len = 0.0, orient = 0.0;
+    float cs, nx = 0.0f, len = 0.0f, orient = 0.0f;
     int k;
     for (k = 0; k < 3; k++)
         xf[k] = c->ws[k];
     for (k = 0; k < 3; k++) {
         o->x[k] = xf[k];
-        o->e[k] = (double)c->wb[k] - c->wa[k];
-        nx += (double)c->na[k] * xf[k];
+        o->e[k] = (float)c->wb[k] - c->wa[k];
+        nx += (float)c->na[k] * xf[k];
     }
     /* Irradiance weighs by cos(theta); net visibility (Eq. 47) does not. */
-    cs = netvis ? 1.0 : irc__dot3d(o->x, n);
+    cs = netvis ? 1.0f : irc__dot3(o->x, n);
     for (k = 0; k < 3; k++)
-        o->q[k] = ((double)c->lb[k] - c->la[k]) * (cs > 0.0 ? cs : 0.0) / c->ds;
-    o->smooth = IRC_FABS(nx) < IRC__SMOOTH;
+        o->q[k] = ((float)c->lb[k] - c->la[k]) * (cs > 0.0f ? cs : 0.0f) / c->ds;
+    o->smooth = IRC_FABSF(nx) < IRC__SMOOTH;
     for (k = 0; k < 3; k++) {
         o->nu[k] = c->na[k] - nx * o->x[k];
         len += o->nu[k] * o->nu[k];
         orient += o->nu[k] * o->e[k];
     }
-    len = IRC_SQRT(len) * (orient < 0.0 ? -1.0 : 1.0);
+    len = IRC_SQRTF(len) * (orient < 0.0f ? -1.0f : 1.0f);
     for (k = 0; k < 3; k++)
-        o->nu[k] = len != 0.0 ? o->nu[k] / len : 0.0;
+        o->nu[k] = len != 0.0f ? o->nu[k] / len : 0.0f;
 }
 
 /* Trapezoid rule over the segment between two crossings; the normal is the
  * blocker's own where both ends are smooth, else the chord's (a polygon
  * edge's image), turned toward the visible side. */
-static void irc__segment(const irc__cross *c1, const irc__cross *c2, const double n[3],
-                         int netvis, double g[3][3])
+static void irc__segment(const irc__cross *c1, const irc__cross *c2, const float n[3],
+                         int netvis, float g[3][3])
 {
     irc__end a, b;
-    double ch[3], len, nu[3], e[3], w, orient;
+    float ch[3], len, nu[3], e[3], w, orient;
     int k, i;
     irc__end_of(c1, n, netvis, &a);
     irc__end_of(c2, n, netvis, &b);
@@ -308,24 +308,24 @@ static void irc__segment(const irc__cross *c1, const irc__cross *c2, const doubl
         ch[k] = b.x[k] - a.x[k];
         e[k] = a.e[k] + b.e[k];
     }
-    len = IRC_SQRT(irc__dot3d(ch, ch));
-    if (len == 0.0)
+    len = IRC_SQRTF(irc__dot3(ch, ch));
+    if (len == 0.0f)
         return;
     if (!(a.smooth && b.smooth)) {
-        double mid[3];
+        float mid[3];
         for (k = 0; k < 3; k++)
             mid[k] = a.x[k] + b.x[k];
-        irc__cross3d(mid, ch, nu);
-        w = IRC_SQRT(irc__dot3d(nu, nu));
-        orient = irc__dot3d(nu, e) < 0.0 ? -1.0 : 1.0;
+        irc__cross3(mid, ch, nu);
+        w = IRC_SQRTF(irc__dot3(nu, nu));
+        orient = irc__dot3(nu, e) < 0.0f ? -1.0f : 1.0f;
         for (k = 0; k < 3; k++)
             a.nu[k] = b.nu[k] = orient * nu[k] / w;
     }
     for (i = 0; i < 3; i++) {
-        double v[3], vn;
+        float v[3], vn;
         for (k = 0; k < 3; k++)
-            v[k] = 0.5 * len * (a.q[i] * a.nu[k] + b.q[i] * b.nu[k]);
-        vn = irc__dot3d(v, n); /* only moves in the receiver's plane count */
+            v[k] = 0.5f * len * (a.q[i] * a.nu[k] + b.q[i] * b.nu[k]);
+        vn = irc__dot3(v, n); /* only moves in the receiver's plane count */
         for (k = 0; k < 3; k++)
             g[i][k] += v[k] - vn * n[k];
     }
@@ -338,8 +338,8 @@ static const irc__cross *irc__at(const irc__cross *x, int32_t i)
 
 /* Marching squares: a cell (strata j, j+1 by k, k+1) whose edges hold two
  * crossings holds one silhouette segment; four, two (the shorter pairing). */
-static void irc__cells(irc_cache *c, irc__sample *s, const double n[3], int netvis,
-                       double g[3][3])
+static void irc__cells(irc_cache *c, irc__sample *s, const float n[3], int netvis,
+                       float g[3][3])
 {
     const uint32_t m = c->cfg.strata_theta, nphi = c->cfg.strata_phi;
     const int32_t *h = irc__slot_edges(c, s), *v = h + c->strata;
@@ -374,8 +374,8 @@ static void irc__cells(irc_cache *c, irc__sample *s, const double n[3], int netv
 
 /* The cap above the first row: triangles (zenith, first-row stratum k,
  * stratum k+1), marched like the cells. */
-static void irc__cap(irc_cache *c, irc__sample *s, const double n[3], int netvis,
-                     double g[3][3])
+static void irc__cap(irc_cache *c, irc__sample *s, const float n[3], int netvis,
+                     float g[3][3])
 {
     const uint32_t nphi = c->cfg.strata_phi;
     const int32_t *h = irc__slot_edges(c, s), *z = h + 2u * c->strata;
@@ -403,7 +403,7 @@ static int irc__zenith(irc__call *call, irc__sample *out, float dir[3], float nr
     int k, st;
     for (k = 0; k < 3; k++) {
         r->org[k] = call->q.p[k];
-        r->dir[k] = dir[k] = (float)call->q.un[k];
+        r->dir[k] = dir[k] = call->q.n[k];
         nrm[k] = 0.0f;
     }
     if ((st = irc__cast(call, r, h, 1)) < 0)
@@ -411,7 +411,7 @@ static int irc__zenith(irc__call *call, irc__sample *out, float dir[3], float nr
     if ((st = irc__accept_hit(h, out)) < 0)
         return st;
     if (h->status == IRC_RAY_HIT) {
-        double v[3];
+        float v[3];
         irc__check_normal(h->normal, v);
         for (k = 0; k < 3; k++)
             nrm[k] = (float)v[k];
@@ -423,10 +423,10 @@ static int irc__zenith(irc__call *call, irc__sample *out, float dir[3], float nr
  * the bisection rays (counted in *rays).  netvis: the gradient of the
  * visible solid angle (Eq. 48) instead, in g[0].  Returns IRC_OK or the
  * callback's error. */
-int irc__grad_visibility(irc__call *k, int netvis, double g[3][3])
+int irc__grad_visibility(irc__call *k, int netvis, float g[3][3])
 {
     irc_cache *c = k->c;
-    const double *n = k->q.un;
+    const float *n = k->q.n;
     irc__sample *s = (irc__sample *)(void *)k->slot, top;
     irc__pt zenith;
     float zdir[3], znrm[3];
@@ -454,13 +454,13 @@ int irc__grad_visibility(irc__call *k, int netvis, double g[3][3])
 /* Net visibility (Eq. 47, over 2 pi): each stratum's exact solid angle,
  * (2 pi/N)(cos theta_j- - cos theta_j+), weighs whether its ray escaped, so
  * no 1/cos(theta) weight from the cosine-weighted sampling enters. */
-static double irc__visible(const irc_cache *c, const irc__sample *s)
+static float irc__visible(const irc_cache *c, const irc__sample *s)
 {
     const uint32_t m = c->cfg.strata_theta, nphi = c->cfg.strata_phi;
-    double vis = 0.0, all = 0.0;
+    float vis = 0.0f, all = 0.0f;
     uint32_t j, k;
     for (j = 0; j < m; j++) {
-        double w = IRC_SQRT(1.0 - (double)j / m) - IRC_SQRT(1.0 - (double)(j + 1) / m);
+        float w = IRC_SQRTF(1.0f - (float)j / m) - IRC_SQRTF(1.0f - (float)(j + 1) / m);
         for (k = 0; k < nphi; k++) {
             const irc__sample *a = &s[j * nphi + k];
             if (a->d != a->d)
@@ -470,13 +470,13 @@ static double irc__visible(const irc_cache *c, const irc__sample *s)
                 vis += w;
         }
     }
-    return all > 0.0 ? vis / all : 0.0;
+    return all > 0.0f ? vis / all : 0.0f;
 }
 
 static int irc__occlusion(irc__call *k, void *dst)
 {
     irc_occlusion *out = (irc_occlusion *)dst;
-    double t1[3], t2[3], g[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+    float t1[3], t2[3], g[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
     int st, i;
     if ((st = irc__hemisphere(k, t1, t2)) < 0)
         return st;
@@ -484,7 +484,7 @@ static int irc__occlusion(irc__call *k, void *dst)
     if ((st = irc__grad_visibility(k, 1, g)) < 0)
         return st;
     for (i = 0; i < 3; i++)
-        out->grad[i] = (float)(g[0][i] / (2.0 * IRC_PI));
+        out->grad[i] = (float)(g[0][i] / (2.0f * IRC_PI));
     out->rays = k->rays;
     return IRC_OK;
 }

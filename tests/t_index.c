@@ -82,7 +82,8 @@ static uint32_t compare(irc_cache *c, uint32_t queries, int decades, unsigned lo
              * with its normal: accepted, and only just, which is where a
              * too-tight pruning bound would lose it. */
             const irc__rec *r = irc__rec_at(c, (uint32_t)(xrand(st) * c->count));
-            double t1[3], t2[3], nd[3], ang = xrand(st) * 6.283185307179586;
+            float t1[3], t2[3], nd[3];
+            double ang = xrand(st) * 6.283185307179586;
             double d = (0.95 + 0.049 * xrand(st)) * c->cfg.accuracy * r->r;
             float ni[3];
             irc__oct_decode(r->n, ni);
@@ -104,14 +105,14 @@ static uint32_t compare(irc_cache *c, uint32_t queries, int decades, unsigned lo
             }
         }
         {   /* the scan below takes the unit normal a lookup makes of n */
-            double un[3];
+            float un[3];
             irc__check_normal(n, un);
             for (k = 0; k < 3; k++)
                 n[k] = (float)un[k];
         }
         irc_cache_neighbours(c, p, n, ids, 4096, &cnt);
         for (i = 0; i < m; i++) {
-            double w, v[3];
+            float w, v[3];
             float ni[3], dx = p[0] - px[i], dy = p[1] - py[i], dz = p[2] - pz[i];
             if (dx * dx + dy * dy + dz * dz > r2[i])
                 continue;

@@ -5,6 +5,29 @@
 #include "scenes.h"
 #include "test.h"
 
+void sh_eval_d(int bands, const double s[3], double *y, double (*g)[3])
+{
+    float sf[3] = {(float)s[0], (float)s[1], (float)s[2]}, yf[IRC__NC], gf[IRC__NC][3];
+    int i, k;
+    irc__sh_eval(bands, sf, yf, g ? gf : NULL);
+    for (i = 0; i < bands * bands; i++) {
+        y[i] = yf[i];
+        for (k = 0; g && k < 3; k++)
+            g[i][k] = gf[i][k];
+    }
+}
+
+void frame_d(const double n[3], double t1[3], double t2[3])
+{
+    float nf[3] = {(float)n[0], (float)n[1], (float)n[2]}, a[3], b[3];
+    int k;
+    irc__frame(nf, a, b);
+    for (k = 0; k < 3; k++) {
+        t1[k] = a[k];
+        t2[k] = b[k];
+    }
+}
+
 /* Gauss-Legendre nodes and weights on [-1, 1] by Newton's method on P_n. */
 static void gauss_legendre(int n, double *x, double *w)
 {
@@ -46,7 +69,7 @@ TEST(test_sh_orthonormal)
         for (b = 0; b < NP; b++) {
             double ph = 2.0 * TPI * b / NP, r = sqrt(1.0 - gx[a] * gx[a]);
             double s[3] = {r * cos(ph), r * sin(ph), gx[a]}, y[C];
-            irc__sh_eval(B, s, y, NULL);
+            sh_eval_d(B, s, y, NULL);
             for (i = 0; i < C; i++)
                 for (j = 0; j < C; j++)
                     acc[i][j] += gw[a] * (2.0 * TPI / NP) * y[i] * y[j];
@@ -58,7 +81,8 @@ TEST(test_sh_orthonormal)
                 worst = e;
         }
     printf("  largest |<y_i, y_j> - delta_ij| over 25 x 25: %.2e\n", worst);
-    CHECK(worst < 1e-6, "not orthonormal: %g", worst);
+    /* The basis is float: each y within about 1e-6 of its value. */
+    CHECK(worst < 3e-6, "not orthonormal: %g", worst);
 }
 
 /* Bands 0-2 against their closed forms (Condon-Shortley phase). */
@@ -73,7 +97,7 @@ TEST(test_sh_closed_forms)
             s[i] = xrand(&st) * 2.0 - 1.0;
         l = sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
         x = s[0] / l; yy = s[1] / l; z = s[2] / l;
-        irc__sh_eval(3, s, y, NULL);
+        sh_eval_d(3, s, y, NULL);
         want[0] = 0.5 / sqrt(TPI);
         want[1] = -sqrt(3.0 / (4.0 * TPI)) * yy;
         want[2] = sqrt(3.0 / (4.0 * TPI)) * z;
@@ -84,7 +108,7 @@ TEST(test_sh_closed_forms)
         want[7] = -sqrt(15.0 / (4.0 * TPI)) * x * z;
         want[8] = sqrt(15.0 / (16.0 * TPI)) * (x * x - yy * yy);
         for (i = 0; i < 9; i++)
-            CHECK(fabs(y[i] - want[i]) < 1e-12, "y_%d %g vs %g", i, y[i], want[i]);
+            CHECK(fabs(y[i] - want[i]) < 1e-6, "y_%d %g vs %g", i, y[i], want[i]); /* float */
     }
 }
 
@@ -105,14 +129,17 @@ TEST(test_sh_gradient)
         for (i = 0; i < 3; i++)
             s[i] = (xrand(&st) * 2.0 - 1.0) * scale;
         len = sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
-        irc__sh_eval(B, s, y, g);
+        sh_eval_d(B, s, y, g);
         for (k = 0; k < 3; k++) {
             double sp[3] = {s[0], s[1], s[2]}, sm[3] = {s[0], s[1], s[2]}, yp[C], ym[C];
-            double h = 1e-5 * len; /* the step and the error scale with |s| */
+            /* The step and the error scale with |s|.  The basis is float,
+             * so a difference carries its roundings (about 1e-6 of y) over
+             * 2h: 2.5e-4 at this step, the truncation (h^2) far below. */
+            double h = 2e-3 * len;
             sp[k] += h;
             sm[k] -= h;
-            irc__sh_eval(B, sp, yp, NULL);
-            irc__sh_eval(B, sm, ym, NULL);
+            sh_eval_d(B, sp, yp, NULL);
+            sh_eval_d(B, sm, ym, NULL);
             for (i = 0; i < B * B; i++) {
                 double fd = (yp[i] - ym[i]) / (2.0 * h), e = fabs(fd - g[i][k]) * len;
                 if (e > worst)
@@ -121,5 +148,5 @@ TEST(test_sh_gradient)
         }
     }
     printf("  largest |analytic - central difference| x |s|: %.2e\n", worst);
-    CHECK(worst < 1e-6, "gradient off by %g", worst);
+    CHECK(worst < 5e-4, "gradient off by %g", worst);
 }

@@ -44,7 +44,7 @@ static void cap_coeffs(const double p[3], const double cc[3], double rho, int ba
     lam[0] = 2.0 * TPI * (1.0 - x);
     for (l = 1; l < bands; l++)
         lam[l] = 2.0 * TPI * (pl[l - 1] - pl[l + 1]) / (2.0 * l + 1.0);
-    irc__sh_eval(bands, u, y, NULL);
+    sh_eval_d(bands, u, y, NULL);
     for (l = 0; l < bands; l++)
         for (m = -l; m <= l; m++)
             c[l * l + l + m] = lam[l] * y[l * l + l + m];
@@ -57,7 +57,7 @@ static void cap_quadrature(const double u[3], double alpha, int bands, double *c
     const int nt = 400, np = 400;
     double t1[3], t2[3], y[NC];
     int i, j, k;
-    irc__frame(u, t1, t2);
+    frame_d(u, t1, t2);
     memset(c, 0, sizeof(double) * (size_t)(bands * bands));
     for (i = 0; i < nt; i++) {
         double th = alpha * (i + 0.5) / nt, dw = sin(th) * (alpha / nt) * (2.0 * TPI / np);
@@ -65,7 +65,7 @@ static void cap_quadrature(const double u[3], double alpha, int bands, double *c
             double ph = 2.0 * TPI * (j + 0.5) / np, w[3];
             for (k = 0; k < 3; k++)
                 w[k] = sin(th) * (cos(ph) * t1[k] + sin(ph) * t2[k]) + cos(th) * u[k];
-            irc__sh_eval(bands, w, y, NULL);
+            sh_eval_d(bands, w, y, NULL);
             for (k = 0; k < bands * bands; k++)
                 c[k] += dw * y[k];
         }
@@ -213,7 +213,7 @@ static void sky_project(const tscene *s, int bands, double c[3][NC])
         double z = -1.0 + 2.0 * (i + 0.5) / nz, st = sqrt(1.0 - z * z);
         for (j = 0; j < np; j++) {
             double ph = 2.0 * TPI * (j + 0.5) / np, w[3] = {st * cos(ph), st * sin(ph), z};
-            irc__sh_eval(bands, w, y, NULL);
+            sh_eval_d(bands, w, y, NULL);
             for (ch = 0; ch < 3; ch++) {
                 double l = scene_sky(s, w, ch) * (4.0 * TPI / ((double)nz * np));
                 for (k = 0; k < bands * bands; k++)
@@ -229,7 +229,7 @@ static double sky_irradiance(const tscene *s, const double n[3], int ch)
     const int nz = 600, np = 600;
     double t1[3], t2[3], e = 0.0;
     int i, j, k;
-    irc__frame(n, t1, t2);
+    frame_d(n, t1, t2);
     for (i = 0; i < nz; i++) {
         double z = (i + 0.5) / nz, st = sqrt(1.0 - z * z);
         for (j = 0; j < np; j++) {
@@ -274,7 +274,7 @@ TEST(test_sh_irradiance_convolution)
         for (k = 0; k < 3; k++)
             nf[k] = (float)(n[k] /= len);
         CHECK(irc_sh_irradiance(&rec, nf, rgb) == IRC_OK, "irradiance");
-        irc__sh_eval(3, n, y, NULL);
+        sh_eval_d(3, n, y, NULL);
         for (ch = 0; ch < 3; ch++) {
             double want = 0.0, exact;
             for (k = 0; k < 9; k++)
@@ -324,7 +324,7 @@ TEST(test_sh_glossy_zonal)
                 sh.c[0][l * l + l + m] = 1.0f;
                 for (i = 0; i < 3; i++)
                     rd[i] /= len;
-                irc__sh_eval(5, rd, y, NULL);
+                sh_eval_d(5, rd, y, NULL);
                 CHECK(irc_sh_glossy(&sh, r, expo[e], rgb) == IRC_OK, "glossy");
                 worst = fmax(worst, fabs(rgb[0] - al * y[l * l + l + m]));
                 CHECK(rgb[1] == rgb[0] && rgb[2] == rgb[0], "one channel copied");

@@ -30,4 +30,9 @@ typedef struct test_case {
 
 int test_run(const test_case *all, size_t n, int argc, char **argv);
 
+/* The library's SH basis (and its gradient, g may be NULL) and tangent
+ * frame, which work in float, called from double (t_sh.c). */
+void sh_eval_d(int bands, const double s[3], double *y, double (*g)[3]);
+void frame_d(const double n[3], double t1[3], double t2[3]);
+
 #endif
