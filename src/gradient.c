@@ -187,9 +187,11 @@ static void irc__row_coeffs(const irc_cache *c, const float *restrict below,
     }
 }
 
-/* One row's sums, four lanes wide: a sample is 16 bytes (three radiances
- * and the distance), so each lane is one channel and the fourth, the
- * distance's, is computed and dropped.  The radiances are taken
+/* One row's sums, a lane per channel.  A sample is 16 bytes (three
+ * radiances and the distance): with 4-wide SIMD the loop runs four lanes
+ * and the distance's rides along, computed and dropped; a scalar FPU (a
+ * Cortex-M4F) computes every lane it is given, so there it runs three,
+ * and the twelve sums stay in registers.  The radiances are taken
  * relative to ref (the mean): every sum here is one of radiance times
  * coefficients whose total is zero (over the sphere for the boundaries,
  * over each row for the cosines), so a constant changes nothing but would
@@ -197,6 +199,12 @@ static void irc__row_coeffs(const irc_cache *c, const float *restrict below,
  * in double was 1.5e-4 of the translational gradient's length (2.9e-4 of
  * the rotational's) without it, 1.6e-5 (1.1e-4) with it (README, "Where
  * the record time goes"). */
+#if defined(__SSE__) || defined(__ARM_NEON) || defined(__ALTIVEC__) || defined(__wasm_simd128__)
+#define IRC__LANES 4
+#else
+#define IRC__LANES 3
+#endif
+
 typedef struct irc__row_sums {
     float t1[4], t2[4]; /* translational, along t1 and t2 */
     float c[4], s[4];   /* the radiance times cos phi_b and sin phi_b */
@@ -214,8 +222,8 @@ static void irc__row_sum(const irc_cache *c, const irc__sample *a, const float *
     for (k = 0; k < nphi; k++) {
         float l[4];
         const float al = alpha[k], be = beta[k], ck = cb[k], sk = sb[k];
-        IRC_MEMCPY(l, &a[k], sizeof l);
-        for (ch = 0; ch < 4; ch++) {
+        IRC_MEMCPY(l, &a[k], IRC__LANES * sizeof(float));
+        for (ch = 0; ch < IRC__LANES; ch++) {
             l[ch] -= ref[ch];
             t1[ch] += l[ch] * al;
             t2[ch] += l[ch] * be;

@@ -249,10 +249,10 @@ static void irc__root_refit(irc_cache *c, const float p[3])
     uint32_t id;
     int i;
     for (i = 0; i < 3; i++)
-        lo[i] = hi[i] = p[i];
+        lo[i] = hi[i] = (double)p[i];
     for (id = irc__nodes(c)[0].head; id != IRC__NIL; id = irc__ix(c)[id].next)
         for (i = 0; i < 3; i++) {
-            double x = irc__rec_at(c, id)->p[i];
+            double x = (double)irc__rec_at(c, id)->p[i];
             if (x < lo[i]) lo[i] = x;
             if (x > hi[i]) hi[i] = x;
         }
@@ -309,7 +309,7 @@ static void irc__root_cover(irc_cache *c, const float p[3])
     irc__cube q;
     if (!c->home->root_set) {
         double at[3];
-        at[0] = p[0]; at[1] = p[1]; at[2] = p[2];
+        at[0] = (double)p[0]; at[1] = (double)p[1]; at[2] = (double)p[2];
         irc__root_fit(c, at, at);
         c->home->root_set = 1;
     }
@@ -438,7 +438,7 @@ static unsigned irc__children(const irc_cache *c, const irc__node *n, const irc_
     /* Squared distance from p to each child's cube, axis by axis: child
      * bit k of axis i spans [c_i - h, c_i] (k = 0) or [c_i, c_i + h]. */
     for (i = 0; i < 3; i++) {
-        const double p = pr->p[i];
+        const double p = (double)pr->p[i];
         double below = (q->c[i] - q->h) - p, above = p - (q->c[i] + q->h), lo = p - q->c[i],
                hi = q->c[i] - p;
         lo = (lo > below ? lo : below) * unit; /* outside [c - h, c] */
@@ -530,7 +530,7 @@ void irc__index_range(const irc_cache *c, const float p[3], float range, irc__vi
 {
     irc__probe pr;
     pr.p = p;
-    pr.range = range;
+    pr.range = (double)range;
     pr.scale = 1.0 / (double)c->cfg.accuracy;
     pr.fn = fn;
     pr.ud = ud;

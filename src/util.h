@@ -37,9 +37,6 @@
 #ifndef IRC_COSF
 #define IRC_COSF(x) cosf(x)
 #endif
-#ifndef IRC_TANF
-#define IRC_TANF(x) tanf(x)
-#endif
 #ifndef IRC_ASINF
 #define IRC_ASINF(x) asinf(x)
 #endif

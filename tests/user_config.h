@@ -4,8 +4,8 @@
  * checks that the replacements, and only they, took effect. */
 #ifndef IRC_TEST_USER_CONFIG_H
 #define IRC_TEST_USER_CONFIG_H
-double irc_user_sqrt(double x);
+float irc_user_sqrtf(float x);
 void irc_user_assert(int ok);
-#define IRC_SQRT(x) irc_user_sqrt(x)
+#define IRC_SQRTF(x) irc_user_sqrtf(x)
 #define IRC_ASSERT(x) irc_user_assert((x) != 0)
 #endif
