@@ -61,15 +61,15 @@ function depth(f,   best, n, i, list, d, m, j, names) {
     best = 0
     n = split(calls[f], list, " ")
     for (i = 1; i <= n; i++)
-        if ((d = depth(list[i])) > best) best = d
+        if ((d = depth(list[i])) > best) { best = d; via[f] = list[i] }
     if (f in indirect) {
-        if (portmax > best) best = portmax
+        if (portmax > best) { best = portmax; via[f] = "(port)" }
         n = split(targets[base(f)], list, " ")
         for (i = 1; i <= n; i++) {
             m = split(titles[list[i]], names, " ")
             if (m == 0) print "indirect.txt: " list[i] " is not a library function"
             for (j = 1; j <= m; j++)
-                if ((d = depth(names[j])) > best) best = d
+                if ((d = depth(names[j])) > best) { best = d; via[f] = names[j] }
         }
     }
     delete active[f]
@@ -82,8 +82,11 @@ END {
     for (i = 1; i <= n; i++) {
         m = split(titles[e[i]], names, " ")
         worst = 0
-        for (j = 1; j <= m; j++) if ((d = depth(names[j])) > worst) worst = d
+        for (j = 1; j <= m; j++) if ((d = depth(names[j])) > worst) { worst = d; top = names[j] }
         printf "%-32s %6d\n", e[i], worst
+        # -v path=1: the deepest chain, frame by frame
+        for (f = top; path && f != ""; f = via[f])
+            printf "    %-40s %6d\n", base(f), f in frame ? frame[f] : 0
     }
     exit recursion
 }

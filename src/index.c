@@ -464,13 +464,16 @@ static unsigned irc__children(const irc_cache *c, const irc__node *n, const irc_
 }
 
 /* Depth first, children in octant order, each node's list before its
- * children's (the order lookups sum in), with an explicit stack: one
- * frame a level, the cube of the current node kept and restored on the
- * way up by irc__parent_cube. */
+ * children's (the order lookups sum in), with an explicit stack: a level's
+ * block of children, the children still to enter and the octant taken
+ * (6 bytes a level, in three arrays: no padding on a lookup's stack), the
+ * cube of the current node kept and restored on the way up by
+ * irc__parent_cube. */
 static uint32_t irc__descend(const irc_cache *c, const irc__probe *pr)
 {
     uint32_t scanned = 0;
-    struct { uint32_t block; uint8_t mask, oct; } st[IRC__LEVELS + 1];
+    uint32_t block[IRC__LEVELS + 1];
+    uint8_t mask[IRC__LEVELS + 1], octs[IRC__LEVELS + 1];
     const irc__node *nodes = irc__nodes(c);
     irc__cube q;
     int top = 0;
@@ -481,33 +484,33 @@ static uint32_t irc__descend(const irc_cache *c, const irc__probe *pr)
         scanned += irc__scan(c, nodes[0].head, &q, pr);
     if (!nodes[0].child)
         return scanned;
-    st[0].block = nodes[0].child;
-    st[0].mask = (uint8_t)irc__children(c, &nodes[0], &q, pr);
+    block[0] = nodes[0].child;
+    mask[0] = (uint8_t)irc__children(c, &nodes[0], &q, pr);
     for (;;) {
         const irc__node *n;
         irc__cube cq;
         unsigned oct;
-        if (!st[top].mask) {
+        if (!mask[top]) {
             if (top == 0)
                 return scanned;
             top--;
-            irc__parent_cube(&q, (int)st[top].oct);
+            irc__parent_cube(&q, (int)octs[top]);
             continue;
         }
-        for (oct = 0; !(st[top].mask >> oct & 1u); oct++)
+        for (oct = 0; !(mask[top] >> oct & 1u); oct++)
             ;
-        st[top].mask = (uint8_t)(st[top].mask & ~(1u << oct));
-        n = &nodes[st[top].block + oct];
+        mask[top] = (uint8_t)(mask[top] & ~(1u << oct));
+        n = &nodes[block[top] + oct];
         irc__child_cube(&q, (int)oct, &cq);
         if (n->head != IRC__NIL)
             scanned += irc__scan(c, n->head, &cq, pr);
         IRC_ASSERT(!n->child || top < IRC__LEVELS);
         if (n->child && top < IRC__LEVELS) {
-            st[top].oct = (uint8_t)oct;
+            octs[top] = (uint8_t)oct;
             q = cq;
             top++;
-            st[top].block = n->child;
-            st[top].mask = (uint8_t)irc__children(c, n, &q, pr);
+            block[top] = n->child;
+            mask[top] = (uint8_t)irc__children(c, n, &q, pr);
         }
     }
 }

@@ -224,7 +224,9 @@ static void irc__radii(const irc_cache *c, const irc__sample *s, const float n[3
         out->minor_radius = out->radius;
 }
 
-static void irc__record_build(const irc_cache *c, const irc__sample *s,
+/* Not inlined: its locals (and the Hessian's and the leak guard's) would
+ * otherwise sit under the visibility gradient's calls. */
+static IRC__NOINLINE void irc__record_build(const irc_cache *c, const irc__sample *s,
                        const float n[3], const float t1[3],
                        const float t2[3], float gvis[3][3], float fp, irc_record *out)
 {

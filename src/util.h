@@ -86,6 +86,15 @@
 
 #define IRC_PI 3.14159265358979323846f
 
+/* Keeps a function's locals out of its caller's frame, where they would
+ * sit under every other call the caller makes (the stack bounds of make
+ * size). */
+#if defined(__GNUC__)
+#define IRC__NOINLINE __attribute__((noinline))
+#else
+#define IRC__NOINLINE
+#endif
+
 /* Finite test that does not depend on the compiler honouring isfinite under
  * aggressive float options: exponent bits all ones means Inf or NaN. */
 static inline int irc__finite(float x)
