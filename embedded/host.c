@@ -156,8 +156,11 @@ static void irradiance(void)
     st = irc_cache_lookup_or_compute(c, p, n, rgb, &w, NULL);
     printf("     stack irc_cache_lookup_or_compute: %u bytes\n", (unsigned)board_stack_used());
     board_stack_paint(16384);
+    t0 = board_instructions();
     st = irc_cache_lookup(c, q, n, rgb, &w);
+    t1 = board_instructions();
     printf("     stack irc_cache_lookup: %u bytes\n", (unsigned)board_stack_used());
+    printf("     one lookup, one record in reach: %lu instructions\n", (unsigned long)(t1 - t0));
     check(st == IRC_OK && fabs(rgb[0] - PI) < 1e-4, "lookup beside the record", rgb[0], PI);
     irc_fini(c);
     cfg.strata_theta = 32;
