@@ -397,18 +397,20 @@ typedef struct irc_config {
  * records: max_records; s: strata M * N; t: cfg.threads; b: cfg.max_batch;
  * for SH caches, bands L and channels ch.  The arithmetic is size_t's: on a
  * 32-bit target a bound above 4 GiB wraps (no static block is that large
- * there).
+ * there).  Each thread's slot also holds the record a lookup-or-compute
+ * builds (sizeof(irc_record) or sizeof(irc_sh)).
  */
 #define IRC_FOOTPRINT_BOUND(features, records, s, t, b)                          \
     (8192u + (size_t)(s) * 40u +                                                 \
-     (size_t)(t) * (384u + (size_t)(s) * (((features) & IRC_FEATURE_VISIBILITY) ? 456u : \
+     (size_t)(t) * (448u + sizeof(irc_record) +                                  \
+                    (size_t)(s) * (((features) & IRC_FEATURE_VISIBILITY) ? 456u : \
                                           ((features) & IRC_FEATURE_HESSIAN) ? 88u : 56u) + \
                     (size_t)(b) * 56u) + \
      (size_t)(records) * (((features) & IRC_FEATURE_HESSIAN) ? 85u : 77u) +     \
      ((size_t)(records) / 8u + 16u) * 128u)
 #define IRC_SH_FOOTPRINT_BOUND(records, bands, ch, s, t, b)                      \
     (8192u + (size_t)(s) * 40u +                                                 \
-     (size_t)(t) * (128u + (size_t)(s) * 112u + (size_t)(b) * 56u) +             \
+     (size_t)(t) * (192u + sizeof(irc_sh) + (size_t)(s) * 112u + (size_t)(b) * 56u) + \
      (size_t)(records) * (32u + 16u * (size_t)(bands) * (bands) * (ch) + 4u + 1u) + \
      ((size_t)(records) / 8u + 16u) * 128u)
 

@@ -195,6 +195,7 @@ struct irc_cache {
     uint32_t node_cap;       /* nodes in the pool (1 + 8 k) */
     size_t lock_bytes;       /* room reserved for the port's lock */
     size_t slot_bytes;       /* scratch bytes per thread slot */
+    size_t slot_rec;         /* where in a slot its record lies */
     size_t total_bytes;      /* bytes of the block in use from the cache on */
     /* Offsets from the address of home. */
     size_t o_lock, o_scratch, o_records, o_ix, o_nodes, o_ctr,
@@ -253,6 +254,12 @@ static inline const void *irc__gtab(const irc_cache *c)
 static inline unsigned char *irc__slot(const irc_cache *c, uint32_t t)
 {
     return irc__part(c, c->o_scratch + (size_t)t * c->slot_bytes);
+}
+/* The record a lookup-or-compute builds in slot t (an irc_record or an
+ * irc_sh, by the cache's kind). */
+static inline void *irc__slot_record(const irc_cache *c, uint32_t t)
+{
+    return irc__slot(c, t) + c->slot_rec;
 }
 static inline irc__rec *irc__rec_at(const irc_cache *c, uint32_t id)
 {
@@ -367,9 +374,9 @@ uint64_t irc__native_get(const unsigned char *p, unsigned width);
 int irc__lookup_once(irc_cache *c, const irc__query *q, void *out, float *weight, void *acc);
 int irc__lookup(irc_cache *c, const irc__kind *want, const float p[3], const float n[3],
                 void *out, float *weight);
-/* rec: room for the kind's public record (irc_record, irc_sh). */
+/* The record it computes on a miss is built in the claimed slot. */
 int irc__lookup_or_compute(irc_cache *c, const irc__kind *want, float footprint, const float p[3],
-                           const float n[3], void *out, float *weight, void *host, void *rec);
+                           const float n[3], void *out, float *weight, void *host);
 int irc__record_get(irc_cache *c, const irc__kind *want, uint32_t id, void *out);
 void irc__count(irc_cache *c, int which, uint64_t v);
 

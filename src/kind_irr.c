@@ -287,8 +287,7 @@ int irc_cache_lookup_or_compute(irc_cache *c, const float p[3], const float n[3]
 int irc_cache_lookup_or_compute_px(irc_cache *c, const float p[3], const float n[3],
                                    float footprint, float rgb[3], float *weight, void *host)
 {
-    irc_record rec;
-    return irc__lookup_or_compute(c, &irc__kind_irr, footprint, p, n, rgb, weight, host, &rec);
+    return irc__lookup_or_compute(c, &irc__kind_irr, footprint, p, n, rgb, weight, host);
 }
 
 int irc_cache_record(irc_cache *c, uint32_t id, irc_record *out)

@@ -16,7 +16,7 @@
 
 typedef struct irc__layout {
     uint64_t lock, scratch, records, ix, nodes, ctr, used, gtab, total;
-    uint64_t slot_bytes, lock_bytes;
+    uint64_t slot_bytes, slot_rec, lock_bytes;
     uint32_t rec_size, off_t, off_r, off_a, off_g, off_sh, off_shg, node_cap, samples;
 } irc__layout;
 
@@ -101,7 +101,11 @@ static void irc__layout_of(const irc_config *cfg, uint32_t capacity, irc__layout
 {
     uint64_t at = irc__up(sizeof(irc_cache));
     irc__record_layout(cfg, l);
+    /* The slot ends with the record a lookup-or-compute builds, of the
+     * cache's kind: on the stack it would sit over the whole lookup. */
     l->slot_bytes = irc__slot_layout(cfg, l);
+    l->slot_rec = l->slot_bytes;
+    l->slot_bytes += irc__up(cfg->features & IRC_FEATURE_SH ? sizeof(irc_sh) : sizeof(irc_record));
     l->node_cap = irc__node_cap(capacity);
     l->lock_bytes = irc__up(cfg->port->lock_size ? cfg->port->lock_size : 1);
     l->lock = at;
@@ -184,6 +188,7 @@ static void irc__set_parts(irc_cache *c, const irc__layout *l)
     c->node_cap = l->node_cap;
     c->lock_bytes = (size_t)l->lock_bytes;
     c->slot_bytes = (size_t)l->slot_bytes;
+    c->slot_rec = (size_t)l->slot_rec;
     c->total_bytes = (size_t)l->total;
     c->o_lock = (size_t)l->lock;
     c->o_scratch = (size_t)l->scratch;

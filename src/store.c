@@ -113,16 +113,22 @@ static void irc__slot_release(irc_cache *c, uint32_t t)
     while (!c->port->cas(&c->home->slots_busy, busy, busy & ~(1ull << t)));
 }
 
-/* Runs fn with slot t, then gives the slot back. */
-static int irc__run(irc_cache *c, irc__call *k, uint32_t t, void *host,
-                    int (*fn)(irc__call *k, void *out), void *out)
+/* Runs fn with slot t, which stays claimed. */
+static int irc__run_in(irc_cache *c, irc__call *k, uint32_t t, void *host,
+                       int (*fn)(irc__call *k, void *out), void *out)
 {
-    int st;
     k->c = c;
     k->slot = irc__slot(c, t);
     k->host = host;
     k->rays = 0;
-    st = fn(k, out);
+    return fn(k, out);
+}
+
+/* Runs fn with slot t, then gives the slot back. */
+static int irc__run(irc_cache *c, irc__call *k, uint32_t t, void *host,
+                    int (*fn)(irc__call *k, void *out), void *out)
+{
+    int st = irc__run_in(c, k, t, host, fn, out);
     irc__slot_release(c, t);
     return st;
 }
@@ -391,10 +397,11 @@ static int irc__keep(irc_cache *c, const void *rec, void *out, float *weight)
 
 int irc__lookup_or_compute(irc_cache *c, const irc__kind *want, float footprint,
                            const float p[3], const float n[3], void *out, float *weight,
-                           void *host, void *rec)
+                           void *host)
 {
     irc__call k;
     uint32_t t;
+    void *rec;
     int st, waited = 0;
     if ((st = irc__open(c, want, out, p, n, &k.q)) < 0)
         return st;
@@ -412,10 +419,15 @@ int irc__lookup_or_compute(irc_cache *c, const irc__kind *want, float footprint,
         irc__slot_release(c, t);
         return irc__count_lookup(c, st);
     }
-    if ((st = irc__run(c, &k, t, host, c->kind->compute, rec)) < 0)
-        return st;
-    irc__count_compute(c, &k, 1, waited);
-    return irc__keep(c, rec, out, weight);
+    /* The record is built in the slot's tail and kept before the slot is
+     * given back. */
+    rec = irc__slot_record(c, t);
+    if ((st = irc__run_in(c, &k, t, host, c->kind->compute, rec)) >= 0) {
+        irc__count_compute(c, &k, 1, waited);
+        st = irc__keep(c, rec, out, weight);
+    }
+    irc__slot_release(c, t);
+    return st;
 }
 
 int irc__record_get(irc_cache *c, const irc__kind *want, uint32_t id, void *out)
