@@ -85,19 +85,31 @@ unsigned irc__field_width(const irc_cache *c, uint32_t at)
     return 4;
 }
 
-/* A packed record to the snapshot's bytes (to_le) or back. */
+/* The fields of a packed record from byte `from` on, as many whole ones as
+ * fit in max bytes, to the snapshot's bytes (to_le) or back; src and dst
+ * point at byte `from`.  Returns the bytes converted. */
+static uint32_t irc__convert_part(const irc_cache *c, const unsigned char *src,
+                                  unsigned char *dst, uint32_t from, uint32_t max, int to_le)
+{
+    uint32_t at = from;
+    while (at < c->rec_size) {
+        unsigned w = irc__field_width(c, at);
+        if (at + w - from > max)
+            break;
+        if (to_le)
+            irc__le_put(dst + (at - from), irc__native_get(src + (at - from), w), w);
+        else
+            irc__native_put(dst + (at - from), irc__le_get(src + (at - from), w), w);
+        at += w;
+    }
+    return at - from;
+}
+
+/* A whole packed record to the snapshot's bytes (to_le) or back. */
 void irc__convert(const irc_cache *c, const unsigned char *src, unsigned char *dst,
                          int to_le)
 {
-    uint32_t at = 0;
-    while (at < c->rec_size) {
-        unsigned w = irc__field_width(c, at);
-        if (to_le)
-            irc__le_put(dst + at, irc__native_get(src + at, w), w);
-        else
-            irc__native_put(dst + at, irc__le_get(src + at, w), w);
-        at += w;
-    }
+    (void)irc__convert_part(c, src, dst, 0, c->rec_size, to_le);
 }
 
 static void irc__header(const irc_cache *c, uint64_t fingerprint, unsigned char *h)
@@ -164,19 +176,23 @@ static int irc__emit(irc_write_fn fn, void *ctx, unsigned char *out, size_t *at,
 static int irc__write_locked(irc_cache *c, uint64_t fingerprint, unsigned char *out,
                              irc_write_fn fn, void *ctx, size_t *written)
 {
-    union { irc__rec head; unsigned char b[IRC__REC_MAX]; } buf;
-    unsigned char tail[IRC__SNAP_TAIL];
-    uint32_t crc = 0xffffffffu, id;
+    /* Records go out through 64 bytes at a time (whole fields): the stack
+     * holds no record of the largest kind (1.2 KB; README, "Embedded"). */
+    unsigned char buf[IRC__SNAP_HEAD > 64 ? IRC__SNAP_HEAD : 64], tail[IRC__SNAP_TAIL];
+    uint32_t crc = 0xffffffffu, id, from, n;
     size_t at = 0;
     int st;
-    irc__header(c, fingerprint, buf.b);
-    if ((st = irc__emit(fn, ctx, out, &at, buf.b, IRC__SNAP_HEAD, &crc)) < 0)
+    irc__header(c, fingerprint, buf);
+    if ((st = irc__emit(fn, ctx, out, &at, buf, IRC__SNAP_HEAD, &crc)) < 0)
         return st;
-    for (id = 0; id < c->home->count; id++) {
-        irc__convert(c, (const unsigned char *)irc__rec_at(c, id), buf.b, 1);
-        if ((st = irc__emit(fn, ctx, out, &at, buf.b, c->rec_size, &crc)) < 0)
-            return st;
-    }
+    for (id = 0; id < c->home->count; id++)
+        for (from = 0; from < c->rec_size; from += n) {
+            const unsigned char *r = (const unsigned char *)irc__rec_at(c, id) + from;
+            n = irc__convert_part(c, r, buf, from, 64u, 1);
+            IRC_ASSERT(n > 0);
+            if ((st = irc__emit(fn, ctx, out, &at, buf, n, &crc)) < 0)
+                return st;
+        }
     irc__le_put(tail, crc ^ 0xffffffffu, 4);
     if ((st = irc__emit(fn, ctx, out, &at, tail, IRC__SNAP_TAIL, &crc)) < 0)
         return st;
@@ -203,26 +219,37 @@ int irc_snapshot_write(irc_cache *c, uint64_t fingerprint, void *buffer, size_t 
     return st;
 }
 
-/* Whether a decoded record holds values a cache could have made. */
-static int irc__record_sane(const irc_cache *c, const unsigned char *rec)
+static float irc__le_float(const unsigned char *p)
 {
-    const irc__rec *r = (const irc__rec *)(const void *)rec;
+    uint32_t u = (uint32_t)irc__le_get(p, 4);
+    float f;
+    IRC_MEMCPY(&f, &u, 4);
+    return f;
+}
+
+/* Whether a record, still in the snapshot's bytes, holds values a cache
+ * could have made: its head decoded into 32 bytes, the rest read where it
+ * lies (no record-sized buffer on the stack). */
+static int irc__record_sane(const irc_cache *c, const unsigned char *le)
+{
+    union { irc__rec r; unsigned char b[sizeof(irc__rec)]; } h;
+    const irc__rec *r = &h.r;
+    const uint32_t got = irc__convert_part(c, le, h.b, 0, sizeof h.b, 0);
     uint32_t i;
+    IRC_ASSERT(got == sizeof h.b);
+    (void)got;
     if (!irc__finite3(r->p) || !irc__finite3(r->e) || !irc__finite(r->r) || !(r->r > 0.0f) ||
         r->e[0] < 0.0f || r->e[1] < 0.0f || r->e[2] < 0.0f ||
         (r->n == IRC__FREE && c->kind_id != IRC__KIND_SH))
         return 0;
     if (c->off_a) {
-        const irc__aniso *a = (const irc__aniso *)(const void *)(rec + c->off_a);
-        if (!(a->q > 0.0f && a->q <= 1.0f))
+        const float q = irc__le_float(le + c->off_a + offsetof(irc__aniso, q));
+        if (!(q > 0.0f && q <= 1.0f))
             return 0;
     }
-    for (i = c->off_sh; c->off_sh && i < c->rec_size; i += 4) {
-        float f;
-        IRC_MEMCPY(&f, rec + i, 4);
-        if (!irc__finite(f))
+    for (i = c->off_sh; c->off_sh && i < c->rec_size; i += 4)
+        if (!irc__finite(irc__le_float(le + i)))
             return 0;
-    }
     return 1;
 }
 
@@ -263,12 +290,9 @@ int irc__snap_check(const irc_cache *c, uint64_t fingerprint, const unsigned cha
             return IRC_ERR_MISMATCH;
     if (*count > room)
         return IRC_ERR_FULL;
-    for (i = 0; i < *count; i++) {
-        union { irc__rec head; unsigned char b[IRC__REC_MAX]; } rec;
-        irc__convert(c, d + IRC__SNAP_HEAD + (size_t)i * c->rec_size, rec.b, 0);
-        if (!irc__record_sane(c, rec.b))
+    for (i = 0; i < *count; i++)
+        if (!irc__record_sane(c, d + IRC__SNAP_HEAD + (size_t)i * c->rec_size))
             return IRC_ERR_CORRUPT;
-    }
     return IRC_OK;
 }
 
