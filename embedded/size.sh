@@ -30,6 +30,14 @@ for f in src/*.c port/none/irc_port.c port/irc_port_default.c; do
         -DIRC_PORT_DEFAULT=irc_port_none -c "$f" -o $B/m4/$o.o
 done
 ${CROSS}ar rcs $B/m4/libirrcache.a $B/m4/*.o
+# The same with what an irradiance-only firmware leaves out (util.h).
+mkdir -p $B/m4-irr
+for f in src/*.c port/none/irc_port.c port/irc_port_default.c; do
+    ${CROSS}gcc -std=c99 -Iinclude -fno-math-errno $M4 -Os -ffunction-sections -fdata-sections \
+        -DIRC_NO_SH -DIRC_NO_VISIBILITY -DIRC_NO_HESSIAN -DIRC_PORT_DEFAULT=irc_port_none \
+        -c "$f" -o $B/m4-irr/$(basename "$f" .c).o
+done
+${CROSS}ar rcs $B/m4-irr/libirrcache.a $B/m4-irr/*.o
 
 echo "1. bytes per object: x86-64 -O2 | Cortex-M4F -Os"
 printf '  %-18s %7s %5s %5s | %7s %5s %5s\n' object text data bss text data bss
@@ -41,11 +49,13 @@ join $B/x86.txt $B/m4.txt | awk '
     END { printf "  %-18s %7d %5d %5d | %7d %5d %5d\n", "total", t[2], t[3], t[4], t[5], t[6], t[7] }'
 
 echo "2. library bytes linked into a host (Cortex-M4F, --gc-sections): text+rodata, data, bss"
-for v in irr sh; do
+for v in irr sh irr-switched; do
     def=""
+    lib=$B/m4/libirrcache.a
     [ $v = sh ] && def="-DSIZE_SH"
+    [ $v = irr-switched ] && lib=$B/m4-irr/libirrcache.a
     ${CROSS}gcc -std=c99 $M4 -Os -ffunction-sections -fdata-sections $def -Iinclude -Iembedded \
-        embedded/size_host.c embedded/board.c $B/m4/libirrcache.a --specs=rdimon.specs \
+        embedded/size_host.c embedded/board.c $lib --specs=rdimon.specs \
         -nostartfiles -T embedded/mps2.ld -Wl,--gc-sections -Wl,-Map=$B/$v.map -lm -o $B/$v.elf
     # Input sections from the library's archive, after the map's list of
     # discarded ones; a long section name puts its address and size on
@@ -66,7 +76,7 @@ for v in irr sh; do
             if (s ~ /^\.(text|rodata)/) code += n; else if (s ~ /^\.data/) data += n
             else if (s ~ /^\.bss/) bss += n
         }
-        END { printf "  %-34s %7d %5d %5d\n", v == "irr" ? "irradiance, trans + rot gradients" : "SH L = 3 with gradients", code, data, bss }' $B/$v.map
+        END { printf "  %-34s %7d %5d %5d\n", v == "irr" ? "irradiance, trans + rot gradients" : v == "sh" ? "SH L = 3 with gradients" : "the first, with the IRC_NO_* switches", code, data, bss }' $B/$v.map
 done
 
 echo "3. block bytes"

@@ -160,6 +160,7 @@ typedef struct irc__kind {
  * would not survive irc_attach in another process). */
 enum { IRC__KIND_IRR = 1, IRC__KIND_SH = 2 };
 extern const irc__kind irc__kind_irr, irc__kind_sh;
+int irc__features_built(uint32_t features);
 
 /* The cache, at the start of its part of the block.  Everything after it
  * is reached by offsets from the cache itself, so a block copied to

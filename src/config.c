@@ -18,6 +18,23 @@ int irc__port_ok(const irc_port *p)
            p->fetch_add && p->fetch_or && p->cas && p->lock_size <= IRC__LOCK_MAX;
 }
 
+/* IRC_ERR_UNSUPPORTED for features this build leaves out (util.h:
+ * IRC_NO_SH, IRC_NO_VISIBILITY, IRC_NO_HESSIAN), else IRC_OK. */
+int irc__features_built(uint32_t features)
+{
+    uint32_t out = 0;
+#ifdef IRC_NO_SH
+    out |= IRC_FEATURE_SH | IRC_FEATURE_SH_GRADIENT;
+#endif
+#ifdef IRC_NO_VISIBILITY
+    out |= IRC_FEATURE_VISIBILITY;
+#endif
+#ifdef IRC_NO_HESSIAN
+    out |= IRC_FEATURE_HESSIAN;
+#endif
+    return features & out ? IRC_ERR_UNSUPPORTED : IRC_OK;
+}
+
 /* Which kind of record, and its fields: SH excludes the irradiance
  * gradients, and sh_* fields mean nothing without it. */
 static int irc__features_resolve(irc_config *out)
@@ -27,6 +44,8 @@ static int irc__features_resolve(irc_config *out)
     const uint32_t sh = IRC_FEATURE_SH | IRC_FEATURE_SH_GRADIENT;
     if (out->features & ~(irr | sh))
         return IRC_ERR_CONFIG;
+    if (irc__features_built(out->features) < 0)
+        return IRC_ERR_UNSUPPORTED;
     /* Visibility gradients are how the translational gradient is made. */
     if (out->features & IRC_FEATURE_VISIBILITY)
         out->features |= IRC_FEATURE_TRANSLATION;

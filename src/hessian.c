@@ -13,6 +13,8 @@
  */
 #include "cache.h"
 
+#ifndef IRC_NO_HESSIAN
+
 /* Escaped rays get a hit point this many times the record's farthest hit
  * away: far enough that their triangles' derivatives vanish, finite so
  * that the edges along a silhouette against the sky are formed. */
@@ -291,3 +293,9 @@ void irc__eigen2(float a, float b, float c, float *l0, float *l1, float u[2])
     u[0] = IRC_COSF(ang);
     u[1] = IRC_SINF(ang);
 }
+
+#else /* IRC_NO_HESSIAN: the Hessian left out of the build (util.h) */
+
+typedef int irc__no_hessian; /* ISO C wants something in a file */
+
+#endif

@@ -26,6 +26,7 @@ static void irc__fill_failed(irc__sample *s, uint32_t total, uint32_t used)
                 s[i].l[c] = (float)(sum[c] / used);
 }
 
+#ifndef IRC_NO_HESSIAN
 /* One channel's Hessian on the tangent plane, t^T H t', from the packed
  * xx xy xz yy yz zz: a = t1 H t1, b = t1 H t2, d = t2 H t2. */
 static void irc__tangent_hessian(const float h[6], const float t1[3], const float t2[3],
@@ -98,6 +99,8 @@ static void irc__hessian_radii(const irc_cache *c, const irc__sample *s, const f
     for (i = 0; i < 3; i++)
         axis[i] = v[0] * t1[i] + v[1] * t2[i];
 }
+
+#endif
 
 /* Ward's split-sphere radius, the harmonic mean hit distance, made safe
  * without a scene size: over the rays that hit.  Ward's form counts an
@@ -187,9 +190,10 @@ static void irc__radii(const irc_cache *c, const irc__sample *s, const float n[3
                        const float t1[3], const float t2[3], float r, float far, float fp,
                        irc_record *out)
 {
-    float rad[2], axis[3];
+    float rad[2], axis[3] = {0.0f, 0.0f, 0.0f};
     int k;
     rad[0] = rad[1] = r;
+#ifndef IRC_NO_HESSIAN
     if (c->cfg.features & IRC_FEATURE_HESSIAN) {
         /* With a gradient the second-order term decides alone: E/|grad E|
          * and the split sphere are dropped, and the farthest hit (the
@@ -207,6 +211,9 @@ static void irc__radii(const irc_cache *c, const irc__sample *s, const float n[3
         if (rad[1] > IRC_ANISOTROPY * rad[0])
             rad[1] = IRC_ANISOTROPY * rad[0];
     }
+#else
+    (void)s; (void)n; (void)t1; (void)t2; (void)far;
+#endif
     for (k = 0; k < 2; k++) {
         if (rad[k] < (float)c->cfg.min_pixels * fp) rad[k] = (float)c->cfg.min_pixels * fp;
         if (c->cfg.max_pixels > 0.0f && fp > 0.0f && rad[k] > (float)c->cfg.max_pixels * fp)
@@ -299,9 +306,12 @@ int irc__irr_compute(irc__call *k, void *rec)
     const int vis = (c->cfg.features & IRC_FEATURE_VISIBILITY) != 0;
     float un[3];
     int st;
-    if ((st = irc__hemisphere(k, t1, t2)) < 0 ||
-        (vis && (st = irc__grad_visibility(k, 0, gvis)) < 0))
+    if ((st = irc__hemisphere(k, t1, t2)) < 0)
         return st;
+#ifndef IRC_NO_VISIBILITY
+    if (vis && (st = irc__grad_visibility(k, 0, gvis)) < 0)
+        return st;
+#endif
     irc__record_build(c, (const irc__sample *)(void *)k->slot, k->q.n, t1, t2,
                       vis ? gvis : NULL, k->footprint, out);
 

@@ -6,6 +6,8 @@
  */
 #include "cache.h"
 
+#ifndef IRC_NO_SH
+
 /* Cap on a free-point weight: a query on a record gives 1/0. */
 #define IRC__SH_W_MAX 1e6f
 
@@ -278,3 +280,45 @@ int irc_sh_record(irc_cache *c, uint32_t id, irc_sh *out)
 {
     return irc__record_get(c, &irc__kind_sh, id, out);
 }
+
+#else /* IRC_NO_SH: SH records left out of the build (util.h) */
+
+/* As on an irradiance cache: no cache of this build holds SH records. */
+static int irc__no_sh(const irc_cache *c)
+{
+    const int st = irc__enter(c, NULL);
+    return st < 0 ? st : IRC_ERR_UNSUPPORTED;
+}
+
+int irc_sh_compute(irc_cache *c, const float p[3], const float n[3], irc_sh *out, void *host)
+{
+    (void)p; (void)n; (void)out; (void)host;
+    return irc__no_sh(c);
+}
+
+int irc_sh_insert(irc_cache *c, const irc_sh *rec)
+{
+    (void)rec;
+    return irc__no_sh(c);
+}
+
+int irc_sh_lookup(irc_cache *c, const float p[3], const float n[3], irc_sh *out,
+                  float *weight)
+{
+    (void)p; (void)n; (void)out; (void)weight;
+    return irc__no_sh(c);
+}
+
+int irc_sh_lookup_or_compute(irc_cache *c, const float p[3], const float n[3], irc_sh *out,
+                             float *weight, void *host)
+{
+    (void)p; (void)n; (void)out; (void)weight; (void)host;
+    return irc__no_sh(c);
+}
+
+int irc_sh_record(irc_cache *c, uint32_t id, irc_sh *out)
+{
+    (void)id; (void)out;
+    return irc__no_sh(c);
+}
+#endif

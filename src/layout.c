@@ -161,7 +161,11 @@ static void irc__attach_pointers(irc_cache *c, const irc_config *cfg, const irc_
     c->cfg.port = c->port = port;
     c->cfg.buffer = cfg->buffer;
     c->cfg.buffer_size = cfg->buffer_size;
+#ifdef IRC_NO_SH
+    c->kind = &irc__kind_irr; /* irc__find refuses an SH block */
+#else
     c->kind = c->kind_id == IRC__KIND_SH ? &irc__kind_sh : &irc__kind_irr;
+#endif
     c->home = c;
 }
 
@@ -258,6 +262,8 @@ static int irc__find(const irc_config *cfg, size_t *at, irc_cache *head)
     if (head->magic != IRC__MAGIC || head->abi != IRC__ABI ||
         (head->kind_id != IRC__KIND_IRR && head->kind_id != IRC__KIND_SH))
         return IRC_ERR_CONFIG;
+    if (irc__features_built(head->cfg.features) < 0)
+        return IRC_ERR_UNSUPPORTED;
     if (head->total_bytes + IRC__ALIGN > cfg->buffer_size)
         return IRC_ERR_NOMEM;
     *at = pad;

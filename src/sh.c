@@ -14,6 +14,8 @@
  */
 #include "cache.h"
 
+#ifndef IRC_NO_SH
+
 /* K_lm = sqrt((2l+1)/(4 pi) (l-m)!/(l+m)!), times sqrt2 for m > 0, for
  * l < 5 (a wrong digit fails test_sh's orthonormality check). */
 static const float irc__sh_k[IRC__SH_MAX_BANDS][IRC__SH_MAX_BANDS] = {
@@ -225,3 +227,18 @@ int irc_sh_irradiance(const irc_sh *sh, const float n[3], float rgb[3])
 {
     return irc_sh_glossy(sh, n, 1.0f, rgb);
 }
+
+#else /* IRC_NO_SH: SH records left out of the build (util.h) */
+
+int irc_sh_glossy(const irc_sh *sh, const float r[3], float s, float rgb[3])
+{
+    (void)sh; (void)r; (void)s; (void)rgb;
+    return IRC_ERR_UNSUPPORTED;
+}
+
+int irc_sh_irradiance(const irc_sh *sh, const float n[3], float rgb[3])
+{
+    (void)sh; (void)n; (void)rgb;
+    return IRC_ERR_UNSUPPORTED;
+}
+#endif

@@ -30,6 +30,8 @@
  */
 #include "cache.h"
 
+#ifndef IRC_NO_VISIBILITY
+
 #define IRC__BISECT 14        /* rounds at most: a bracket shrinks 2^14-fold; at 16 it reaches
                                  float precision and hits near tangency turn random */
 #ifndef IRC__VIS_BUDGET
@@ -499,3 +501,14 @@ int irc_occlusion_compute(irc_cache *c, const float p[3], const float n[3],
         return IRC_ERR_UNSUPPORTED;
     return irc__compute(c, &irc__kind_irr, p, n, out, host, irc__occlusion, 0);
 }
+
+#else /* IRC_NO_VISIBILITY: visibility gradients left out of the build (util.h) */
+
+int irc_occlusion_compute(irc_cache *c, const float p[3], const float n[3],
+                          irc_occlusion *out, void *host)
+{
+    const int st = irc__enter(c, &irc__kind_irr);
+    (void)p; (void)n; (void)out; (void)host;
+    return st < 0 ? st : IRC_ERR_UNSUPPORTED;
+}
+#endif

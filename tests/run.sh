@@ -4,6 +4,7 @@
 # tests; every other stage counts as one.
 #   stage 1  library builds warning-free with gcc and clang (-Werror); the
 #            port-less build (PORT=none) needs no thread library; the
+#            build-time switches (tests/switches.c); the
 #            shared library exports the documented irc_ API only (nm -D)
 #   stage 2  the suite, optimised
 #   stage 3  the suites and the fuzz corpora under ASan + UBSan (clang,
@@ -106,6 +107,16 @@ user_config() {
     grep -qE ' U (cosf|ldexp)$' "$d/nm.txt" || { echo "the other macros lost their defaults"; return 1; }
 }
 check user-config user_config
+# The build-time switches: what is left out is refused, the rest works.
+switches() {
+    d=build-switches
+    $MAKE -s BUILD=$d PORT=none CFLAGS="-DIRC_NO_SH -DIRC_NO_VISIBILITY -DIRC_NO_HESSIAN" \
+        $d/libirrcache.a || return 1
+    cc -std=c99 -Wall -Wextra -Werror -Iinclude tests/switches.c $d/libirrcache.a -lm \
+        -o $d/switches || return 1
+    $d/switches
+}
+check switches switches
 # Only the documented API leaves the shared library.
 exports() {
     nm -D --defined-only build/libirrcache.so | awk '$2 ~ /^[TDBRV]$/ {print $3}' > "$LOG/exports.txt"

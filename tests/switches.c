@@ -1,0 +1,95 @@
+/* switches.c -- the library built with IRC_NO_SH, IRC_NO_VISIBILITY and
+ * IRC_NO_HESSIAN (src/util.h): what is left out is refused with
+ * IRC_ERR_UNSUPPORTED, what is left in works.  Built and run by make test
+ * (tests/run.sh, stage 1) against a library built with the three
+ * switches; prints "N passed, N failed". */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "irrcache.h"
+
+static int passed, failed;
+
+static void check(int ok, const char *what)
+{
+    printf("%s %s\n", ok ? "ok  " : "FAIL", what);
+    if (ok)
+        passed++;
+    else
+        failed++;
+}
+
+/* An open sky of radiance 1: E = pi on any upward surface. */
+static int sky(const irc_trace_args *a)
+{
+    uint32_t i;
+    for (i = 0; i < a->count; i++) {
+        a->hits[i].status = IRC_RAY_ESCAPED;
+        a->hits[i].radiance[0] = a->hits[i].radiance[1] = a->hits[i].radiance[2] = 1.0f;
+    }
+    return 0;
+}
+
+static irc_config config(uint32_t features)
+{
+    irc_config cfg;
+    memset(&cfg, 0, sizeof cfg);
+    cfg.trace = sky;
+    cfg.features = features;
+    cfg.strata_theta = 8;
+    cfg.strata_phi = 16;
+    cfg.max_radius = 1.0f;
+    cfg.port = &irc_port_none;
+    return cfg;
+}
+
+int main(void)
+{
+    static const uint32_t out[] = {IRC_FEATURE_SH, IRC_FEATURE_SH | IRC_FEATURE_SH_GRADIENT,
+                                   IRC_FEATURE_VISIBILITY, IRC_FEATURE_HESSIAN};
+    const float p[3] = {0, 0, 0}, n[3] = {0, 0, 1};
+    irc_config cfg;
+    irc_cache *c = NULL;
+    irc_record r;
+    irc_sh sh;
+    irc_occlusion occ;
+    size_t need = 0;
+    float rgb[3], w;
+    unsigned i;
+    void *block;
+    for (i = 0; i < sizeof out / sizeof out[0]; i++) {
+        cfg = config(out[i]);
+        check(irc_footprint(&cfg, 16, &need) == IRC_ERR_UNSUPPORTED,
+              "footprint refuses a feature left out");
+    }
+    cfg = config(IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION);
+    check(irc_footprint(&cfg, 16, &need) == IRC_OK, "footprint: trans + rot");
+    block = malloc(need);
+    cfg.buffer = block;
+    cfg.buffer_size = need;
+    check(block && irc_init(&cfg, 16, &c) == IRC_OK, "init: trans + rot");
+    if (!c)
+        return 1;
+    check(irc_record_compute(c, p, n, &r, NULL) == IRC_OK && fabsf(r.e[0] - 3.14159265f) < 1e-5f,
+          "a record under the open sky: E = pi");
+    check(irc_cache_insert(c, &r) == IRC_OK &&
+              irc_cache_lookup(c, p, n, rgb, &w) == IRC_OK && fabsf(rgb[0] - r.e[0]) < 1e-6f,
+          "insert and lookup");
+    check(irc_sh_compute(c, p, n, &sh, NULL) == IRC_ERR_UNSUPPORTED &&
+              irc_sh_lookup(c, p, n, &sh, &w) == IRC_ERR_UNSUPPORTED &&
+              irc_sh_lookup_or_compute(c, p, n, &sh, &w, NULL) == IRC_ERR_UNSUPPORTED &&
+              irc_sh_insert(c, &sh) == IRC_ERR_UNSUPPORTED &&
+              irc_sh_record(c, 0, &sh) == IRC_ERR_UNSUPPORTED &&
+              irc_sh_irradiance(&sh, n, rgb) == IRC_ERR_UNSUPPORTED &&
+              irc_sh_glossy(&sh, n, 8.0f, rgb) == IRC_ERR_UNSUPPORTED,
+          "the SH calls: IRC_ERR_UNSUPPORTED");
+    check(irc_sh_lookup(NULL, p, n, &sh, &w) == IRC_ERR_NULL, "an SH call on NULL: IRC_ERR_NULL");
+    check(irc_occlusion_compute(c, p, n, &occ, NULL) == IRC_ERR_UNSUPPORTED,
+          "occlusion: IRC_ERR_UNSUPPORTED");
+    irc_fini(c);
+    free(block);
+    printf("%d passed, %d failed\n", passed, failed);
+    return failed != 0;
+}
