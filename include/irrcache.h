@@ -127,7 +127,12 @@ typedef enum irc_status {
     IRC_ERR_UNSUPPORTED = -10,/* a call the cache's kind or features do not
                                  serve (an irradiance call on an SH cache, an
                                  SH call on an irradiance cache, occlusion
-                                 without VISIBILITY) */
+                                 without VISIBILITY), or a config or block
+                                 asking for what the library was built
+                                 without (IRC_NO_SH, IRC_NO_VISIBILITY,
+                                 IRC_NO_HESSIAN: README, "Porting"); then
+                                 the SH calls, irc_sh_irradiance and
+                                 irc_sh_glossy included, return it too */
     IRC_ERR_PORT = -11,       /* the port failed to initialise or take its
                                  lock */
     IRC_ERR_RANGE = -12,      /* a value out of its range: a record id past

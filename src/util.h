@@ -5,6 +5,12 @@
  * IRC_USER_CONFIG, e.g. -DIRC_USER_CONFIG='"my_irc.h"', included first)
  * and the default below steps aside for that one macro only.
  * IRC_NO_ASSERT compiles the internal checks out.
+ *
+ * Build-time switches, defined the same way, leave what a firmware does
+ * not use out of the build (irrcache.h, IRC_ERR_UNSUPPORTED):
+ *   IRC_NO_SH          SH records (kind_sh.c, sh.c, shgrad.c)
+ *   IRC_NO_VISIBILITY  visibility gradients, irc_occlusion_compute
+ *   IRC_NO_HESSIAN     the Hessian and its ellipses
  */
 #ifndef IRC_UTIL_H
 #define IRC_UTIL_H
