@@ -101,7 +101,7 @@ static void irc__inverse_depths(const irc_cache *c, const irc__sample *restrict 
  * keeps it at the neighbour's distance, with the failed stratum's filled-in
  * radiance (irradiance.c, irc__fill_failed) -- the rule this estimator has
  * always had.  An escaped pair (both 0) adds nothing. */
-static float irc__edge(float ia, float ib)
+static inline float irc__edge(float ia, float ib)
 {
     float x = ia > ib ? ia : ib;
     return x > 0.0f ? x : 0.0f;
@@ -175,6 +175,7 @@ static void irc__row_coeffs(const irc_cache *c, const float *restrict below,
     const float *cc = (const float *)irc__gtab(c), *sc = cc + np, *cb = sc + np, *sb = cb + np;
     uint32_t k;
     int q;
+#if IRC__LANES == 4
     for (k = 0; k < nphi; k += 4) { /* the padding takes the last block's tail */
         const float *bw = below + k, *uw = up + k, *lw = left + k, *c0 = cc + k, *s0 = sc + k,
                     *c1 = cb + k, *s1 = sb + k;
@@ -185,6 +186,20 @@ static void irc__row_coeffs(const irc_cache *c, const float *restrict below,
             be[q] = wu * s0[q] + lw[q] * c1[q] - lw[q + 1] * c1[q + 1];
         }
     }
+#else
+    /* A scalar FPU: column k + 1's left terms are carried to the next
+     * column, two products a stratum fewer. */
+    float ls = left[0] * sb[0], lc = left[0] * cb[0];
+    (void)q;
+    for (k = 0; k < nphi; k++) {
+        const float wu = below[k] - up[k], ns = left[k + 1] * sb[k + 1],
+                    nc = left[k + 1] * cb[k + 1];
+        alpha[k] = wu * cc[k] - ls + ns;
+        beta[k] = wu * sc[k] + lc - nc;
+        ls = ns;
+        lc = nc;
+    }
+#endif
 }
 
 /* One row's sums, a lane per channel.  A sample is 16 bytes (three
@@ -219,11 +234,12 @@ static void irc__row_sum(const irc_cache *c, const irc__sample *a, const float *
           ss[4] = {0, 0, 0, 0};
     uint32_t k;
     int ch;
+#if IRC__LANES == 4
     for (k = 0; k < nphi; k++) {
         float l[4];
         const float al = alpha[k], be = beta[k], ck = cb[k], sk = sb[k];
-        IRC_MEMCPY(l, &a[k], IRC__LANES * sizeof(float));
-        for (ch = 0; ch < IRC__LANES; ch++) {
+        IRC_MEMCPY(l, &a[k], sizeof l);
+        for (ch = 0; ch < 4; ch++) {
             l[ch] -= ref[ch];
             t1[ch] += l[ch] * al;
             t2[ch] += l[ch] * be;
@@ -231,6 +247,26 @@ static void irc__row_sum(const irc_cache *c, const irc__sample *a, const float *
             ss[ch] += l[ch] * sk;
         }
     }
+#else
+    /* Three lanes written out: a compiler optimising for size keeps a loop
+     * over them, and its sums in memory. */
+#define IRC__LANE(ch)                                                         \
+    do {                                                                      \
+        const float l = a[k].l[ch] - ref[ch];                                 \
+        t1[ch] += l * al;                                                     \
+        t2[ch] += l * be;                                                     \
+        sc[ch] += l * ck;                                                     \
+        ss[ch] += l * sk;                                                     \
+    } while (0)
+    (void)ch;
+    for (k = 0; k < nphi; k++) {
+        const float al = alpha[k], be = beta[k], ck = cb[k], sk = sb[k];
+        IRC__LANE(0);
+        IRC__LANE(1);
+        IRC__LANE(2);
+    }
+#undef IRC__LANE
+#endif
     IRC_MEMCPY(o->t1, t1, sizeof t1);
     IRC_MEMCPY(o->t2, t2, sizeof t2);
     IRC_MEMCPY(o->c, sc, sizeof sc);

@@ -112,21 +112,52 @@ static void irc__hessian_radii(const irc_cache *c, const irc__sample *s, const f
  * nothing has no scale: it takes the host's max_radius if the host set
  * one, else the smallest radius (it then serves lookups at its own point
  * only); open scenes want a max_radius. */
-static float irc__split_sphere(const irc_cache *c, const irc__sample *s, float *far)
+typedef struct irc__totals {
+    float sum[3];     /* radiance over the usable strata */
+    float inv;        /* 1/d over the strata that hit */
+    float far;        /* the farthest hit */
+    uint32_t used, hits;
+} irc__totals;
+
+/* One pass over the samples for the estimator's sums, row by row (a row's
+ * sums in float, then the rows': the roundings grow with N + M, not M N). */
+static void irc__totals_of(const irc_cache *c, const irc__sample *s, irc__totals *t)
 {
-    float inv = 0.0f;
-    uint32_t i, hits = 0;
-    *far = 0.0f;
-    for (i = 0; i < c->strata; i++)
-        if (s[i].d == s[i].d && s[i].d < HUGE_VALF) {
-            hits++;
-            inv += 1.0f / (float)s[i].d;
-            if (s[i].d > *far)
-                *far = s[i].d;
+    const uint32_t m = c->cfg.strata_theta, nphi = c->cfg.strata_phi;
+    uint32_t j, k;
+    IRC_MEMSET(t, 0, sizeof *t);
+    for (j = 0; j < m; j++) {
+        const irc__sample *row = s + j * nphi;
+        float l0 = 0.0f, l1 = 0.0f, l2 = 0.0f, inv = 0.0f;
+        for (k = 0; k < nphi; k++) {
+            const float d = row[k].d;
+            if (d != d)
+                continue;
+            t->used++;
+            l0 += row[k].l[0];
+            l1 += row[k].l[1];
+            l2 += row[k].l[2];
+            if (d < HUGE_VALF) {
+                t->hits++;
+                inv += 1.0f / d;
+                if (d > t->far)
+                    t->far = d;
+            }
         }
-    if (hits == 0)
-        return *far = c->cfg.max_radius < IRC__CAP ? (float)c->cfg.max_radius : 0.0f;
-    return hits / inv;
+        t->sum[0] += l0;
+        t->sum[1] += l1;
+        t->sum[2] += l2;
+        t->inv += inv;
+    }
+}
+
+/* The split sphere of the totals (above). */
+static float irc__split_sphere(const irc_cache *c, const irc__totals *t, float *far)
+{
+    *far = t->far;
+    if (t->hits == 0)
+        return *far = c->cfg.max_radius < IRC__CAP ? c->cfg.max_radius : 0.0f;
+    return (float)t->hits / t->inv;
 }
 
 /* The leak guard (irc_record.leak_guard): per sector of the stored
@@ -238,26 +269,22 @@ static IRC__NOINLINE void irc__record_build(const irc_cache *c, const irc__sampl
                        const float t2[3], float gvis[3][3], float fp, irc_record *out)
 {
     const uint32_t total = c->strata;
-    float sum[3] = {0, 0, 0}, mean[3], hm, far, r, g[3][3], gr[3][3];
+    float mean[3], hm, far, r, g[3][3], gr[3][3];
     const uint32_t f = c->cfg.features;
-    uint32_t i, used = 0;
+    irc__totals t;
+    uint32_t used;
     int ch, k;
 
-    for (i = 0; i < total; i++) {
-        if (s[i].d != s[i].d)
-            continue;
-        used++;
-        for (ch = 0; ch < 3; ch++)
-            sum[ch] += s[i].l[ch];
-    }
+    irc__totals_of(c, s, &t);
+    used = t.used;
     IRC_MEMSET(out, 0, sizeof *out);
     irc__fill_failed((irc__sample *)s, total, used);
     for (ch = 0; ch < 3; ch++) {
-        mean[ch] = sum[ch] / used;
-        out->e[ch] = (float)(IRC_PI * sum[ch] / used);
-        out->n[ch] = (float)n[ch];
+        mean[ch] = t.sum[ch] / (float)used;
+        out->e[ch] = IRC_PI * t.sum[ch] / (float)used;
+        out->n[ch] = n[ch];
     }
-    hm = irc__split_sphere(c, s, &far);
+    hm = irc__split_sphere(c, &t, &far);
     r = hm;
     if (f & (IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION))
         irc__gradients(c, s, mean, t1, t2, (f & IRC_FEATURE_TRANSLATION) ? g : NULL,

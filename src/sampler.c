@@ -57,7 +57,13 @@ void irc__frame(const float n[3], float t1[3], float t2[3])
 
 static int irc__nonneg3(const float v[3])
 {
-    /* Comparisons fail for NaN: two a component. */
+    uint32_t u[3];
+    IRC_MEMCPY(u, v, sizeof u);
+    /* A finite float with the sign bit clear has bits below +inf's: one
+     * integer comparison a component.  -0 and what is refused take the
+     * float comparisons (which fail for NaN). */
+    if (u[0] < 0x7f800000u && u[1] < 0x7f800000u && u[2] < 0x7f800000u)
+        return 1;
     return v[0] >= 0.0f && v[0] <= FLT_MAX && v[1] >= 0.0f && v[1] <= FLT_MAX &&
            v[2] >= 0.0f && v[2] <= FLT_MAX;
 }
@@ -68,15 +74,12 @@ int irc__accept_hit(const irc_hit *h, irc__sample *s)
 {
     switch (h->status) {
     case IRC_RAY_HIT:
-        if (!irc__finite(h->dist) || !(h->dist > 0.0f) ||
-            !irc__nonneg3(h->radiance) || !irc__finite3(h->normal) ||
+        if (!(h->dist > 0.0f && h->dist <= FLT_MAX) || !irc__finite3(h->normal) ||
             (h->normal[0] == 0.0f && h->normal[1] == 0.0f && h->normal[2] == 0.0f))
             return IRC_ERR_CALLBACK;
         s->d = h->dist;
         break;
     case IRC_RAY_ESCAPED:
-        if (!irc__nonneg3(h->radiance))
-            return IRC_ERR_CALLBACK;
         s->d = HUGE_VALF;
         break;
     case IRC_RAY_FAILED:
@@ -86,6 +89,8 @@ int irc__accept_hit(const irc_hit *h, irc__sample *s)
     default:
         return IRC_ERR_CALLBACK;
     }
+    if (!irc__nonneg3(h->radiance))
+        return IRC_ERR_CALLBACK;
     s->l[0] = h->radiance[0];
     s->l[1] = h->radiance[1];
     s->l[2] = h->radiance[2];
