@@ -387,20 +387,34 @@ typedef struct irc__probe {
     void *ud;
 } irc__probe;
 
+/* The probe's point relative to cube q in units of its half edge, in
+ * float: the one place a query needs the cube's exact centre (double),
+ * once a node.  Beyond FLT_MAX half edges it is infinite, which every
+ * test below reads as out of reach, as it is. */
+static void irc__rel(const irc__cube *q, const float p[3], float r[3])
+{
+    const double inv = 1.0 / q->h; /* a power of two: exact */
+    int i;
+    for (i = 0; i < 3; i++)
+        r[i] = (float)(((double)p[i] - q->c[i]) * inv);
+}
+
 /* Hands over the records of a list whose entries pass the probe's test in
- * the list's steps.  The test admits a superset of the exact one: the
- * entry's position is at most sqrt(3)/2 steps off (the 1 added to the
- * bound), and the float rounding of numbers of up to about 2^17 steps is
- * covered by the 1e-5 relative margin. */
+ * the list's steps; r is the probe's point relative to the list's cube q
+ * (irc__rel).  The test admits a superset of the exact one: the entry's
+ * position is at most sqrt(3)/2 steps off (the 1 added to the bound); the
+ * point's float roundings, in r and in (r + 1) 32767.5, are within 0.02
+ * steps while |r| < 2 (the slack left by the 1), and relative ones beyond,
+ * covered with the float rounding of the test itself by the 1e-5 relative
+ * margin. */
 static uint32_t irc__scan(const irc_cache *c, uint32_t id, const irc__cube *q,
-                          const irc__probe *pr)
+                          const float r3[3], const irc__probe *pr)
 {
     uint32_t n = 0;
     const irc__ixe *ix = irc__ix(c);
     const double inv = 32767.5 / q->h;
-    const float b0 = (float)(((double)pr->p[0] - (q->c[0] - q->h)) * inv),
-                b1 = (float)(((double)pr->p[1] - (q->c[1] - q->h)) * inv),
-                b2 = (float)(((double)pr->p[2] - (q->c[2] - q->h)) * inv);
+    const float b0 = (r3[0] + 1.0f) * 32767.5f, b1 = (r3[1] + 1.0f) * 32767.5f,
+                b2 = (r3[2] + 1.0f) * 32767.5f;
     /* The bound is m rq + f steps: a reach times scale, or the range. */
     const float m = pr->range >= 0.0 ? 0.0f : (float)(pr->scale * (1.0 + 1e-5)),
                 f = pr->range >= 0.0 ? (float)(pr->range * inv * (1.0 + 1e-5)) + 1.0f : 1.0f;
@@ -425,7 +439,7 @@ static uint32_t irc__scan(const irc_cache *c, uint32_t id, const irc__cube *q,
  * float rejects only a child beyond FLT_MAX edges, which no reach below
  * that passes either. */
 static unsigned irc__children(const irc_cache *c, const irc__node *n, const irc__cube *q,
-                              const irc__probe *pr)
+                              const float r3[3], const irc__probe *pr)
 {
     const irc__node *ch = &irc__nodes(c)[n->child];
     const double hc = 0.5 * q->h, unit = 1.0 / hc;
@@ -435,16 +449,15 @@ static unsigned irc__children(const irc_cache *c, const irc__node *n, const irc_
     float part[3][2], xy[4];
     unsigned mask = 0;
     int i;
-    /* Squared distance from p to each child's cube, axis by axis: child
-     * bit k of axis i spans [c_i - h, c_i] (k = 0) or [c_i, c_i + h]. */
+    /* Squared distance from p to each child's cube, axis by axis, in child
+     * edges from the centre: child bit k of axis i spans [-2, 0] (k = 0)
+     * or [0, 2].  With x's own rounding, x - 2 and -2 - x are within 6e-7
+     * edges while |x| < 4 (inside the 1e-6), relatively close beyond. */
     for (i = 0; i < 3; i++) {
-        const double p = (double)pr->p[i];
-        double below = (q->c[i] - q->h) - p, above = p - (q->c[i] + q->h), lo = p - q->c[i],
-               hi = q->c[i] - p;
-        lo = (lo > below ? lo : below) * unit; /* outside [c - h, c] */
-        hi = (hi > above ? hi : above) * unit; /* outside [c, c + h] */
-        part[i][0] = lo > 0.0 ? (float)(lo * lo) : 0.0f;
-        part[i][1] = hi > 0.0 ? (float)(hi * hi) : 0.0f;
+        const float x = 2.0f * r3[i], lo = x > -2.0f - x ? x : -2.0f - x,
+                    hi = -x > x - 2.0f ? -x : x - 2.0f;
+        part[i][0] = lo > 0.0f ? lo * lo : 0.0f; /* outside [-2, 0] */
+        part[i][1] = hi > 0.0f ? hi * hi : 0.0f; /* outside [0, 2] */
     }
     /* By the octant's low two bits (x, y), then z added per child; an
      * empty child's reach is -1, which its own test must not let by. */
@@ -476,16 +489,18 @@ static uint32_t irc__descend(const irc_cache *c, const irc__probe *pr)
     uint8_t mask[IRC__LEVELS + 1], octs[IRC__LEVELS + 1];
     const irc__node *nodes = irc__nodes(c);
     irc__cube q;
+    float r3[3];
     int top = 0;
     if (!c->home->root_set)
         return 0;
     irc__root_cube(c, &q);
+    irc__rel(&q, pr->p, r3);
     if (nodes[0].head != IRC__NIL)
-        scanned += irc__scan(c, nodes[0].head, &q, pr);
+        scanned += irc__scan(c, nodes[0].head, &q, r3, pr);
     if (!nodes[0].child)
         return scanned;
     block[0] = nodes[0].child;
-    mask[0] = (uint8_t)irc__children(c, &nodes[0], &q, pr);
+    mask[0] = (uint8_t)irc__children(c, &nodes[0], &q, r3, pr);
     for (;;) {
         const irc__node *n;
         irc__cube cq;
@@ -502,15 +517,17 @@ static uint32_t irc__descend(const irc_cache *c, const irc__probe *pr)
         mask[top] = (uint8_t)(mask[top] & ~(1u << oct));
         n = &nodes[block[top] + oct];
         irc__child_cube(&q, (int)oct, &cq);
+        if (n->head != IRC__NIL || n->child)
+            irc__rel(&cq, pr->p, r3);
         if (n->head != IRC__NIL)
-            scanned += irc__scan(c, n->head, &cq, pr);
+            scanned += irc__scan(c, n->head, &cq, r3, pr);
         IRC_ASSERT(!n->child || top < IRC__LEVELS);
         if (n->child && top < IRC__LEVELS) {
             octs[top] = (uint8_t)oct;
             q = cq;
             top++;
             block[top] = n->child;
-            mask[top] = (uint8_t)irc__children(c, n, &q, pr);
+            mask[top] = (uint8_t)irc__children(c, n, &q, r3, pr);
         }
     }
 }
