@@ -382,6 +382,8 @@ void irc__index_remove(irc_cache *c, uint32_t id)
  * with range >= 0, records within range of p. */
 typedef struct irc__probe {
     const float *p;
+    int ranged;           /* range >= 0, tested once (a double comparison
+                             is a library call on a single-precision FPU) */
     double range, scale;
     irc__visit_fn fn;
     void *ud;
@@ -412,12 +414,12 @@ static uint32_t irc__scan(const irc_cache *c, uint32_t id, const irc__cube *q,
 {
     uint32_t n = 0;
     const irc__ixe *ix = irc__ix(c);
-    const double inv = 32767.5 / q->h;
     const float b0 = (r3[0] + 1.0f) * 32767.5f, b1 = (r3[1] + 1.0f) * 32767.5f,
                 b2 = (r3[2] + 1.0f) * 32767.5f;
     /* The bound is m rq + f steps: a reach times scale, or the range. */
-    const float m = pr->range >= 0.0 ? 0.0f : (float)(pr->scale * (1.0 + 1e-5)),
-                f = pr->range >= 0.0 ? (float)(pr->range * inv * (1.0 + 1e-5)) + 1.0f : 1.0f;
+    const float m = pr->ranged ? 0.0f : (float)(pr->scale * (1.0 + 1e-5)),
+                f = pr->ranged ? (float)(pr->range * (32767.5 / q->h) * (1.0 + 1e-5)) + 1.0f
+                               : 1.0f;
     for (; id != IRC__NIL; id = ix[id].next) {
         const irc__ixe *e = &ix[id];
         float dx = b0 - e->q[0], dy = b1 - e->q[1], dz = b2 - e->q[2];
@@ -443,8 +445,8 @@ static unsigned irc__children(const irc_cache *c, const irc__node *n, const irc_
 {
     const irc__node *ch = &irc__nodes(c)[n->child];
     const double hc = 0.5 * q->h, unit = 1.0 / hc;
-    const float s = pr->range >= 0.0 ? 0.0f : (float)(pr->scale * (1.0 + 4e-6) * unit),
-                fixed = pr->range >= 0.0 ? (float)(pr->range * (1.0 + 4e-6) * unit) + 1e-6f
+    const float s = pr->ranged ? 0.0f : (float)(pr->scale * (1.0 + 4e-6) * unit),
+                fixed = pr->ranged ? (float)(pr->range * (1.0 + 4e-6) * unit) + 1e-6f
                                           : 1e-6f;
     float part[3][2], xy[4];
     unsigned mask = 0;
@@ -536,6 +538,7 @@ uint32_t irc__index_query(const irc_cache *c, const float p[3], irc__visit_fn fn
 {
     irc__probe pr;
     pr.p = p;
+    pr.ranged = 0;
     pr.range = -1.0;
     pr.scale = 1.0;
     pr.fn = fn;
@@ -550,6 +553,7 @@ void irc__index_range(const irc_cache *c, const float p[3], float range, irc__vi
 {
     irc__probe pr;
     pr.p = p;
+    pr.ranged = range >= 0.0f;
     pr.range = (double)range;
     pr.scale = 1.0 / (double)c->cfg.accuracy;
     pr.fn = fn;
