@@ -174,6 +174,9 @@ sh-experiments: $(BUILD)/shexp
 $(BUILD)/demo_tests: tests/t_demo.c tests/harness.c tests/scenes.c $(DEMO_LIB_SRC) demo/*.h tests/*.h $(LIBA)
 	$(CC) $(TEST_CFLAGS) -Idemo $(OPT) $(CFLAGS) tests/t_demo.c tests/harness.c tests/scenes.c $(DEMO_LIB_SRC) $(LIBA) -o $@ -lm -lpthread
 
+$(BUILD)/adaptive_tests: tests/t_adaptive.c tests/harness.c tests/scenes.c demo/adaptive.c demo/delaunay.c demo/adaptive.h tests/*.h $(LIBA)
+	$(CC) $(TEST_CFLAGS) -Idemo $(OPT) $(CFLAGS) tests/t_adaptive.c tests/harness.c tests/scenes.c demo/adaptive.c demo/delaunay.c $(LIBA) -o $@ -lm -lpthread
+
 # The demo's own tests.  t_exr reads the demo's files with OpenEXR's C
 # library (OpenEXRCore): a test-only dependency, found by pkg-config.
 IMAGE_SRC = demo/image.c demo/png.c

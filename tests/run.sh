@@ -152,8 +152,10 @@ check build-ndebug $MAKE -s BUILD=build-ndebug OPT="-O2 -DIRC_NO_ASSERT" build-n
 suite ndebug IRC_TEST_QUICK=1 ./build-ndebug/irc_tests
 
 echo "== stage 2b: demo tracer"
-check build-demo $MAKE -s BUILD=build build/irc_demo build/demo_tests build/t_image build/t_loader build/t_exr
+check build-demo $MAKE -s BUILD=build build/irc_demo build/demo_tests build/t_image build/t_loader build/t_exr \
+    build/adaptive_tests
 suite demo ./build/demo_tests
+suite adaptive ./build/adaptive_tests
 suite image ./build/t_image
 suite loader ./build/t_loader
 suite exr ./build/t_exr
@@ -191,8 +193,8 @@ check build-asan $MAKE -s CC="$SAN_CC" BUILD=build-asan OPT="$SAN" build-asan/ir
 suite asan IRC_TEST_QUICK=1 ASAN_OPTIONS=detect_leaks=1:abort_on_error=0 \
     UBSAN_OPTIONS=print_stacktrace=1 ./build-asan/irc_tests
 check build-asan-demo $MAKE -s CC="$SAN_CC" BUILD=build-asan OPT="$SAN" build-asan/demo_tests \
-    build-asan/t_loader build-asan/t_image
-for t in demo_tests t_loader t_image; do
+    build-asan/t_loader build-asan/t_image build-asan/adaptive_tests
+for t in demo_tests t_loader t_image adaptive_tests; do
     suite "asan-$t" IRC_TEST_QUICK=1 ASAN_OPTIONS=detect_leaks=1 ./build-asan/$t
 done
 # The fuzz corpora, replayed without libFuzzer (make fuzz grows them):
