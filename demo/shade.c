@@ -201,46 +201,84 @@ static int pick_light(const lights *l, double u)
     return lo;
 }
 
-void direct_light(const bvh *b, const lights *l, const surface *sf, const float d[3],
-                  int samples, uint64_t key, float out[3], uint64_t *rays)
+/* The direction from sf's lifted origin to y, its squared length, and the
+ * two cosines; 0 when the light faces away or lies below either normal.
+ * The shadow ray runs from the lifted origin o to y, so its length and
+ * its end are measured from o, not from the surface. */
+static int light_geometry(const surface *sf, const float y[3], const float nl[3], float o[3],
+                          float w[3], float *dist2, float *cx, float *cy)
 {
-    float eps = ray_offset(sf->p);
+    const float eps = ray_offset(sf->p);
+    float dist;
+    int i;
+    for (i = 0; i < 3; i++) {
+        o[i] = sf->p[i] + eps * sf->ng[i];
+        w[i] = y[i] - o[i];
+    }
+    *dist2 = dot3(w, w);
+    dist = sqrtf(*dist2);
+    for (i = 0; i < 3; i++)
+        w[i] /= dist;
+    *cx = dot3(sf->ns, w);
+    *cy = -dot3(nl, w);
+    return !(*cx <= 0.0f || *cy <= 0.0f || dot3(sf->ng, w) <= 0.0f);
+}
+
+int direct_samples(const bvh *b, const lights *l, const surface *sf, int k0, int k1,
+                   int samples, uint64_t key, light_sample *out, uint64_t *rays)
+{
     const scene *s = b->s;
-    int k, i;
-    out[0] = out[1] = out[2] = 0.0f;
+    int k, i, n = 0;
     if (l->count == 0 || samples <= 0)
-        return;
-    for (k = 0; k < samples; k++) {
+        return 0;
+    for (k = k0; k < k1; k++) {
         int li = pick_light(l, (k + rnd(key, 3u * k)) / samples);
         const triangle *t = &s->tris[l->tri[li]];
         const material *lm = &s->mats[t->mat];
         double u1 = rnd(key, 3u * k + 1), u2 = rnd(key, 3u * k + 2), su = sqrt(u1);
-        float y[3], w[3], nl[3], dist2, dist, cx, cy, f[3], o[3], pdf;
-        /* The shadow ray runs from the lifted origin o to y, so its length
-         * and its end are measured from o, not from the surface. */
-        for (i = 0; i < 3; i++) {
-            y[i] = (float)((1.0 - su) * t->v[0][i] + su * (1.0 - u2) * t->v[1][i] +
-                           su * u2 * t->v[2][i]);
-            o[i] = sf->p[i] + eps * sf->ng[i];
-            w[i] = y[i] - o[i];
-        }
-        dist2 = dot3(w, w);
-        dist = sqrtf(dist2);
+        light_sample *ls = &out[n];
+        float w[3], o[3], dist2, cx, cy;
         for (i = 0; i < 3; i++)
-            w[i] /= dist;
-        tri_normal(t, nl);
-        normalize3(nl);
-        cx = dot3(sf->ns, w);
-        cy = -dot3(nl, w);
-        if (cx <= 0.0f || cy <= 0.0f || dot3(sf->ng, w) <= 0.0f)
+            ls->y[i] = (float)((1.0 - su) * t->v[0][i] + su * (1.0 - u2) * t->v[1][i] +
+                               su * u2 * t->v[2][i]);
+        tri_normal(t, ls->nl);
+        normalize3(ls->nl);
+        if (!light_geometry(sf, ls->y, ls->nl, o, w, &dist2, &cx, &cy))
             continue;
         ++*rays;
-        if (bvh_occluded(b, o, w, 0.0f, dist - ray_offset(y)))
+        if (bvh_occluded(b, o, w, 0.0f, sqrtf(dist2) - ray_offset(ls->y)))
             continue;
         /* P(triangle) = area lum / total, uniform on it: per unit area, */
-        pdf = (float)(luminance(lm->ke) / l->total);
+        ls->pdf = (float)(luminance(lm->ke) / l->total);
+        ls->ke = lm->ke;
+        n++;
+    }
+    return n;
+}
+
+void direct_eval(const light_sample *ls, int n, int samples, const surface *sf, const float d[3],
+                 float out[3])
+{
+    int k, i;
+    for (k = 0; k < n; k++) {
+        float w[3], o[3], dist2, cx, cy, f[3];
+        if (!light_geometry(sf, ls[k].y, ls[k].nl, o, w, &dist2, &cx, &cy))
+            continue;
         brdf(sf, d, w, f);
         for (i = 0; i < 3; i++)
-            out[i] += f[i] * lm->ke[i] * cx * cy / (dist2 * pdf * samples);
+            out[i] += f[i] * ls[k].ke[i] * cx * cy / (dist2 * ls[k].pdf * samples);
+    }
+}
+
+void direct_light(const bvh *b, const lights *l, const surface *sf, const float d[3],
+                  int samples, uint64_t key, float out[3], uint64_t *rays)
+{
+    light_sample buf[16];
+    int k;
+    out[0] = out[1] = out[2] = 0.0f;
+    for (k = 0; k < samples; k += 16) {
+        const int k1 = samples - k < 16 ? samples : k + 16;
+        direct_eval(buf, direct_samples(b, l, sf, k, k1, samples, key, buf, rays), samples, sf,
+                    d, out);
     }
 }

@@ -45,6 +45,24 @@ void emitted(const surface *sf, float out[3]);
 void direct_light(const bvh *b, const lights *l, const surface *sf, const float d[3],
                   int samples, uint64_t key, float out[3], uint64_t *rays);
 
+/* A light sample that reached a surface: the point on the light, the
+ * light's normal, its emission and the density it was picked with (per
+ * unit area).  Kept, it shades the same surface moved a little, with its
+ * visibility frozen (the image gradients of imgrad.c). */
+typedef struct light_sample {
+    float y[3], nl[3];
+    const float *ke;
+    float pdf;
+} light_sample;
+
+/* direct_light in two halves: samples k0 .. k1 - 1 of `samples`, those
+ * that face sf and are unoccluded written to out (returns how many); and
+ * their radiance toward -d from sf, added to out. */
+int direct_samples(const bvh *b, const lights *l, const surface *sf, int k0, int k1,
+                   int samples, uint64_t key, light_sample *out, uint64_t *rays);
+void direct_eval(const light_sample *ls, int n, int samples, const surface *sf, const float d[3],
+                 float out[3]);
+
 /* How far rays leaving p start from it: relative to p's magnitude, the
  * scale of float rounding in p, not to the scene's size (a huge floor must
  * not push rays off small objects). */
