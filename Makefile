@@ -164,6 +164,17 @@ fig15: $(BUILD)/fig15
 	$(BUILD)/fig15 demo/scenes/fig15.scene 200 16384 64 256
 	$(BUILD)/fig15 demo/scenes/fig15-sharp.scene 200 16384 64 256
 
+# The first-order paper's adaptive image sampling (README: "Adaptive
+# sampling"): three importance metrics at 10% and 17% of the pixels against
+# the full render, on the Fig. 5 scene (with the gradient check) and the
+# Cornell box.
+$(BUILD)/adaptive: experiments/adaptive.c $(DEMO_LIB_SRC) demo/*.h $(LIBA)
+	$(CC) $(DEMO_CFLAGS) experiments/adaptive.c $(DEMO_LIB_SRC) $(LIBA) -o $@ -lm -lpthread
+
+adaptive: $(BUILD)/adaptive
+	$(BUILD)/adaptive demo/scenes/fig5.scene --check
+	$(BUILD)/adaptive demo/scenes/cornell.scene
+
 # The SH-gradient paper's experiments (README: "SH records").
 $(BUILD)/shexp: experiments/shexp.c $(DEMO_LIB_SRC) demo/*.h $(LIBA)
 	$(CC) $(DEMO_CFLAGS) experiments/shexp.c $(DEMO_LIB_SRC) $(LIBA) -o $@ -lm -lpthread
@@ -289,4 +300,4 @@ install: all
 clean:
 	rm -rf build build-*
 
-.PHONY: all lib cross embedded-test embedded-host size examples test coverage demo fig15 sh-experiments fuzz replay bench-core bench-lookups bench-records bench bench-fill farm-demo install clean
+.PHONY: all lib cross embedded-test embedded-host size examples test coverage demo fig15 adaptive sh-experiments fuzz replay bench-core bench-lookups bench-records bench bench-fill farm-demo install clean

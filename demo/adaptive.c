@@ -126,23 +126,26 @@ static int first_squares(ad_state *a)
 }
 
 /* Splits the most important square into four, each with a sample at its
- * centre; the four are on a boundary when any of them sees another object
- * than the square did. */
+ * centre.  A child is on a boundary when it sees another object than a
+ * sibling beside it or than the square did: the boundary runs through it
+ * or along it.  A square split for a boundary its children do not see
+ * (one found between blocks) passes nothing on. */
 static int split(ad_state *a)
 {
     const ad_square q = heap_pop(a);
     ad_square c[4];
-    int k, edge = 0;
+    int k, obj[4];
     for (k = 0; k < 4; k++) {
         c[k].side = 0.5f * q.side;
         c[k].x = q.x + (k & 1 ? 0.25f : -0.25f) * q.side;
         c[k].y = q.y + (k & 2 ? 0.25f : -0.25f) * q.side;
         if ((c[k].sample = add_sample(a, c[k].x, c[k].y)) < 0)
             return c[k].sample;
-        edge |= a->s[c[k].sample].object != a->s[q.sample].object;
+        obj[k] = a->s[c[k].sample].object;
     }
     for (k = 0; k < 4; k++) {
-        c[k].edge = edge || q.edge;
+        c[k].edge = obj[k] != obj[k ^ 1] || obj[k] != obj[k ^ 2] ||
+                    obj[k] != a->s[q.sample].object;
         heap_push(a, c[k]);
     }
     return 0;

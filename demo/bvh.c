@@ -213,9 +213,10 @@ void bvh_free(bvh *b)
     memset(b, 0, sizeof *b);
 }
 
-/* Moller-Trumbore. */
+/* Moller-Trumbore; with `plane` set, the triangle's plane (barycentrics
+ * unbounded). */
 static int hit_tri(const triangle *t, const float o[3], const float d[3], float tmin,
-                   float tmax, float *tt, float *uu, float *vv)
+                   float tmax, float *tt, float *uu, float *vv, int plane)
 {
     float e1[3], e2[3], pv[3], tv[3], qv[3], det, inv, u, v, th;
     int i;
@@ -232,13 +233,13 @@ static int hit_tri(const triangle *t, const float o[3], const float d[3], float 
         return 0;
     inv = 1.0f / det;
     u = (tv[0] * pv[0] + tv[1] * pv[1] + tv[2] * pv[2]) * inv;
-    if (u < 0.0f || u > 1.0f)
+    if (!plane && (u < 0.0f || u > 1.0f))
         return 0;
     qv[0] = tv[1] * e1[2] - tv[2] * e1[1];
     qv[1] = tv[2] * e1[0] - tv[0] * e1[2];
     qv[2] = tv[0] * e1[1] - tv[1] * e1[0];
     v = (d[0] * qv[0] + d[1] * qv[1] + d[2] * qv[2]) * inv;
-    if (v < 0.0f || u + v > 1.0f)
+    if (!plane && (v < 0.0f || u + v > 1.0f))
         return 0;
     th = (e2[0] * qv[0] + e2[1] * qv[1] + e2[2] * qv[2]) * inv;
     if (!(th > tmin && th < tmax))
@@ -284,10 +285,10 @@ static int hit_sphere(const sphere *s, const float o[3], const float d[3], float
 }
 
 static int hit_prim(const scene *s, int p, const float o[3], const float d[3], float tmin,
-                    float tmax, bvh_hit *h)
+                    float tmax, bvh_hit *h, int plane)
 {
     float t, u = 0.0f, v = 0.0f;
-    int ok = p >= 0 ? hit_tri(&s->tris[p], o, d, tmin, tmax, &t, &u, &v)
+    int ok = p >= 0 ? hit_tri(&s->tris[p], o, d, tmin, tmax, &t, &u, &v, plane)
                     : hit_sphere(&s->spheres[-p - 1], o, d, tmin, tmax, &t);
     if (ok) {
         h->t = t;
@@ -330,7 +331,7 @@ static int traverse(const bvh *b, const float o[3], const float d[3], float tmin
         const bvh_node *n = &b->nodes[node];
         if (n->count > 0) {
             for (i = n->first; i < n->first + n->count; i++)
-                if (hit_prim(b->s, b->prims[i], o, d, tmin, tmax, h)) {
+                if (hit_prim(b->s, b->prims[i], o, d, tmin, tmax, h, 0)) {
                     found = 1;
                     if (any)
                         return 1;
@@ -379,9 +380,14 @@ int brute_intersect(const scene *s, const float o[3], const float d[3], float tm
 {
     int i, found = 0;
     for (i = -s->nspheres; i < s->ntris; i++) /* spheres are -(k + 1) */
-        if (hit_prim(s, i, o, d, tmin, tmax, h)) {
+        if (hit_prim(s, i, o, d, tmin, tmax, h, 0)) {
             found = 1;
             tmax = h->t;
         }
     return found;
+}
+
+int hit_surface_of(const scene *s, int prim, const float o[3], const float d[3], bvh_hit *h)
+{
+    return hit_prim(s, prim, o, d, 0.0f, FLT_MAX, h, 1);
 }

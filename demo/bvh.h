@@ -36,6 +36,11 @@ int bvh_intersect(const bvh *b, const float o[3], const float d[3], float tmin,
 /* Any hit with t in (tmin, tmax). */
 int bvh_occluded(const bvh *b, const float o[3], const float d[3], float tmin, float tmax);
 
+/* The hit of ray (o, d) with the surface primitive prim lies on: a
+ * triangle's plane (barycentrics unbounded, so vertex normals extrapolate)
+ * or a sphere.  For differentials: the same surface a little aside. */
+int hit_surface_of(const scene *s, int prim, const float o[3], const float d[3], bvh_hit *h);
+
 /* The same queries by a loop over every primitive (for tests). */
 int brute_intersect(const scene *s, const float o[3], const float d[3], float tmin,
                     float tmax, bvh_hit *h);

@@ -35,8 +35,13 @@ void camera_frame(const camera *c, cam_frame *cf)
 
 void camera_ray(const cam_frame *cf, const camera *c, int x, int y, float d[3])
 {
-    float sx = (2.0f * (x + 0.5f) / c->width - 1.0f) * cf->tx;
-    float sy = (1.0f - 2.0f * (y + 0.5f) / c->height) * cf->ty, l;
+    camera_ray_at(cf, c, x + 0.5f, y + 0.5f, d);
+}
+
+void camera_ray_at(const cam_frame *cf, const camera *c, float x, float y, float d[3])
+{
+    float sx = (2.0f * x / c->width - 1.0f) * cf->tx;
+    float sy = (1.0f - 2.0f * y / c->height) * cf->ty, l;
     int i;
     for (i = 0; i < 3; i++)
         d[i] = cf->f[i] + sx * cf->right[i] + sy * cf->up[i];

@@ -15,6 +15,9 @@ typedef struct cam_frame {
 void camera_frame(const camera *c, cam_frame *cf);
 /* The unit direction through pixel (x, y)'s centre. */
 void camera_ray(const cam_frame *cf, const camera *c, int x, int y, float d[3]);
+/* The same through any point (x, y) of the image plane, in pixels from
+ * its top-left corner (a pixel's centre is at + 0.5). */
+void camera_ray_at(const cam_frame *cf, const camera *c, float x, float y, float d[3]);
 /* The point the cache sees for a surface: lifted off it along the
  * geometric normal so that hemisphere rays start clear of it. */
 void cache_point(const surface *sf, float p[3]);

@@ -1,0 +1,277 @@
+/*
+ * imgrad.c -- the image and its gradient at a point of the image plane
+ * (imgrad.h).
+ */
+#define _POSIX_C_SOURCE 200809L
+#include "imgrad.h"
+
+#include <float.h>
+#include <stdlib.h>
+#include <math.h>
+#include <string.h>
+#include <time.h>
+
+#define PI 3.14159265358979323846
+#define MAX_LIGHT 256
+#define HALF 0.5f /* the central differences' half step, pixels */
+
+float lum3(const float c[3])
+{
+    return 0.2126f * c[0] + 0.7152f * c[1] + 0.0722f * c[2];
+}
+
+/* A surface, not a primitive: spheres by index, meshes with vertex normals
+ * by material, flat triangles by material and plane (two triangles of one
+ * wall are one object; a box's faces are not). */
+static int object_of(const scene *s, int prim, const surface *sf)
+{
+    const triangle *t;
+    uint64_t h;
+    float d;
+    int i;
+    if (prim < 0)
+        return -prim + (1 << 24);
+    t = &s->tris[prim];
+    if (t->has_n)
+        return (1 << 25) + t->mat;
+    d = sf->ng[0] * t->v[0][0] + sf->ng[1] * t->v[0][1] + sf->ng[2] * t->v[0][2];
+    h = hash64((uint64_t)(uint32_t)t->mat);
+    for (i = 0; i < 3; i++)
+        h = hash64(h ^ (uint64_t)(int64_t)lrintf(sf->ng[i] * 1000.0f));
+    h = hash64(h ^ (uint64_t)(int64_t)llrint((double)d * 1000.0));
+    return (int)(h & 0xffffffu);
+}
+
+/* The shading a moved surface gets from the frozen samples: emission plus
+ * direct light toward -d. */
+static void shade(const light_sample *ls, int n, int samples, const surface *sf,
+                  const float d[3], float out[3])
+{
+    emitted(sf, out);
+    direct_eval(ls, n, samples, sf, d, out);
+}
+
+/* The surface the ray through (x, y) meets on primitive prim, and the
+ * ray's direction. */
+static int aside(const renderer *r, const cam_frame *cf, float x, float y, int prim,
+                 surface *sf, float d[3])
+{
+    bvh_hit h;
+    camera_ray_at(cf, &r->s->cam, x, y, d);
+    if (!hit_surface_of(r->s, prim, cf->eye, d, &h))
+        return 0;
+    surface_at(r->s, cf->eye, d, &h, sf);
+    return 1;
+}
+
+/* E from the cache at a surface, without computing: 0 on a miss. */
+static int cached_e(const renderer *r, const surface *sf, float e[3])
+{
+    float p[3], w;
+    if (r->o.mode != MODE_CACHE || (r->o.features & IRC_FEATURE_SH))
+        return 0;
+    cache_point(sf, p);
+    return irc_cache_lookup(r->cache, p, sf->nsm, e, &w) == IRC_OK;
+}
+
+/* One axis of the gradient (axis 0: x, 1: y): each part as a central
+ * difference over +-HALF pixel; a side whose ray leaves the surface makes
+ * it one-sided. */
+static void axis_gradient(const renderer *r, const cam_frame *cf, float x, float y, int axis,
+                          int prim, const surface *sf, const float d[3],
+                          const light_sample *ls, int n, int samples, int parts,
+                          img_point *out)
+{
+    surface s[2], m;
+    float dd[2][3], f[2][3], kd[3], step;
+    int ok[2], k, c;
+    for (k = 0; k < 2; k++) {
+        const float off = k ? HALF : -HALF;
+        ok[k] = aside(r, cf, x + (axis ? 0.0f : off), y + (axis ? off : 0.0f), prim, &s[k],
+                      dd[k]);
+        if (!ok[k]) { /* this side is the point itself */
+            s[k] = *sf;
+            memcpy(dd[k], d, sizeof dd[k]);
+        }
+    }
+    if (!ok[0] && !ok[1])
+        return;
+    step = (ok[0] && ok[1] ? 2.0f : 1.0f) * HALF;
+    for (c = 0; c < 3; c++)
+        kd[c] = sf->m->kd[c] / (float)PI;
+    if (!parts) { /* the whole move at once: two shadings, not six */
+        for (k = 0; k < 2; k++)
+            shade(ls, n, samples, &s[k], dd[k], f[k]);
+        for (c = 0; c < 3; c++)
+            out->grad[axis][c] = (f[1][c] - f[0][c]) / step;
+        if (cached_e(r, &s[0], f[0]) && cached_e(r, &s[1], f[1]))
+            for (c = 0; c < 3; c++) {
+                out->ind[axis][c] = kd[c] * (f[1][c] - f[0][c]) / step;
+                out->grad[axis][c] += out->ind[axis][c];
+            }
+        return;
+    }
+    /* SV: the point moves, normal and view held. */
+    for (k = 0; k < 2; k++) {
+        m = *sf;
+        memcpy(m.p, s[k].p, sizeof m.p);
+        shade(ls, n, samples, &m, d, f[k]);
+    }
+    for (c = 0; c < 3; c++)
+        out->sv[axis][c] = (f[1][c] - f[0][c]) / step;
+    /* CDV: the normal turns (curvature and bumps), point and view held. */
+    for (k = 0; k < 2; k++) {
+        m = *sf;
+        memcpy(m.ns, s[k].ns, sizeof m.ns);
+        shade(ls, n, samples, &m, d, f[k]);
+    }
+    for (c = 0; c < 3; c++)
+        out->cdv[axis][c] = (f[1][c] - f[0][c]) / step;
+    /* DV: the view turns. */
+    for (k = 0; k < 2; k++)
+        shade(ls, n, samples, sf, dd[k], f[k]);
+    for (c = 0; c < 3; c++)
+        out->dv[axis][c] = (f[1][c] - f[0][c]) / step;
+    /* Indirect: kd/pi E along the move, from the cache's lookups. */
+    if (cached_e(r, &s[0], f[0]) && cached_e(r, &s[1], f[1]))
+        for (c = 0; c < 3; c++)
+            out->ind[axis][c] = kd[c] * (f[1][c] - f[0][c]) / step;
+    for (c = 0; c < 3; c++)
+        out->grad[axis][c] =
+            out->sv[axis][c] + out->cdv[axis][c] + out->dv[axis][c] + out->ind[axis][c];
+}
+
+/* The direct light's key: a pixel centre keeps the full render's (render.c,
+ * shade_pixel), so that samples there match its pixels. */
+static uint64_t light_key(float x, float y)
+{
+    const float fx = x - 0.5f, fy = y - 0.5f;
+    uint32_t bx, by;
+    if (fx == floorf(fx) && fy == floorf(fy) && fx >= 0.0f && fy >= 0.0f)
+        return hash64((uint64_t)(uint32_t)fy << 32 | (uint32_t)fx);
+    memcpy(&bx, &x, 4);
+    memcpy(&by, &y, 4);
+    return hash64(hash64(0x9e3779b97f4a7c15ull ^ bx) ^ (uint64_t)by << 32);
+}
+
+static double seconds(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+int image_point(renderer *r, const cam_frame *cf, float x, float y, int grads, uint64_t key,
+                img_point *out)
+{
+    light_sample ls[MAX_LIGHT];
+    const int samples = r->o.light_samples < MAX_LIGHT ? r->o.light_samples : MAX_LIGHT;
+    double t0;
+    float d[3], p[3], pn[6], e[3];
+    render_stats st;
+    bvh_hit bh;
+    surface sf;
+    uint64_t rays = 0;
+    int c, n, axis, err;
+    memset(out, 0, sizeof *out);
+    if (!key)
+        key = light_key(x, y);
+    camera_ray_at(cf, &r->s->cam, x, y, d);
+    if (!bvh_intersect(&r->b, cf->eye, d, 0.0f, FLT_MAX, &bh)) {
+        env_radiance(&r->s->env, d, out->rgb);
+        out->object = -1;
+        return 0;
+    }
+    surface_at(r->s, cf->eye, d, &bh, &sf);
+    out->object = object_of(r->s, bh.prim, &sf);
+    cache_point(&sf, p);
+    memcpy(pn, p, sizeof p);
+    memcpy(pn + 3, sf.nsm, sizeof sf.nsm);
+    if ((err = render_points(r, pn, 1, e, &st)) < 0)
+        return err;
+    n = direct_samples(&r->b, &r->l, &sf, 0, samples, samples, key, ls, &rays);
+    shade(ls, n, samples, &sf, d, out->rgb);
+    for (c = 0; c < 3; c++)
+        out->rgb[c] += sf.m->kd[c] / (float)PI * e[c];
+    out->curvature = bh.prim < 0 ? 1.0f / r->s->spheres[-bh.prim - 1].r : 0.0f;
+    out->depth = (sf.p[0] - cf->eye[0]) * cf->f[0] + (sf.p[1] - cf->eye[1]) * cf->f[1] +
+                 (sf.p[2] - cf->eye[2]) * cf->f[2];
+    out->cos_view = -(sf.ng[0] * d[0] + sf.ng[1] * d[1] + sf.ng[2] * d[2]);
+    out->exponent = sf.m->ks[0] + sf.m->ks[1] + sf.m->ks[2] > 0.0f ? sf.m->ns : 0.0f;
+    if (grads) {
+        t0 = seconds();
+        for (axis = 0; axis < 2; axis++)
+            axis_gradient(r, cf, x, y, axis, bh.prim, &sf, d, ls, n, samples, grads > 1, out);
+        out->grad_s = seconds() - t0;
+    }
+    return 0;
+}
+
+/* The image gradient against central differences of an image shaded with
+ * one set of light samples everywhere, at pixels whose 3 x 3 neighbours see
+ * the same object: relative L2 error of the luminance gradient, and the
+ * median of the per-pixel relative error where the gradient is above a
+ * tenth of its mean. */
+int image_gradient_check(renderer *r, const cam_frame *cf, int w, int h, grad_check *out)
+{
+    const uint64_t key = 0x5eedull;
+    img_point *ip = malloc(sizeof *ip * (size_t)w * (size_t)h);
+    double num = 0.0, den = 0.0, mean = 0.0, *rel;
+    int x, y, n = 0, nr = 0, st = 0;
+    memset(out, 0, sizeof *out);
+    if (!ip)
+        return -1;
+    for (y = 0; y < h && st == 0; y++)
+        for (x = 0; x < w && st == 0; x++)
+            st = image_point(r, cf, (float)x + 0.5f, (float)y + 0.5f, 2, key, &ip[y * w + x]);
+    rel = malloc(sizeof *rel * (size_t)w * (size_t)h);
+    for (y = 1; y < h - 1 && rel; y++)
+        for (x = 1; x < w - 1; x++) {
+            const img_point *c = &ip[y * w + x];
+            const float gx = lum3(c->grad[0]), gy = lum3(c->grad[1]);
+            int dx, dy, same = c->object >= 0;
+            for (dy = -1; dy <= 1; dy++)
+                for (dx = -1; dx <= 1; dx++)
+                    same &= ip[(y + dy) * w + x + dx].object == c->object;
+            if (!same)
+                continue;
+            mean += sqrt((double)gx * gx + (double)gy * gy);
+            n++;
+        }
+    mean = n ? mean / n : 0.0;
+    for (y = 1; y < h - 1 && rel; y++)
+        for (x = 1; x < w - 1; x++) {
+            const img_point *c = &ip[y * w + x];
+            const double gx = lum3(c->grad[0]), gy = lum3(c->grad[1]),
+                         fx = 0.5 * ((double)lum3(ip[y * w + x + 1].rgb) - lum3(ip[y * w + x - 1].rgb)),
+                         fy = 0.5 * ((double)lum3(ip[(y + 1) * w + x].rgb) - lum3(ip[(y - 1) * w + x].rgb));
+            int dx, dy, same = c->object >= 0;
+            for (dy = -1; dy <= 1; dy++)
+                for (dx = -1; dx <= 1; dx++)
+                    same &= ip[(y + dy) * w + x + dx].object == c->object;
+            if (!same)
+                continue;
+            num += (gx - fx) * (gx - fx) + (gy - fy) * (gy - fy);
+            den += gx * gx + gy * gy;
+            if (sqrt(gx * gx + gy * gy) > 0.1 * mean)
+                rel[nr++] = sqrt((gx - fx) * (gx - fx) + (gy - fy) * (gy - fy)) /
+                            sqrt(gx * gx + gy * gy);
+        }
+    if (rel && nr > 0) {
+        int i, j;
+        for (i = 1; i < nr; i++) /* insertion sort: a check, not a hot path */
+            for (j = i; j > 0 && rel[j - 1] > rel[j]; j--) {
+                const double t = rel[j];
+                rel[j] = rel[j - 1];
+                rel[j - 1] = t;
+            }
+        out->median = rel[nr / 2];
+        out->p90 = rel[nr * 9 / 10];
+    }
+    out->pixels = n;
+    out->strong = nr;
+    out->l2 = den > 0.0 ? sqrt(num / den) : 0.0;
+    free(rel);
+    free(ip);
+    return rel ? st : -1;
+}
