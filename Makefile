@@ -173,7 +173,7 @@ $(BUILD)/adaptive: experiments/adaptive.c $(DEMO_LIB_SRC) demo/*.h $(LIBA)
 
 adaptive: $(BUILD)/adaptive
 	$(BUILD)/adaptive demo/scenes/fig5.scene --check
-	$(BUILD)/adaptive demo/scenes/cornell.scene
+	$(BUILD)/adaptive demo/scenes/cornell.scene --check
 
 # The SH-gradient paper's experiments (README: "SH records").
 $(BUILD)/shexp: experiments/shexp.c $(DEMO_LIB_SRC) demo/*.h $(LIBA)

@@ -170,6 +170,7 @@ static int run(const scene *s, const char *tag, const float *full, double full_s
     const int w = s->cam.width, h = s->cam.height;
     renderer r;
     ctx c;
+    irc_stats cs;
     ad_opts o = {0, 0, 8, 0.0, 1.0f};
     ad_sample *smp = NULL;
     char path[512], err[256];
@@ -199,10 +200,12 @@ static int run(const scene *s, const char *tag, const float *full, double full_s
     rmse = rel_rmse(img, full, w * h, NULL, &worst);
     if (bumpy)
         (void)rel_rmse(img, full, w * h, bumpy, &worst_b);
+    irc_cache_stats(r.cache, &cs);
     printf("%-10s %4.0f%% %6d samples  rel. RMSE %.4f  worst %.3f  bumpy worst %.3f  "
-           "%7.2f s (full %.2f s: %.2fx), gradients %.3f s (%.1f%%)\n",
+           "%7.2f s (full %.2f s: %.2fx), gradients %.3f s (%.1f%%), %llu records\n",
            metric_name[metric], 100.0 * budget, n, rmse, worst, worst_b, t1 - t0, full_s,
-           full_s / (t1 - t0), c.grad_s, 100.0 * c.grad_s / (t1 - t0));
+           full_s / (t1 - t0), c.grad_s, 100.0 * c.grad_s / (t1 - t0),
+           (unsigned long long)cs.computes);
     positions(smp, n, img, w, h, dots);
     snprintf(path, sizeof path, "build/adaptive-out/%s-%s-%02.0f.png", tag, metric_name[metric],
              100.0 * budget);
