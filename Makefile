@@ -165,15 +165,20 @@ fig15: $(BUILD)/fig15
 	$(BUILD)/fig15 demo/scenes/fig15-sharp.scene 200 16384 64 256
 
 # The first-order paper's adaptive image sampling (README: "Adaptive
-# sampling"): three importance metrics at 10% and 17% of the pixels against
-# the full render, on the Fig. 5 scene (with the gradient check) and the
-# Cornell box.
+# image sampling"): three importance metrics at 10% and 17% of the pixels
+# against the full render, on the Fig. 5 scene and the Cornell box (each
+# with the gradient check); then the gradient's SV and CDV terms and their
+# ratio as the light rises (Fig. 5-6).
 $(BUILD)/adaptive: experiments/adaptive.c $(DEMO_LIB_SRC) demo/*.h $(LIBA)
 	$(CC) $(DEMO_CFLAGS) experiments/adaptive.c $(DEMO_LIB_SRC) $(LIBA) -o $@ -lm -lpthread
 
-adaptive: $(BUILD)/adaptive
+$(BUILD)/terms: experiments/terms.c $(DEMO_LIB_SRC) demo/*.h $(LIBA)
+	$(CC) $(DEMO_CFLAGS) experiments/terms.c $(DEMO_LIB_SRC) $(LIBA) -o $@ -lm -lpthread
+
+adaptive: $(BUILD)/adaptive $(BUILD)/terms
 	$(BUILD)/adaptive demo/scenes/fig5.scene --check
 	$(BUILD)/adaptive demo/scenes/cornell.scene --check
+	$(BUILD)/terms demo/scenes/fig5.scene
 
 # The SH-gradient paper's experiments (README: "SH records").
 $(BUILD)/shexp: experiments/shexp.c $(DEMO_LIB_SRC) demo/*.h $(LIBA)
