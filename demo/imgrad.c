@@ -74,6 +74,26 @@ static int cached_e(const renderer *r, const surface *sf, float e[3])
     return irc_cache_lookup(r->cache, p, sf->nsm, e, &w) == IRC_OK;
 }
 
+/* One part of the move: the shading with only the point (what 0), the
+ * normal (1) or the view (2) taken from either side, differenced. */
+static void part(const light_sample *ls, int n, int samples, const surface *sf,
+                 const float d[3], const surface s[2], float dd[2][3], int what, float step,
+                 float out[3])
+{
+    float f[2][3];
+    int k, c;
+    for (k = 0; k < 2; k++) {
+        surface m = *sf;
+        if (what == 0)
+            memcpy(m.p, s[k].p, sizeof m.p);
+        if (what == 1)
+            memcpy(m.ns, s[k].ns, sizeof m.ns);
+        shade(ls, n, samples, &m, what == 2 ? dd[k] : d, f[k]);
+    }
+    for (c = 0; c < 3; c++)
+        out[c] = (f[1][c] - f[0][c]) / step;
+}
+
 /* One axis of the gradient (axis 0: x, 1: y): each part as a central
  * difference over +-HALF pixel; a side whose ray leaves the surface makes
  * it one-sided. */
@@ -82,7 +102,7 @@ static void axis_gradient(const renderer *r, const cam_frame *cf, float x, float
                           const light_sample *ls, int n, int samples, int parts,
                           img_point *out)
 {
-    surface s[2], m;
+    surface s[2];
     float dd[2][3], f[2][3], kd[3], step;
     int ok[2], k, c;
     for (k = 0; k < 2; k++) {
@@ -111,27 +131,11 @@ static void axis_gradient(const renderer *r, const cam_frame *cf, float x, float
             }
         return;
     }
-    /* SV: the point moves, normal and view held. */
-    for (k = 0; k < 2; k++) {
-        m = *sf;
-        memcpy(m.p, s[k].p, sizeof m.p);
-        shade(ls, n, samples, &m, d, f[k]);
-    }
-    for (c = 0; c < 3; c++)
-        out->sv[axis][c] = (f[1][c] - f[0][c]) / step;
-    /* CDV: the normal turns (curvature and bumps), point and view held. */
-    for (k = 0; k < 2; k++) {
-        m = *sf;
-        memcpy(m.ns, s[k].ns, sizeof m.ns);
-        shade(ls, n, samples, &m, d, f[k]);
-    }
-    for (c = 0; c < 3; c++)
-        out->cdv[axis][c] = (f[1][c] - f[0][c]) / step;
-    /* DV: the view turns. */
-    for (k = 0; k < 2; k++)
-        shade(ls, n, samples, sf, dd[k], f[k]);
-    for (c = 0; c < 3; c++)
-        out->dv[axis][c] = (f[1][c] - f[0][c]) / step;
+    /* SV: the point moves, normal and view held; CDV: the normal turns
+     * (curvature and bumps), point and view held; DV: the view turns. */
+    part(ls, n, samples, sf, d, s, dd, 0, step, out->sv[axis]);
+    part(ls, n, samples, sf, d, s, dd, 1, step, out->cdv[axis]);
+    part(ls, n, samples, sf, d, s, dd, 2, step, out->dv[axis]);
     /* Indirect: kd/pi E along the move, from the cache's lookups. */
     if (cached_e(r, &s[0], f[0]) && cached_e(r, &s[1], f[1]))
         for (c = 0; c < 3; c++)

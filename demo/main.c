@@ -111,15 +111,7 @@ static int parse_args(int argc, char **argv, cli *c)
     int i;
     long v;
     memset(c, 0, sizeof *c);
-    c->o.mode = MODE_CACHE;
-    c->o.features = IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION;
-    c->o.accuracy = 0.2f;
-    c->o.strata_m = 16;
-    c->o.strata_n = 64;
-    c->o.max_records = 200000;
-    c->o.max_radius = -1.0f;
-    c->o.light_samples = 16;
-    c->o.seed = 1;
+    render_opts_defaults(&c->o);
     c->o.progress = 1;
     c->o.threads = (int)sysconf(_SC_NPROCESSORS_ONLN);
     c->exposure = 1.0f;

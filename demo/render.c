@@ -129,6 +129,21 @@ static float visible_size(const renderer *r)
     return 0.1f * sqrtf(d2);
 }
 
+void render_opts_defaults(render_opts *o)
+{
+    memset(o, 0, sizeof *o);
+    o->mode = MODE_CACHE;
+    o->features = IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION;
+    o->accuracy = 0.2f;
+    o->strata_m = 16;
+    o->strata_n = 64;
+    o->max_records = 200000;
+    o->max_radius = -1.0f;
+    o->light_samples = 16;
+    o->seed = 1;
+    o->threads = 1;
+}
+
 int renderer_init(renderer *r, const scene *s, const render_opts *o, char *err, size_t n)
 {
     memset(r, 0, sizeof *r);

@@ -71,6 +71,11 @@ typedef struct renderer {
     void *block;
 } renderer;
 
+/* irc_demo's defaults: the cache with both gradients, a = 0.2, 16 x 64
+ * strata, 200,000 records, max_radius from the view, 16 light samples,
+ * seed 1, one thread, deterministic fill passes; the rest 0. */
+void render_opts_defaults(render_opts *o);
+
 int renderer_init(renderer *r, const scene *s, const render_opts *o, char *err, size_t n);
 void renderer_free(renderer *r);
 

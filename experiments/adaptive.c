@@ -82,17 +82,7 @@ static int new_renderer(renderer *r, const scene *s)
 {
     render_opts o;
     char err[256];
-    memset(&o, 0, sizeof o);
-    o.mode = MODE_CACHE;
-    o.features = IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION;
-    o.accuracy = 0.2f;
-    o.strata_m = 16;
-    o.strata_n = 64;
-    o.max_records = 200000;
-    o.max_radius = -1.0f;
-    o.threads = 1;
-    o.light_samples = 16;
-    o.seed = 1;
+    render_opts_defaults(&o);
     if (renderer_init(r, s, &o, err, sizeof err) < 0) {
         fprintf(stderr, "adaptive: %s\n", err);
         return -1;

@@ -119,12 +119,9 @@ static int height(scene *s, float dy, int write)
     if (!sv || !med)
         return -1;
     raise_lights(s, dy);
-    memset(&o, 0, sizeof o);
+    render_opts_defaults(&o);
     o.mode = MODE_REFERENCE; /* E is not needed: the terms are direct light's */
     o.ref_rays = 1;
-    o.threads = 1;
-    o.light_samples = 16;
-    o.seed = 1;
     if (renderer_init(&r, s, &o, err, sizeof err) < 0) {
         fprintf(stderr, "terms: %s\n", err);
         raise_lights(s, -dy);

@@ -363,17 +363,7 @@ TEST(test_image_gradient)
     CHECK(scene_load("demo/scenes/fig5.scene", &s, err, sizeof err) == 0, "%s", err);
     s.cam.width = 128;
     s.cam.height = 96;
-    memset(&o, 0, sizeof o);
-    o.mode = MODE_CACHE;
-    o.features = IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION;
-    o.accuracy = 0.2f;
-    o.strata_m = 16;
-    o.strata_n = 64;
-    o.max_records = 100000;
-    o.max_radius = -1.0f;
-    o.threads = 1;
-    o.light_samples = 16;
-    o.seed = 1;
+    render_opts_defaults(&o);
     CHECK(renderer_init(&r, &s, &o, err, sizeof err) == 0, "%s", err);
     img = malloc(sizeof *img * 3 * 128 * 96);
     CHECK(render_image(&r, img, &st) == 0, "render");
