@@ -216,6 +216,17 @@ int image_point(renderer *r, const cam_frame *cf, float x, float y, int grads, u
  * the same object: relative L2 error of the luminance gradient, and the
  * median of the per-pixel relative error where the gradient is above a
  * tenth of its mean. */
+/* Whether pixel (x, y) and its 8 neighbours see one object. */
+static int one_object(const img_point *ip, int w, int x, int y)
+{
+    const int o = ip[y * w + x].object;
+    int dx, dy, same = o >= 0;
+    for (dy = -1; dy <= 1; dy++)
+        for (dx = -1; dx <= 1; dx++)
+            same &= ip[(y + dy) * w + x + dx].object == o;
+    return same;
+}
+
 int image_gradient_check(renderer *r, const cam_frame *cf, int w, int h, grad_check *out)
 {
     const uint64_t key = 0x5eedull;
@@ -233,11 +244,7 @@ int image_gradient_check(renderer *r, const cam_frame *cf, int w, int h, grad_ch
         for (x = 1; x < w - 1; x++) {
             const img_point *c = &ip[y * w + x];
             const float gx = lum3(c->grad[0]), gy = lum3(c->grad[1]);
-            int dx, dy, same = c->object >= 0;
-            for (dy = -1; dy <= 1; dy++)
-                for (dx = -1; dx <= 1; dx++)
-                    same &= ip[(y + dy) * w + x + dx].object == c->object;
-            if (!same)
+            if (!one_object(ip, w, x, y))
                 continue;
             mean += sqrt((double)gx * gx + (double)gy * gy);
             n++;
@@ -249,11 +256,7 @@ int image_gradient_check(renderer *r, const cam_frame *cf, int w, int h, grad_ch
             const double gx = lum3(c->grad[0]), gy = lum3(c->grad[1]),
                          fx = 0.5 * ((double)lum3(ip[y * w + x + 1].rgb) - lum3(ip[y * w + x - 1].rgb)),
                          fy = 0.5 * ((double)lum3(ip[(y + 1) * w + x].rgb) - lum3(ip[(y - 1) * w + x].rgb));
-            int dx, dy, same = c->object >= 0;
-            for (dy = -1; dy <= 1; dy++)
-                for (dx = -1; dx <= 1; dx++)
-                    same &= ip[(y + dy) * w + x + dx].object == c->object;
-            if (!same)
+            if (!one_object(ip, w, x, y))
                 continue;
             num += (gx - fx) * (gx - fx) + (gy - fy) * (gy - fy);
             den += gx * gx + gy * gy;
