@@ -118,8 +118,8 @@ typedef struct irc__query {
     int free;
 } irc__query;
 
-/* A lookup's running sums live in the frame of the kind's find (3 doubles
- * for irradiance, 2.4 KB for SH), passed on as void *: a union of every
+/* A lookup's running sums live in the frame of the kind's find (4 floats
+ * for irradiance, 1.2 KB for SH), passed on as void *: a union of every
  * kind's would put the largest on every kind's stack, and a frame that
  * outlived the lookup would sit under the record computation that may
  * follow it. */
