@@ -233,12 +233,17 @@ int image_gradient_check(renderer *r, const cam_frame *cf, int w, int h, grad_ch
     img_point *ip = malloc(sizeof *ip * (size_t)w * (size_t)h);
     double num = 0.0, den = 0.0, mean = 0.0, *rel;
     int x, y, n = 0, nr = 0, st = 0;
+    const int frozen = r->o.frozen;
     memset(out, 0, sizeof *out);
     if (!ip)
         return -1;
+    /* The cache is held as it is: records added while the image is shaded
+     * would make E jump between neighbouring pixels. */
+    r->o.frozen = 1;
     for (y = 0; y < h && st == 0; y++)
         for (x = 0; x < w && st == 0; x++)
             st = image_point(r, cf, (float)x + 0.5f, (float)y + 0.5f, 2, key, &ip[y * w + x]);
+    r->o.frozen = frozen;
     rel = malloc(sizeof *rel * (size_t)w * (size_t)h);
     for (y = 1; y < h - 1 && rel; y++)
         for (x = 1; x < w - 1; x++) {

@@ -19,8 +19,9 @@
  * gradients, and writes the reconstructions and the sample positions as
  * PNGs to build/adaptive-out/.  With --check it first compares the image
  * gradient with central differences of an image rendered with one set of
- * light samples for every pixel.  Everything runs on one thread.
- *   adaptive SCENE [W H] [--check]
+ * light samples for every pixel (--check-only: only that).  Everything
+ * runs on one thread.
+ *   adaptive SCENE [W H] [--check | --check-only]
  */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
@@ -222,16 +223,19 @@ int main(int argc, char **argv)
     double t0, full_s;
     int w, h, m, b, nb = 0, do_check = 0, i, rc = 0;
     if (argc < 2) {
-        fprintf(stderr, "usage: adaptive SCENE [W H] [--check]\n");
+        fprintf(stderr, "usage: adaptive SCENE [W H] [--check | --check-only]\n");
         return 2;
     }
     if (scene_load(argv[1], &s, err, sizeof err) < 0) {
         fprintf(stderr, "%s\n", err);
         return 1;
     }
-    for (i = 2; i < argc; i++)
+    for (i = 2; i < argc; i++) {
         if (strcmp(argv[i], "--check") == 0)
             do_check = 1;
+        if (strcmp(argv[i], "--check-only") == 0)
+            do_check = 2;
+    }
     if (argc >= 4 && argv[2][0] != '-') {
         s.cam.width = atoi(argv[2]);
         s.cam.height = atoi(argv[3]);
@@ -271,7 +275,7 @@ int main(int argc, char **argv)
                    "%.4f\n", w, h, g.pixels, g.l2, g.strong, g.median, g.p90);
     }
     renderer_free(&r);
-    for (b = 0; b < 2 && rc == 0; b++)
+    for (b = 0; b < 2 && rc == 0 && do_check < 2; b++)
         for (m = 0; m < M_COUNT && rc == 0; m++)
             if (run(&s, tag, full, full_s, bumpy, m, budgets[b], img, dots) < 0)
                 rc = 1;
