@@ -12,6 +12,14 @@
  */
 #include "cache.h"
 
+/* The row loops' lanes: four where the target has 4-wide SIMD, three on
+ * a scalar FPU (irc__row_coeffs, irc__row_sum). */
+#if defined(__SSE__) || defined(__ARM_NEON) || defined(__ALTIVEC__) || defined(__wasm_simd128__)
+#define IRC__LANES 4
+#else
+#define IRC__LANES 3
+#endif
+
 /* The table: four padded rows of floats, cos and sin of each column's
  * centre phi_c = 2 pi (k + 1/2)/N and of its first boundary phi_b =
  * 2 pi k/N (entry N repeats entry 0); then per row j the
@@ -214,12 +222,6 @@ static void irc__row_coeffs(const irc_cache *c, const float *restrict below,
  * in double was 1.5e-4 of the translational gradient's length (2.9e-4 of
  * the rotational's) without it, 1.6e-5 (1.1e-4) with it (README, "Where
  * the record time goes"). */
-#if defined(__SSE__) || defined(__ARM_NEON) || defined(__ALTIVEC__) || defined(__wasm_simd128__)
-#define IRC__LANES 4
-#else
-#define IRC__LANES 3
-#endif
-
 typedef struct irc__row_sums {
     float t1[4], t2[4]; /* translational, along t1 and t2 */
     float c[4], s[4];   /* the radiance times cos phi_b and sin phi_b */
