@@ -9,21 +9,16 @@
  * then the mean over usable strata, and a uniform scene keeps a zero
  * rotational gradient.  Their distance stays NaN, so no translational
  * boundary term touches them. */
-static void irc__fill_failed(irc__sample *s, uint32_t total, uint32_t used)
+static void irc__fill_failed(irc__sample *s, uint32_t total, uint32_t used, const float mean[3])
 {
-    float sum[3] = {0, 0, 0};
     uint32_t i;
     int c;
     if (used == total)
         return;
     for (i = 0; i < total; i++)
-        if (s[i].d == s[i].d)
-            for (c = 0; c < 3; c++)
-                sum[c] += s[i].l[c];
-    for (i = 0; i < total; i++)
         if (s[i].d != s[i].d)
             for (c = 0; c < 3; c++)
-                s[i].l[c] = (float)(sum[c] / used);
+                s[i].l[c] = mean[c];
 }
 
 #ifndef IRC_NO_HESSIAN
@@ -102,16 +97,6 @@ static void irc__hessian_radii(const irc_cache *c, const irc__sample *s, const f
 
 #endif
 
-/* Ward's split-sphere radius, the harmonic mean hit distance, made safe
- * without a scene size: over the rays that hit.  Ward's form counts an
- * escaped ray as a hit at infinity, so a record that saw a blocker in a
- * tenth of its rays and sky in the rest got ten times the blocker's
- * distance, and one that saw only sky an infinite radius (a record 1000
- * away then answered lookups under the blocker).  The distance to what the
- * record saw is the scale at which what it saw changes.  A record that hit
- * nothing has no scale: it takes the host's max_radius if the host set
- * one, else the smallest radius (it then serves lookups at its own point
- * only); open scenes want a max_radius. */
 typedef struct irc__totals {
     float sum[3];     /* radiance over the usable strata */
     float inv;        /* 1/d over the strata that hit */
@@ -151,7 +136,16 @@ static void irc__totals_of(const irc_cache *c, const irc__sample *s, irc__totals
     }
 }
 
-/* The split sphere of the totals (above). */
+/* Ward's split-sphere radius, the harmonic mean hit distance, made safe
+ * without a scene size: over the rays that hit.  Ward's form counts an
+ * escaped ray as a hit at infinity, so a record that saw a blocker in a
+ * tenth of its rays and sky in the rest got ten times the blocker's
+ * distance, and one that saw only sky an infinite radius (a record 1000
+ * away then answered lookups under the blocker).  The distance to what the
+ * record saw is the scale at which what it saw changes.  A record that hit
+ * nothing has no scale: it takes the host's max_radius if the host set
+ * one, else the smallest radius (it then serves lookups at its own point
+ * only); open scenes want a max_radius. */
 static float irc__split_sphere(const irc_cache *c, const irc__totals *t, float *far)
 {
     *far = t->far;
@@ -278,12 +272,12 @@ static IRC__NOINLINE void irc__record_build(const irc_cache *c, const irc__sampl
     irc__totals_of(c, s, &t);
     used = t.used;
     IRC_MEMSET(out, 0, sizeof *out);
-    irc__fill_failed((irc__sample *)s, total, used);
     for (ch = 0; ch < 3; ch++) {
         mean[ch] = t.sum[ch] / (float)used;
         out->e[ch] = IRC_PI * t.sum[ch] / (float)used;
         out->n[ch] = n[ch];
     }
+    irc__fill_failed((irc__sample *)s, total, used, mean);
     hm = irc__split_sphere(c, &t, &far);
     r = hm;
     if (f & (IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION))
