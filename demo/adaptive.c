@@ -21,8 +21,9 @@ typedef struct ad_state {
     void *ctx;
     ad_sample *s;
     int n, cap;
-    ad_square *q;      /* a max-heap by priority */
-    int nq, qcap;
+    ad_square *q;      /* a max-heap by priority; a square a sample at most,
+                          so cap bounds it too */
+    int nq;
 } ad_state;
 
 static int add_sample(ad_state *a, float x, float y)
@@ -169,9 +170,8 @@ int adaptive_sample(const ad_opts *o, ad_eval_fn eval, void *ctx, ad_sample **ou
     /* Every split adds 3 squares and 4 samples; the first pass adds the
      * blocks and the border. */
     a.cap = budget + 4 + (o->width / o->block + 1) * (o->height / o->block + 1) * 2;
-    a.qcap = a.cap;
     a.s = malloc(sizeof *a.s * (size_t)a.cap);
-    a.q = malloc(sizeof *a.q * (size_t)a.qcap);
+    a.q = malloc(sizeof *a.q * (size_t)a.cap);
     if (!a.s || !a.q) {
         free(a.s);
         free(a.q);
