@@ -626,6 +626,31 @@ IRC_API int irc_cache_insert(irc_cache *cache, const irc_record *rec);
 IRC_API int irc_cache_lookup(irc_cache *cache, const float p[3], const float n[3],
                              float rgb[3], float *weight);
 
+/* Interpolated irradiance's first derivatives at a point, per channel c. */
+typedef struct irc_gradient {
+    float dp[3][3];  /* dE_c/dp: E_c changes by dp[c] . dx as p moves by dx
+                        (per unit of length; along the surface) */
+    float dn[3][3];  /* dE_c/dn: E_c changes by dn[c] . dm as the unit normal
+                        turns by a small dm (perpendicular to n; per radian) */
+} irc_gradient;
+
+/*
+ * irc_cache_lookup, and the gradient of what it interpolates: the same
+ * records with the same weights, each record's extrapolation E_i + (p -
+ * p_i).grad_t + (n_i x n).grad_r differentiated, dp = grad_t and dn =
+ * grad_r x n_i (a channel clamped at 0 contributes zeros), averaged with
+ * weights w_i.  The weights' own derivatives are left out: they change
+ * where records enter and leave reach, so that part is a property of the
+ * record set, not of the light (the first-order paper's image-space
+ * gradient, Sec. 5, takes the light field's gradient the same way).  A
+ * cache without translational (rotational) gradients answers dp (dn) = 0.
+ * rgb and grad must not be NULL (IRC_ERR_NULL).  Returns what
+ * irc_cache_lookup returns; on IRC_MISS rgb and grad are zero; rgb, grad
+ * and the counters are as irc_cache_lookup leaves them.
+ */
+IRC_API int irc_cache_lookup_gradient(irc_cache *cache, const float p[3], const float n[3],
+                                      float rgb[3], irc_gradient *grad, float *weight);
+
 /*
  * Lookup; on a miss, compute a record at (p, n) (host reaches the callback),
  * insert it, and return its irradiance with *weight = 0 (a weight of 0 is

@@ -337,7 +337,7 @@ void irc__oct_frame(uint32_t code, float t1[3], float t2[3]);
 int irc__weigh(const irc_cache *c, const irc__rec *r, const float p[3],
                const float n[3], float *w, float ni[3]);
 void irc__extrapolate(const irc_cache *c, const irc__rec *r, const float ni[3],
-                      const float p[3], const float n[3], float out[3]);
+                      const float p[3], const float n[3], float out[3], float g[2][3][3]);
 float irc__grad_scale(const irc__grad *g, int ch);
 
 /* store.c: the handle, scratch slots, insert and eviction, the lookup
@@ -372,9 +372,12 @@ int irc__snap_check(const irc_cache *c, uint64_t fingerprint, const unsigned cha
 void irc__convert(const irc_cache *c, const unsigned char *src, unsigned char *dst, int to_le);
 unsigned irc__field_width(const irc_cache *c, uint32_t at);
 uint64_t irc__native_get(const unsigned char *p, unsigned width);
-int irc__lookup_once(irc_cache *c, const irc__query *q, void *out, float *weight, void *acc);
-int irc__lookup(irc_cache *c, const irc__kind *want, const float p[3], const float n[3],
-                void *out, float *weight);
+/* A lookup weighs and accumulates with ops: the cache's kind (want), or a
+ * table that shares its records and answers more (a gradient lookup). */
+int irc__lookup_once(irc_cache *c, const irc__kind *ops, const irc__query *q, void *out,
+                     float *weight, void *acc);
+int irc__lookup(irc_cache *c, const irc__kind *want, const irc__kind *ops, const float p[3],
+                const float n[3], void *out, float *weight);
 /* The record it computes on a miss is built in the claimed slot. */
 int irc__lookup_or_compute(irc_cache *c, const irc__kind *want, float footprint, const float p[3],
                            const float n[3], void *out, float *weight, void *host);

@@ -216,7 +216,7 @@ static void irc__irr_accumulate(const irc_cache *c, const irc__rec *r, const irc
 {
     float v[3], *a = (float *)acc, f;
     int ch;
-    irc__extrapolate(c, r, ni, q->p, q->n, v);
+    irc__extrapolate(c, r, ni, q->p, q->n, v, NULL);
     a[3] += w;
     f = w / a[3];
     for (ch = 0; ch < 3; ch++)
@@ -253,7 +253,72 @@ static void irc__irr_answer(const irc_cache *c, const void *rec, void *out)
 static int irc__irr_find(irc_cache *c, const irc__query *q, void *out, float *weight)
 {
     float acc[4];
-    return irc__lookup_once(c, q, out, weight, acc);
+    return irc__lookup_once(c, &irc__kind_irr, q, out, weight, acc);
+}
+
+/* The gradient lookup: the same records and weights, the accumulator
+ * carries the running means of E (0-2), the weight (3), then each
+ * record's dE/dp (4-12) and dE/dn (13-21) per channel. */
+#define IRC__GACC 22
+
+static void irc__irrg_begin(const irc_cache *c, void *acc)
+{
+    (void)c;
+    IRC_MEMSET(acc, 0, IRC__GACC * sizeof(float));
+}
+
+static void irc__irrg_accumulate(const irc_cache *c, const irc__rec *r, const irc__query *q,
+                                 float w, const float ni[3], void *acc)
+{
+    float v[3], g[2][3][3], *a = (float *)acc, f;
+    int ch, k;
+    irc__extrapolate(c, r, ni, q->p, q->n, v, g);
+    a[3] += w;
+    f = w / a[3];
+    for (ch = 0; ch < 3; ch++) {
+        a[ch] += f * (v[ch] - a[ch]);
+        for (k = 0; k < 3; k++) {
+            a[4 + 3 * ch + k] += f * (g[0][ch][k] - a[4 + 3 * ch + k]);
+            a[13 + 3 * ch + k] += f * (g[1][ch][k] - a[13 + 3 * ch + k]);
+        }
+    }
+}
+
+typedef struct irc__grad_out {
+    float *rgb;
+    irc_gradient *grad;
+} irc__grad_out;
+
+static int irc__irrg_finish(const irc_cache *c, const irc__query *q, const void *acc,
+                            float w, void *out)
+{
+    const float *a = (const float *)acc;
+    irc__grad_out *o = (irc__grad_out *)out;
+    int ch, k, st = irc__irr_finish(c, q, acc, w, o->rgb);
+    for (ch = 0; ch < 3; ch++)
+        for (k = 0; k < 3; k++) {
+            o->grad->dp[ch][k] = w > 0.0f ? a[4 + 3 * ch + k] : 0.0f;
+            o->grad->dn[ch][k] = w > 0.0f ? a[13 + 3 * ch + k] : 0.0f;
+        }
+    if (st == IRC_OK && !(irc__finite3(o->grad->dp[0]) && irc__finite3(o->grad->dp[1]) &&
+                          irc__finite3(o->grad->dp[2]) && irc__finite3(o->grad->dn[0]) &&
+                          irc__finite3(o->grad->dn[1]) && irc__finite3(o->grad->dn[2])))
+        return IRC_ERR_NONFINITE;
+    return st;
+}
+
+static int irc__irrg_find(irc_cache *c, const irc__query *q, void *out, float *weight);
+
+/* Only the lookup uses it: compute, pack and the rest are the kind's. */
+static const irc__kind irc__kind_irr_grad = {
+    0, irc__irr_compute, irc__irr_check,
+    irc__irr_pack, irc__irr_unpack, irc__irr_weigh, irc__irrg_begin,
+    irc__irrg_accumulate, irc__irrg_finish, irc__irr_answer, irc__irrg_find};
+
+static int irc__irrg_find(irc_cache *c, const irc__query *q, void *out, float *weight)
+{
+    float acc[IRC__GACC];
+    return irc__lookup_once(c, &irc__kind_irr_grad, q, out, weight, acc);
 }
 
 const irc__kind irc__kind_irr = {
@@ -275,7 +340,17 @@ int irc_cache_insert(irc_cache *c, const irc_record *rec)
 int irc_cache_lookup(irc_cache *c, const float p[3], const float n[3], float rgb[3],
                      float *weight)
 {
-    return irc__lookup(c, &irc__kind_irr, p, n, rgb, weight);
+    return irc__lookup(c, &irc__kind_irr, &irc__kind_irr, p, n, rgb, weight);
+}
+
+int irc_cache_lookup_gradient(irc_cache *c, const float p[3], const float n[3], float rgb[3],
+                              irc_gradient *grad, float *weight)
+{
+    irc__grad_out o;
+    o.rgb = rgb;
+    o.grad = grad;
+    return irc__lookup(c, &irc__kind_irr, &irc__kind_irr_grad, p, n, rgb && grad ? &o : NULL,
+                       weight);
 }
 
 int irc_cache_lookup_or_compute(irc_cache *c, const float p[3], const float n[3],

@@ -246,7 +246,7 @@ static int irc__sh_compute(irc__call *k, void *rec)
 static int irc__sh_find(irc_cache *c, const irc__query *q, void *out, float *weight)
 {
     irc__sh_acc acc;
-    return irc__lookup_once(c, q, out, weight, &acc);
+    return irc__lookup_once(c, &irc__kind_sh, q, out, weight, &acc);
 }
 
 const irc__kind irc__kind_sh = {
@@ -267,7 +267,7 @@ int irc_sh_insert(irc_cache *c, const irc_sh *rec)
 int irc_sh_lookup(irc_cache *c, const float p[3], const float n[3], irc_sh *out,
                   float *weight)
 {
-    return irc__lookup(c, &irc__kind_sh, p, n, out, weight);
+    return irc__lookup(c, &irc__kind_sh, &irc__kind_sh, p, n, out, weight);
 }
 
 int irc_sh_lookup_or_compute(irc_cache *c, const float p[3], const float n[3], irc_sh *out,

@@ -298,6 +298,8 @@ static void irc__mark_used(irc_cache *c, uint32_t id)
  * the kind accepts, accumulated (acc set) or collected as ids. */
 typedef struct irc__walk {
     irc_cache *c;
+    const irc__kind *ops;    /* the weight and accumulator: the cache's kind,
+                                or a variant of it (a gradient lookup) */
     const irc__query *q;
     void *acc;
     float w;
@@ -311,11 +313,11 @@ static void irc__visit(void *ud, uint32_t id)
     const irc__rec *r = irc__rec_at(c, id);
     float w;
     float ni[3];
-    if (!irc__within_reach(c, r, v->q->p) || !c->kind->weigh(c, r, v->q, &w, ni))
+    if (!irc__within_reach(c, r, v->q->p) || !v->ops->weigh(c, r, v->q, &w, ni))
         return;
     v->w += w;
     if (v->acc) {
-        c->kind->accumulate(c, r, v->q, w, ni, v->acc);
+        v->ops->accumulate(c, r, v->q, w, ni, v->acc);
         irc__mark_used(v->c, id);
     } else {
         if (v->found < v->cap)
@@ -341,20 +343,22 @@ static int irc__walk_index(irc_cache *c, irc__walk *v)
     return IRC_OK;
 }
 
-int irc__lookup_once(irc_cache *c, const irc__query *q, void *out, float *weight, void *acc)
+int irc__lookup_once(irc_cache *c, const irc__kind *ops, const irc__query *q, void *out,
+                     float *weight, void *acc)
 {
     irc__walk v;
     int st;
     IRC_MEMSET(&v, 0, sizeof v);
     v.c = c;
+    v.ops = ops;
     v.q = q;
     v.acc = acc;
-    c->kind->begin(c, acc);
+    ops->begin(c, acc);
     if ((st = irc__walk_index(c, &v)) < 0)
         return st;
     if (weight)
         *weight = (float)v.w;
-    return c->kind->finish(c, q, acc, v.w, out);
+    return ops->finish(c, q, acc, v.w, out);
 }
 
 /* Counts a lookup that returned st (and a hit when it answered).  Errors
@@ -369,14 +373,14 @@ static int irc__count_lookup(irc_cache *c, int st)
     return st;
 }
 
-int irc__lookup(irc_cache *c, const irc__kind *want, const float p[3], const float n[3],
-                void *out, float *weight)
+int irc__lookup(irc_cache *c, const irc__kind *want, const irc__kind *ops, const float p[3],
+                const float n[3], void *out, float *weight)
 {
     irc__query q;
     int st = irc__open(c, want, out, p, n, &q);
     if (st < 0)
         return st;
-    return irc__count_lookup(c, c->kind->find(c, &q, out, weight));
+    return irc__count_lookup(c, ops->find(c, &q, out, weight));
 }
 
 /* The end of a miss: the computed record offered to the pool.  A full
@@ -460,6 +464,7 @@ int irc_cache_neighbours(irc_cache *c, const float p[3], const float n[3],
         return IRC_ERR_NULL;
     IRC_MEMSET(&v, 0, sizeof v);
     v.c = c;
+    v.ops = c->kind;
     v.q = &q;
     v.ids = ids;
     v.cap = cap;
