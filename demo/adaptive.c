@@ -12,6 +12,8 @@ typedef struct ad_square {
     float x, y, side;  /* centre and side, pixels */
     int sample;        /* its sample */
     int edge;          /* on an object boundary: split before the rest */
+    float jump;        /* a region boundary's: |delta luminance| / side, a
+                          floor under its sample's importance */
     double priority;
 } ad_square;
 
@@ -24,12 +26,54 @@ typedef struct ad_state {
     ad_square *q;      /* a max-heap by priority; a square a sample at most,
                           so cap bounds it too */
     int nq;
+    int *pos;          /* sample -> heap slot of the square it centres, or
+                          -1 (one live square a sample at most) */
+    int *at;           /* open addressing on position: sample index or -1 */
+    unsigned mask;     /* its size - 1 (a power of two, >= 2 cap) */
 } ad_state;
 
+/* Where a sample for the point (x, y) goes: there, or (at_pixels) at the
+ * centre of the pixel holding it (the lower right one when (x, y) is a
+ * pixel corner), kept inside the image. */
+static void place(const ad_opts *o, float *x, float *y)
+{
+    if (!o->at_pixels)
+        return;
+    *x = floorf(*x) + 0.5f;
+    *y = floorf(*y) + 0.5f;
+    if (*x > (float)o->width - 0.5f) *x = (float)o->width - 0.5f;
+    if (*y > (float)o->height - 0.5f) *y = (float)o->height - 0.5f;
+}
+
+static unsigned slot_of(const ad_state *a, float x, float y)
+{
+    const unsigned h = (unsigned)(long)(4.0f * x) * 0x9e3779b1u ^ (unsigned)(long)(4.0f * y) * 0x85ebca77u;
+    return (h ^ h >> 15) & a->mask;
+}
+
+/* The sample already at (x, y), or -1. */
+static int find_sample(const ad_state *a, float x, float y)
+{
+    unsigned h;
+    for (h = slot_of(a, x, y); a->at[h] >= 0; h = (h + 1) & a->mask)
+        if (a->s[a->at[h]].x == x && a->s[a->at[h]].y == y)
+            return a->at[h];
+    return -1;
+}
+
+/* The sample at (x, y) after place(): one already there (squares of two
+ * pixels share theirs with a child, border samples with the squares along
+ * the border), or a new one, evaluated.  Returns its index or the
+ * evaluator's negative value. */
 static int add_sample(ad_state *a, float x, float y)
 {
     ad_sample *t;
+    unsigned h;
     int st;
+    place(a->o, &x, &y);
+    for (h = slot_of(a, x, y); a->at[h] >= 0; h = (h + 1) & a->mask)
+        if (a->s[a->at[h]].x == x && a->s[a->at[h]].y == y)
+            return a->at[h];
     if (a->n == a->cap)
         return -1;
     t = &a->s[a->n];
@@ -40,6 +84,7 @@ static int add_sample(ad_state *a, float x, float y)
         return st;
     if (!(t->importance >= 0.0f))
         t->importance = 0.0f;
+    a->at[h] = a->n;
     return a->n++;
 }
 
@@ -47,20 +92,33 @@ static double priority(const ad_state *a, const ad_square *q)
 {
     if (q->side <= a->o->min_side)
         return -1.0; /* never split */
-    if (q->edge)
-        return HUGE_VAL;
-    return (double)a->s[q->sample].importance * q->side * q->side;
+    if (q->edge) /* before the rest, larger squares first */
+        return 1e30 * q->side;
+    return (double)fmaxf(a->s[q->sample].importance, q->jump) * q->side * q->side;
+}
+
+/* Heap slot i gets q; pos follows each live square's sample. */
+static void heap_set(ad_state *a, int i, ad_square q)
+{
+    a->q[i] = q;
+    a->pos[q.sample] = i;
+}
+
+static void sift_up(ad_state *a, int i)
+{
+    const ad_square q = a->q[i];
+    while (i > 0 && a->q[(i - 1) / 2].priority < q.priority) {
+        heap_set(a, i, a->q[(i - 1) / 2]);
+        i = (i - 1) / 2;
+    }
+    heap_set(a, i, q);
 }
 
 static void heap_push(ad_state *a, ad_square q)
 {
-    int i = a->nq++;
     q.priority = priority(a, &q);
-    while (i > 0 && a->q[(i - 1) / 2].priority < q.priority) {
-        a->q[i] = a->q[(i - 1) / 2];
-        i = (i - 1) / 2;
-    }
-    a->q[i] = q;
+    a->q[a->nq] = q;
+    sift_up(a, a->nq++);
 }
 
 static ad_square heap_pop(ad_state *a)
@@ -75,12 +133,60 @@ static ad_square heap_pop(ad_state *a)
             c++;
         if (a->q[c].priority <= last.priority)
             break;
-        a->q[i] = a->q[c];
+        heap_set(a, i, a->q[c]);
         i = c;
     }
     if (a->nq > 0)
-        a->q[i] = last;
+        heap_set(a, i, last);
+    a->pos[top.sample] = -1;
     return top;
+}
+
+static float luma(const ad_sample *s)
+{
+    return 0.2126f * s->rgb[0] + 0.7152f * s->rgb[1] + 0.0722f * s->rgb[2];
+}
+
+/* Square q (not in the heap yet) against sample b: another object makes
+ * it an edge; another region of the same object (a shadow edge between
+ * them) gives it the luminance jump over its side, the mass of the delta
+ * a region boundary puts into the gradient (Eq. 34, first-order paper)
+ * spread over the square, as a floor under its importance.  With
+ * both_ways, b's own square, if it waits in the heap, gets the same and
+ * moves up: a boundary is found from whichever side is sampled second. */
+static void compare(ad_state *a, ad_square *q, int b, int both_ways)
+{
+    const ad_sample *me = &a->s[q->sample], *o = &a->s[b];
+    ad_square *n = both_ways && a->pos[b] >= 0 ? &a->q[a->pos[b]] : NULL;
+    float j;
+    if (me->object != o->object) {
+        q->edge = 1;
+        if (n)
+            n->edge = 1;
+    } else if (me->region != o->region) {
+        j = fabsf(luma(me) - luma(o));
+        q->jump = fmaxf(q->jump, j / q->side);
+        if (n)
+            n->jump = fmaxf(n->jump, j / n->side);
+    }
+    if (n) {
+        n->priority = priority(a, n);
+        sift_up(a, a->pos[b]);
+    }
+}
+
+/* q against the samples of the squares of its size beside it, where they
+ * exist. */
+static void compare_neighbours(ad_state *a, ad_square *q)
+{
+    int k;
+    for (k = 0; k < 4; k++) {
+        const ad_sample *me = &a->s[q->sample];
+        const int i = find_sample(a, me->x + (k == 0 ? -q->side : k == 1 ? q->side : 0.0f),
+                                  me->y + (k == 2 ? -q->side : k == 3 ? q->side : 0.0f));
+        if (i >= 0 && i != q->sample)
+            compare(a, q, i, 1);
+    }
 }
 
 /* The first squares, one a block, and the border samples: block corners
@@ -89,64 +195,50 @@ static ad_square heap_pop(ad_state *a)
 static int first_squares(ad_state *a)
 {
     const int b = a->o->block, bw = a->o->width / b, bh = a->o->height / b;
-    ad_square *grid = malloc(sizeof *grid * (size_t)bw * (size_t)bh);
-    int i, j, k, st;
-    if (!grid)
-        return -1;
+    int i, j, st;
     for (j = 0; j <= bh; j++)
         for (i = 0; i <= bw; i++)
             if ((i == 0 || i == bw || j == 0 || j == bh) &&
-                (st = add_sample(a, (float)(i * b), (float)(j * b))) < 0) {
-                free(grid);
+                (st = add_sample(a, (float)(i * b), (float)(j * b))) < 0)
                 return st;
-            }
     for (j = 0; j < bh; j++)
         for (i = 0; i < bw; i++) {
-            ad_square *q = &grid[j * bw + i];
-            q->x = (float)(i * b) + 0.5f * (float)b;
-            q->y = (float)(j * b) + 0.5f * (float)b;
-            q->side = (float)b;
-            q->edge = 0;
-            if ((q->sample = add_sample(a, q->x, q->y)) < 0) {
-                st = q->sample;
-                free(grid);
-                return st;
-            }
+            ad_square q;
+            memset(&q, 0, sizeof q);
+            q.x = (float)(i * b) + 0.5f * (float)b;
+            q.y = (float)(j * b) + 0.5f * (float)b;
+            q.side = (float)b;
+            if ((q.sample = add_sample(a, q.x, q.y)) < 0)
+                return q.sample;
+            compare_neighbours(a, &q);
+            heap_push(a, q);
         }
-    for (k = 0; k < bw * bh; k++) {
-        const int i0 = k % bw, j0 = k / bw, obj = a->s[grid[k].sample].object;
-        if ((i0 > 0 && a->s[grid[k - 1].sample].object != obj) ||
-            (i0 + 1 < bw && a->s[grid[k + 1].sample].object != obj) ||
-            (j0 > 0 && a->s[grid[k - bw].sample].object != obj) ||
-            (j0 + 1 < bh && a->s[grid[k + bw].sample].object != obj))
-            grid[k].edge = 1;
-        heap_push(a, grid[k]);
-    }
-    free(grid);
     return 0;
 }
 
 /* Splits the most important square into four, each with a sample at its
  * centre.  A child is on a boundary when it sees another object than a
- * sibling beside it or than the square did: the boundary runs through it
- * or along it.  A square split for a boundary its children do not see
- * (one found between blocks) passes nothing on. */
+ * sibling beside it, the square or a neighbour of its size: the boundary
+ * runs through it or along it. */
 static int split(ad_state *a)
 {
     const ad_square q = heap_pop(a);
     ad_square c[4];
-    int k, obj[4];
+    int k;
     for (k = 0; k < 4; k++) {
+        memset(&c[k], 0, sizeof c[k]);
         c[k].side = 0.5f * q.side;
         c[k].x = q.x + (k & 1 ? 0.25f : -0.25f) * q.side;
         c[k].y = q.y + (k & 2 ? 0.25f : -0.25f) * q.side;
         if ((c[k].sample = add_sample(a, c[k].x, c[k].y)) < 0)
             return c[k].sample;
-        obj[k] = a->s[c[k].sample].object;
     }
     for (k = 0; k < 4; k++) {
-        c[k].edge = obj[k] != obj[k ^ 1] || obj[k] != obj[k ^ 2] ||
-                    obj[k] != a->s[q.sample].object;
+        compare(a, &c[k], c[k ^ 1].sample, 0);
+        compare(a, &c[k], c[k ^ 2].sample, 0);
+        if (q.sample != c[k].sample)
+            compare(a, &c[k], q.sample, 0);
+        compare_neighbours(a, &c[k]);
         heap_push(a, c[k]);
     }
     return 0;
@@ -160,7 +252,8 @@ int adaptive_sample(const ad_opts *o, ad_eval_fn eval, void *ctx, ad_sample **ou
     *count = 0;
     if (o->block < 1 || o->width < o->block || o->height < o->block ||
         o->width % o->block || o->height % o->block || !(o->budget > 0.0) ||
-        !(o->min_side == 1.0f || o->min_side == 0.5f || o->min_side == 0.25f))
+        !(o->min_side == 1.0f || o->min_side == 0.5f || o->min_side == 0.25f) ||
+        (o->at_pixels && o->min_side != 1.0f))
         return -1;
     budget = (int)(o->budget * o->width * o->height);
     memset(&a, 0, sizeof a);
@@ -170,17 +263,28 @@ int adaptive_sample(const ad_opts *o, ad_eval_fn eval, void *ctx, ad_sample **ou
     /* Every split adds 3 squares and 4 samples; the first pass adds the
      * blocks and the border. */
     a.cap = budget + 4 + (o->width / o->block + 1) * (o->height / o->block + 1) * 2;
+    for (a.mask = 1; a.mask < 2u * (unsigned)a.cap; a.mask *= 2)
+        ;
     a.s = malloc(sizeof *a.s * (size_t)a.cap);
     a.q = malloc(sizeof *a.q * (size_t)a.cap);
-    if (!a.s || !a.q) {
+    a.at = malloc(sizeof *a.at * (size_t)a.mask);
+    a.pos = malloc(sizeof *a.pos * (size_t)a.cap);
+    if (!a.s || !a.q || !a.at || !a.pos) {
         free(a.s);
         free(a.q);
+        free(a.at);
+        free(a.pos);
         return -1;
     }
+    memset(a.at, 0xff, sizeof *a.at * (size_t)a.mask);
+    memset(a.pos, 0xff, sizeof *a.pos * (size_t)a.cap);
+    a.mask--;
     st = first_squares(&a);
     while (st == 0 && a.n < budget && a.nq > 0 && a.q[0].priority >= 0.0 && a.n + 4 <= a.cap)
         st = split(&a);
     free(a.q);
+    free(a.at);
+    free(a.pos);
     if (st < 0) {
         free(a.s);
         return st;
@@ -227,6 +331,7 @@ int adaptive_reconstruct(const ad_sample *s, int n, int width, int height, float
 {
     long long *xy;
     int *order, *tri = NULL, ntri = 0, i, k, st = 0, corner[4] = {-1, -1, -1, -1};
+    float lo[2] = {HUGE_VALF, HUGE_VALF}, hi[2] = {-HUGE_VALF, -HUGE_VALF};
     if (n < 4 || width < 1 || height < 1 || !(unit > 0.0f && unit <= 1.0f) ||
         (double)width / unit > 8192.0 || (double)height / unit > 8192.0)
         return -1;
@@ -239,11 +344,20 @@ int adaptive_reconstruct(const ad_sample *s, int n, int width, int height, float
     }
     /* Corners first, in cyclic order; every position on the grid of unit. */
     for (i = 0; i < n; i++) {
+        lo[0] = fminf(lo[0], s[i].x);
+        lo[1] = fminf(lo[1], s[i].y);
+        hi[0] = fmaxf(hi[0], s[i].x);
+        hi[1] = fmaxf(hi[1], s[i].y);
+    }
+    if (lo[0] > 0.5f || lo[1] > 0.5f || hi[0] < (float)width - 0.5f ||
+        hi[1] < (float)height - 0.5f)
+        st = -1; /* some pixel centre outside */
+    for (i = 0; i < n; i++) {
         const float x = s[i].x, y = s[i].y;
-        if (x == 0.0f && y == 0.0f) corner[0] = i;
-        if (x == (float)width && y == 0.0f) corner[1] = i;
-        if (x == (float)width && y == (float)height) corner[2] = i;
-        if (x == 0.0f && y == (float)height) corner[3] = i;
+        if (x == lo[0] && y == lo[1]) corner[0] = i;
+        if (x == hi[0] && y == lo[1]) corner[1] = i;
+        if (x == hi[0] && y == hi[1]) corner[2] = i;
+        if (x == lo[0] && y == hi[1]) corner[3] = i;
         if (floorf(x / unit) != x / unit || floorf(y / unit) != y / unit || x < 0.0f ||
             y < 0.0f || x > (float)width || y > (float)height)
             st = -1;

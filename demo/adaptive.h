@@ -24,6 +24,11 @@ typedef struct ad_sample {
     float importance;  /* per unit area, >= 0 (the metric's) */
     int object;        /* what the sample sees; squares whose samples see
                           different objects are split first */
+    int region;        /* a part of the object (e.g. lit or in shadow):
+                          a square whose sample's region differs from a
+                          sibling's, its parent's or a neighbour's on the
+                          same object gets at least |delta luminance| /
+                          side as its importance */
 } ad_sample;
 
 /* Fills out->rgb, ->importance and ->object for the sample at (x, y) (x
@@ -37,6 +42,12 @@ typedef struct ad_opts {
     double budget;       /* samples as a fraction of width x height */
     float min_side;      /* 1, 0.5 or 0.25 pixels: squares are not split
                             below it */
+    int at_pixels;       /* 1: every sample at a pixel centre, the one
+                            holding its square's centre (lower right at a
+                            corner), the border's at the outermost
+                            pixels' (samples then match a full render's
+                            pixels; min_side must be 1); 0: at the
+                            squares' centres and the image's border */
 } ad_opts;
 
 /* Places the samples.  *out (malloc'd, the caller frees it) gets them and
@@ -45,10 +56,11 @@ typedef struct ad_opts {
 int adaptive_sample(const ad_opts *o, ad_eval_fn eval, void *ctx, ad_sample **out, int *count);
 
 /* Reconstructs a width x height RGB image (rows top down) from samples
- * covering [0, width] x [0, height] with its four corners among them (as
- * adaptive_sample's are), every position a multiple of unit (a power of
- * two, at most 1) with width / unit <= 8192: the Delaunay triangulation of
- * the positions, each pixel centre interpolated linearly in its triangle.
+ * inside [0, width] x [0, height] whose bounding box holds every pixel
+ * centre and has its four corners among them (as adaptive_sample's do),
+ * every position a multiple of unit (a power of two, at most 1) with
+ * width / unit <= 8192: the Delaunay triangulation of the positions, each
+ * pixel centre interpolated linearly in its triangle.
  * Returns 0, or -1 for bad input or no memory. */
 int adaptive_reconstruct(const ad_sample *s, int n, int width, int height, float unit,
                          float *rgb);

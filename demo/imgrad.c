@@ -14,6 +14,11 @@
 #define PI 3.14159265358979323846
 #define MAX_LIGHT 256
 #define HALF 0.5f /* the central differences' half step, pixels */
+/* IMG_GRADIENT_FAST re-shades with at most this many of the pixel's light
+ * samples (every k-th of those that reached the light, their sum scaled
+ * back): an importance needs no more, and the gradient's cost then stays
+ * put while a pixel's grows with its samples. */
+#define FAST_SAMPLES 4
 
 float lum3(const float c[3])
 {
@@ -64,21 +69,41 @@ static int aside(const renderer *r, const cam_frame *cf, float x, float y, int p
     return 1;
 }
 
-/* E from the cache at a surface, without computing: 0 on a miss. */
-static int cached_e(const renderer *r, const surface *sf, float e[3])
+/* E's gradient from the cache at a surface (irc_cache_lookup_gradient:
+ * the records' gradients, not the lookups' differences, which jump where
+ * records enter and leave reach): 0 on a miss or without a cache. */
+static int cached_gradient(const renderer *r, const surface *sf, irc_gradient *g)
 {
-    float p[3], w;
+    float p[3], e[3], w;
     if (r->o.mode != MODE_CACHE || (r->o.features & IRC_FEATURE_SH))
         return 0;
     cache_point(sf, p);
-    return irc_cache_lookup(r->cache, p, sf->nsm, e, &w) == IRC_OK;
+    return irc_cache_lookup_gradient(r->cache, p, sf->nsm, e, g, &w) == IRC_OK;
+}
+
+/* kd/pi times E's change from s[0] to s[1] over step, to first order. */
+static void indirect_part(const irc_gradient *g, const float kd[3], const surface s[2],
+                          float step, float out[3])
+{
+    float dp[3], dn[3];
+    int c, k;
+    for (k = 0; k < 3; k++) {
+        dp[k] = s[1].p[k] - s[0].p[k];
+        dn[k] = s[1].nsm[k] - s[0].nsm[k];
+    }
+    for (c = 0; c < 3; c++) {
+        float de = 0.0f;
+        for (k = 0; k < 3; k++)
+            de += g->dp[c][k] * dp[k] + g->dn[c][k] * dn[k];
+        out[c] = kd[c] * de / step;
+    }
 }
 
 /* One part of the move: the shading with only the point (what 0), the
  * normal (1) or the view (2) taken from either side, differenced. */
 static void part(const light_sample *ls, int n, int samples, const surface *sf,
                  const float d[3], const surface s[2], float dd[2][3], int what, float step,
-                 float out[3])
+                 float scale, float out[3])
 {
     float f[2][3];
     int k, c;
@@ -91,27 +116,39 @@ static void part(const light_sample *ls, int n, int samples, const surface *sf,
         shade(ls, n, samples, &m, what == 2 ? dd[k] : d, f[k]);
     }
     for (c = 0; c < 3; c++)
-        out[c] = (f[1][c] - f[0][c]) / step;
+        out[c] = scale * (f[1][c] - f[0][c]) / step;
 }
 
 /* One axis of the gradient (axis 0: x, 1: y): each part as a central
- * difference over +-HALF pixel; a side whose ray leaves the surface makes
- * it one-sided. */
+ * difference over +-HALF pixel (a side whose ray leaves the surface makes
+ * it one-sided), or (fast) a forward one, the point and HALF beyond it
+ * (behind it when that side leaves the surface). */
 static void axis_gradient(const renderer *r, const cam_frame *cf, float x, float y, int axis,
                           int prim, const surface *sf, const float d[3],
-                          const light_sample *ls, int n, int samples, int parts,
-                          img_point *out)
+                          const light_sample *ls, int n, int samples, float scale,
+                          const irc_gradient *ge, int level, img_point *out)
 {
+    const int parts = level == IMG_GRADIENT_PARTS;
     surface s[2];
     float dd[2][3], f[2][3], kd[3], step;
     int ok[2], k, c;
-    for (k = 0; k < 2; k++) {
+    for (k = level == IMG_GRADIENT_FAST; k < 2; k++) {
         const float off = k ? HALF : -HALF;
         ok[k] = aside(r, cf, x + (axis ? 0.0f : off), y + (axis ? off : 0.0f), prim, &s[k],
                       dd[k]);
         if (!ok[k]) { /* this side is the point itself */
             s[k] = *sf;
             memcpy(dd[k], d, sizeof dd[k]);
+        }
+    }
+    if (level == IMG_GRADIENT_FAST) { /* the point, then the side that stays on */
+        ok[0] = 0;
+        s[0] = *sf;
+        memcpy(dd[0], d, sizeof dd[0]);
+        if (!ok[1] && (ok[0] = aside(r, cf, x - (axis ? 0.0f : HALF), y - (axis ? HALF : 0.0f),
+                                     prim, &s[0], dd[0])) != 0) {
+            s[1] = *sf;
+            memcpy(dd[1], d, sizeof dd[1]);
         }
     }
     if (!ok[0] && !ok[1])
@@ -122,24 +159,19 @@ static void axis_gradient(const renderer *r, const cam_frame *cf, float x, float
     if (!parts) { /* the whole move at once: two shadings, not six */
         for (k = 0; k < 2; k++)
             shade(ls, n, samples, &s[k], dd[k], f[k]);
+        if (ge)
+            indirect_part(ge, kd, s, step, out->ind[axis]);
         for (c = 0; c < 3; c++)
-            out->grad[axis][c] = (f[1][c] - f[0][c]) / step;
-        if (cached_e(r, &s[0], f[0]) && cached_e(r, &s[1], f[1]))
-            for (c = 0; c < 3; c++) {
-                out->ind[axis][c] = kd[c] * (f[1][c] - f[0][c]) / step;
-                out->grad[axis][c] += out->ind[axis][c];
-            }
+            out->grad[axis][c] = scale * (f[1][c] - f[0][c]) / step + out->ind[axis][c];
         return;
     }
     /* SV: the point moves, normal and view held; CDV: the normal turns
      * (curvature and bumps), point and view held; DV: the view turns. */
-    part(ls, n, samples, sf, d, s, dd, 0, step, out->sv[axis]);
-    part(ls, n, samples, sf, d, s, dd, 1, step, out->cdv[axis]);
-    part(ls, n, samples, sf, d, s, dd, 2, step, out->dv[axis]);
-    /* Indirect: kd/pi E along the move, from the cache's lookups. */
-    if (cached_e(r, &s[0], f[0]) && cached_e(r, &s[1], f[1]))
-        for (c = 0; c < 3; c++)
-            out->ind[axis][c] = kd[c] * (f[1][c] - f[0][c]) / step;
+    part(ls, n, samples, sf, d, s, dd, 0, step, scale, out->sv[axis]);
+    part(ls, n, samples, sf, d, s, dd, 1, step, scale, out->cdv[axis]);
+    part(ls, n, samples, sf, d, s, dd, 2, step, scale, out->dv[axis]);
+    if (ge)
+        indirect_part(ge, kd, s, step, out->ind[axis]);
     for (c = 0; c < 3; c++)
         out->grad[axis][c] =
             out->sv[axis][c] + out->cdv[axis][c] + out->dv[axis][c] + out->ind[axis][c];
@@ -194,6 +226,7 @@ int image_point(renderer *r, const cam_frame *cf, float x, float y, int grads, u
     if ((err = render_points(r, pn, 1, e, &st)) < 0)
         return err;
     n = direct_samples(&r->b, &r->l, &sf, 0, samples, samples, key, ls, &rays);
+    out->lit = rays == 0 ? -1 : 2 * (uint64_t)n >= rays; /* rays: samples facing sf */
     shade(ls, n, samples, &sf, d, out->rgb);
     for (c = 0; c < 3; c++)
         out->rgb[c] += sf.m->kd[c] / (float)PI * e[c];
@@ -203,9 +236,19 @@ int image_point(renderer *r, const cam_frame *cf, float x, float y, int grads, u
     out->cos_view = -(sf.ng[0] * d[0] + sf.ng[1] * d[1] + sf.ng[2] * d[2]);
     out->exponent = sf.m->ks[0] + sf.m->ks[1] + sf.m->ks[2] > 0.0f ? sf.m->ns : 0.0f;
     if (grads) {
+        const int most = grads == IMG_GRADIENT_FAST ? FAST_SAMPLES : MAX_LIGHT,
+                  k = (samples + most - 1) / most;
+        light_sample *sub = ls;
+        irc_gradient ge;
+        int have, m = n, j;
         t0 = seconds();
+        if (k > 1) /* in place: the shading above is done with them */
+            for (j = m = 0; j < n; j += k)
+                sub[m++] = ls[j];
+        have = cached_gradient(r, &sf, &ge);
         for (axis = 0; axis < 2; axis++)
-            axis_gradient(r, cf, x, y, axis, bh.prim, &sf, d, ls, n, samples, grads > 1, out);
+            axis_gradient(r, cf, x, y, axis, bh.prim, &sf, d, sub, m, samples,
+                          m ? (float)n / (float)m : 0.0f, have ? &ge : NULL, grads, out);
         out->grad_s = seconds() - t0;
     }
     return 0;
@@ -227,7 +270,8 @@ static int one_object(const img_point *ip, int w, int x, int y)
     return same;
 }
 
-int image_gradient_check(renderer *r, const cam_frame *cf, int w, int h, grad_check *out)
+int image_gradient_check(renderer *r, const cam_frame *cf, int w, int h, int level,
+                         grad_check *out)
 {
     const uint64_t key = 0x5eedull;
     img_point *ip = malloc(sizeof *ip * (size_t)w * (size_t)h);
@@ -242,7 +286,7 @@ int image_gradient_check(renderer *r, const cam_frame *cf, int w, int h, grad_ch
     r->o.frozen = 1;
     for (y = 0; y < h && st == 0; y++)
         for (x = 0; x < w && st == 0; x++)
-            st = image_point(r, cf, (float)x + 0.5f, (float)y + 0.5f, 2, key, &ip[y * w + x]);
+            st = image_point(r, cf, (float)x + 0.5f, (float)y + 0.5f, level, key, &ip[y * w + x]);
     r->o.frozen = frozen;
     rel = malloc(sizeof *rel * (size_t)w * (size_t)h);
     for (y = 1; y < h - 1 && rel; y++)

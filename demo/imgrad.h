@@ -12,15 +12,16 @@
  *   cdv  the normal's turn, curvature and bumps, the rest held (the
  *        curvature-directional term, CDV);
  *   dv   the view direction's turn (the angular term of Eq. 26);
- *   ind  the indirect light's, kd/pi times the cache's E along the move
- *        (its records' translational and visibility gradients, as the
- *        lookups extrapolate them).
- * Each part is a central difference over +-half a pixel of the shading
- * with the light samples and their visibility frozen: the shading
- * integrand's gradient (Sec. 5: "we simply replace the convolutions with
- * the explicit shading calculation for gradients"), not a difference of
- * noisy renders.  Shadow edges' own gradient (Sec. 6) is in the indirect
- * part only (frozen direct visibility; the paper's Sec. 5 does the same).
+ *   ind  the indirect light's: kd/pi times E's gradient from
+ *        irc_cache_lookup_gradient (the records' translational, with their
+ *        visibility terms, and rotational gradients) along the hit's move
+ *        and the normal's turn.
+ * The direct parts are differences over half a pixel of the shading with
+ * the light samples and their visibility frozen: the shading integrand's
+ * gradient (Sec. 5: "we simply replace the convolutions with the explicit
+ * shading calculation for gradients"), not a difference of noisy renders.
+ * Shadow edges' own gradient (Sec. 6) is in the indirect part only
+ * (frozen direct visibility; the paper's Sec. 5 does the same).
  */
 #ifndef DEMO_IMGRAD_H
 #define DEMO_IMGRAD_H
@@ -32,6 +33,11 @@ typedef struct img_point {
     float rgb[3];
     int object;          /* what the ray hit (a surface, not a triangle);
                             -1: the environment */
+    int lit;             /* 1 when at least half the light samples that face
+                            the point reach the light, 0 when fewer, -1
+                            when none faces it: where it changes between
+                            neighbours, a shadow edge runs (Sec. 6: the
+                            visibility gradient is a delta there, Eq. 34) */
     float grad[2][3];    /* dI/dx, dI/dy: radiance per pixel */
     float sv[2][3], cdv[2][3], dv[2][3], ind[2][3]; /* grad's parts */
     /* For the frequency heuristic (Durand et al. 2005, Eq. 20 as the
@@ -43,9 +49,19 @@ typedef struct img_point {
     double grad_s;       /* seconds spent on the gradient */
 } img_point;
 
-/* The image at (x, y) (pixels from the top-left corner); with grads 1,
- * its gradient (the direct part in one difference, two shadings an axis),
- * with grads 2 the parts too (six).  The renderer's light_samples shade it, with the
+/* How much gradient image_point computes. */
+enum {
+    IMG_NO_GRADIENT,
+    IMG_GRADIENT_FAST,  /* forward differences over half a pixel (one more
+                           surface point an axis), at most 4 of the
+                           pixel's light samples: for sampling */
+    IMG_GRADIENT,       /* central differences (two an axis), every light
+                           sample */
+    IMG_GRADIENT_PARTS  /* the same, and its parts (six shadings an axis) */
+};
+
+/* The image at (x, y) (pixels from the top-left corner) and, at `grads`
+ * (IMG_*), its gradient.  The renderer's light_samples shade it, with the
  * full render's random numbers at pixel centres (render.c) or, when key
  * is not 0, key's everywhere (the same light samples for every point: an
  * image whose differences the gradient must match); its cache (or brute
@@ -64,7 +80,8 @@ typedef struct grad_check {
     double median, p90;  /* their relative errors */
 } grad_check;
 
-int image_gradient_check(renderer *r, const cam_frame *cf, int w, int h, grad_check *out);
+int image_gradient_check(renderer *r, const cam_frame *cf, int w, int h, int level,
+                         grad_check *out);
 
 /* Luminance of an RGB triple (Rec. 709 weights). */
 float lum3(const float c[3]);

@@ -132,7 +132,7 @@ static int height(scene *s, float dy, int write)
         for (x = 0; x < w && st == 0; x++) {
             img_point ip;
             const int i = y * w + x;
-            st = image_point(&r, &cf, (float)x + 0.5f, (float)y + 0.5f, 2, 0, &ip);
+            st = image_point(&r, &cf, (float)x + 0.5f, (float)y + 0.5f, IMG_GRADIENT_PARTS, 0, &ip);
             if (ip.object < 0 || (mag(ip.sv) == 0.0f && mag(ip.cdv) == 0.0f)) {
                 sv[i] = cdv[i] = ratio[i] = NAN;
                 continue;

@@ -106,16 +106,34 @@ static int teval(void *ctx, ad_sample *s)
     return 0;
 }
 
+/* No two samples at one place (the triangulation needs that) and, at
+ * pixels, every one at a pixel centre.  Returns how many are wrong. */
+static int misplaced(const ad_sample *s, int n, int at_pixels)
+{
+    int i, j, bad = 0;
+    for (i = 0; i < n; i++) {
+        if (at_pixels && (s[i].x - 0.5f != floorf(s[i].x) || s[i].y - 0.5f != floorf(s[i].y)))
+            bad++;
+        for (j = 0; j < i; j++)
+            bad += s[i].x == s[j].x && s[i].y == s[j].y;
+    }
+    return bad;
+}
+
 /* The reconstruction reproduces an affine image at every pixel (linear
- * interpolation is exact there), whatever the sample positions. */
+ * interpolation is exact there), whatever the sample positions: at the
+ * squares' centres and at pixel centres. */
 TEST(test_adaptive_reconstruct_affine)
 {
-    const ad_opts o = {96, 64, 8, 0.2, 1.0f};
+    int mode;
+    for (mode = 0; mode < 2; mode++) {
+    const ad_opts o = {96, 64, 8, 0.2, 1.0f, mode};
     tctx t = {-1.0f, 0};
     ad_sample *s = NULL;
     float *img = malloc(sizeof *img * 3 * 96 * 64), worst = 0.0f;
     int n = 0, x, y, k;
     CHECK(adaptive_sample(&o, teval, &t, &s, &n) == 0, "sampling");
+    CHECK(misplaced(s, n, mode) == 0, "%d samples misplaced (at_pixels %d)", misplaced(s, n, mode), mode);
     CHECK(adaptive_reconstruct(s, n, 96, 64, 0.5f, img) == 0, "reconstruction");
     for (y = 0; y < 64; y++)
         for (x = 0; x < 96; x++)
@@ -124,10 +142,11 @@ TEST(test_adaptive_reconstruct_affine)
                 if (e > worst)
                     worst = e;
             }
-    printf("  %d samples; largest error against the affine image %.2e\n", n, worst);
+    printf("  at_pixels %d: %d samples; largest error against the affine image %.2e\n", mode, n, worst);
     CHECK(worst < 1e-5f, "an affine image is not reproduced: %g", worst);
     free(s);
     free(img);
+    }
 }
 
 /* Samples follow importance: the budget is kept (to the 3 a split may
@@ -135,7 +154,9 @@ TEST(test_adaptive_reconstruct_affine)
  * 30 times as important, holds far more than a third of them. */
 TEST(test_adaptive_density)
 {
-    const ad_opts o = {96, 64, 8, 0.15, 1.0f};
+    int mode;
+    for (mode = 0; mode < 2; mode++) {
+    const ad_opts o = {96, 64, 8, 0.15, 1.0f, mode};
     tctx t = {-1.0f, 0};
     ad_sample *s = NULL;
     int n = 0, i, right = 0;
@@ -146,7 +167,9 @@ TEST(test_adaptive_density)
     CHECK(n <= (int)(0.15 * 96 * 64) + 3 && n >= (int)(0.15 * 96 * 64), "count %d", n);
     CHECK(t.calls == n, "%d evaluations for %d samples", t.calls, n);
     CHECK(right > n / 2, "only %d of %d samples where importance is 30x", right, n);
+    CHECK(misplaced(s, n, mode) == 0, "misplaced samples");
     free(s);
+    }
 }
 
 /* An object boundary at x = 37.3 is refined to the smallest squares
@@ -154,7 +177,9 @@ TEST(test_adaptive_density)
  * it are far denser than elsewhere. */
 TEST(test_adaptive_boundary)
 {
-    const ad_opts o = {96, 64, 8, 0.1, 1.0f};
+    int mode;
+    for (mode = 0; mode < 2; mode++) {
+    const ad_opts o = {96, 64, 8, 0.1, 1.0f, mode};
     tctx t = {37.3f, 0};
     ad_sample *s = NULL;
     int n = 0, i, near = 0;
@@ -164,6 +189,7 @@ TEST(test_adaptive_boundary)
     printf("  %d samples, %d within 1.5 pixels of the boundary (3/96 of the width)\n", n, near);
     CHECK(near * 96 > n * 3 * 4, "boundary not refined: %d of %d", near, n);
     free(s);
+    }
 }
 
 #define TESTS(X) X(test_delaunay_property) X(test_adaptive_reconstruct_affine) \

@@ -368,15 +368,15 @@ TEST(test_image_gradient)
     img = malloc(sizeof *img * 3 * 128 * 96);
     CHECK(render_image(&r, img, &st) == 0, "render");
     camera_frame(&s.cam, &cf);
-    CHECK(image_gradient_check(&r, &cf, 128, 96, &g) == 0, "check");
+    CHECK(image_gradient_check(&r, &cf, 128, 96, IMG_GRADIENT_PARTS, &g) == 0, "check");
     printf("  %d pixels: L2 %.3f; median %.4f, 90th percentile %.3f over %d\n", g.pixels, g.l2,
            g.median, g.p90, g.strong);
     CHECK(g.pixels > 5000 && g.median < 0.05, "median relative error %g", g.median);
     for (y = 8; y < 96; y += 8)
         for (x = 8; x < 128; x += 8) {
             img_point one, parts;
-            image_point(&r, &cf, x + 0.5f, y + 0.5f, 1, 0, &one);
-            image_point(&r, &cf, x + 0.5f, y + 0.5f, 2, 0, &parts);
+            image_point(&r, &cf, x + 0.5f, y + 0.5f, IMG_GRADIENT, 0, &one);
+            image_point(&r, &cf, x + 0.5f, y + 0.5f, IMG_GRADIENT_PARTS, 0, &parts);
             for (a = 0; a < 2; a++)
                 for (k = 0; k < 3; k++) {
                     const double d = fabs((double)one.grad[a][k] - parts.grad[a][k]);
