@@ -192,8 +192,72 @@ TEST(test_adaptive_boundary)
     }
 }
 
+/* Evaluators for boundaries on a block line (y = 32: between pixel rows
+ * 31 and 32) and for a region edge inside one object (x = 53.7, where
+ * the luminance steps by 1); importance 0 everywhere. */
+static int eval_row_boundary(void *ctx, ad_sample *s)
+{
+    (void)ctx;
+    s->rgb[0] = s->rgb[1] = s->rgb[2] = s->y > 32.0f ? 1.0f : 0.0f;
+    s->object = s->y > 32.0f;
+    return 0;
+}
+
+static int eval_region(void *ctx, ad_sample *s)
+{
+    const int *on = (const int *)ctx;
+    s->rgb[0] = s->rgb[1] = s->rgb[2] = s->x > 53.7f ? 1.0f : 0.0f;
+    s->region = *on && s->x > 53.7f;
+    return 0;
+}
+
+/* An object boundary on a block line is refined from both sides to the
+ * pixel: every column has samples in pixel rows 31 and 32.  (Squares
+ * compare with their same-size neighbours both ways; found from the
+ * side split second only, row 31 or 32 kept 8-pixel gaps.) */
+TEST(test_adaptive_boundary_both_sides)
+{
+    const ad_opts o = {96, 64, 8, 0.3, 1.0f, 1};
+    ad_sample *s = NULL;
+    int n = 0, i, x, missing = 0;
+    unsigned char row[2][96];
+    memset(row, 0, sizeof row);
+    CHECK(adaptive_sample(&o, eval_row_boundary, NULL, &s, &n) == 0, "sampling");
+    for (i = 0; i < n; i++)
+        if (s[i].y == 31.5f || s[i].y == 32.5f)
+            row[s[i].y == 32.5f][(int)s[i].x] = 1;
+    for (x = 0; x < 96; x++)
+        missing += !row[0][x] + !row[1][x];
+    printf("  %d samples; %d of 192 pixels beside the boundary not sampled\n", n, missing);
+    CHECK(missing == 0, "%d pixels beside the boundary not sampled", missing);
+    free(s);
+}
+
+/* A region edge (a shadow's, inside one object) with no importance
+ * elsewhere: with regions the samples crowd within 1.5 pixels of it (its
+ * jump is the only importance); with them off the same image spreads
+ * its samples (no importance anywhere: the heap's order). */
+TEST(test_adaptive_region)
+{
+    const ad_opts o = {96, 64, 8, 0.1, 1.0f, 1};
+    int on, near[2] = {0, 0}, n = 0;
+    for (on = 0; on < 2; on++) {
+        ad_sample *s = NULL;
+        int i;
+        CHECK(adaptive_sample(&o, eval_region, &on, &s, &n) == 0, "sampling");
+        for (i = 0; i < n; i++)
+            near[on] += fabsf(s[i].x - 53.7f) < 1.5f;
+        free(s);
+    }
+    printf("  %d samples; within 1.5 pixels of the region edge: %d with regions, %d without\n",
+           n, near[1], near[0]);
+    CHECK(near[1] * 96 > n * 3 * 4, "edge not refined: %d of %d", near[1], n);
+    CHECK(near[1] > 2 * near[0], "regions change nothing: %d vs %d", near[1], near[0]);
+}
+
 #define TESTS(X) X(test_delaunay_property) X(test_adaptive_reconstruct_affine) \
-    X(test_adaptive_density) X(test_adaptive_boundary)
+    X(test_adaptive_density) X(test_adaptive_boundary) X(test_adaptive_boundary_both_sides) \
+    X(test_adaptive_region)
 TESTS(TEST_DECL)
 
 int main(int argc, char **argv)
