@@ -177,6 +177,7 @@ $(BUILD)/terms: experiments/terms.c $(DEMO_LIB_SRC) demo/*.h $(LIBA)
 
 adaptive: $(BUILD)/adaptive $(BUILD)/terms
 	$(BUILD)/adaptive demo/scenes/fig5.scene --check
+	$(BUILD)/adaptive demo/scenes/fig5.scene --light-samples 128
 	$(BUILD)/adaptive demo/scenes/cornell.scene --check
 	for s in sh leak fig15; do $(BUILD)/adaptive demo/scenes/$$s.scene 256 192 --check-only; done
 	$(BUILD)/terms demo/scenes/fig5.scene

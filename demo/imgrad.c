@@ -228,8 +228,10 @@ int image_point(renderer *r, const cam_frame *cf, float x, float y, int grads, u
     n = direct_samples(&r->b, &r->l, &sf, 0, samples, samples, key, ls, &rays);
     out->lit = rays == 0 ? -1 : 2 * (uint64_t)n >= rays; /* rays: samples facing sf */
     shade(ls, n, samples, &sf, d, out->rgb);
-    for (c = 0; c < 3; c++)
-        out->rgb[c] += sf.m->kd[c] / (float)PI * e[c];
+    for (c = 0; c < 3; c++) {
+        out->indirect[c] = sf.m->kd[c] / (float)PI * e[c];
+        out->rgb[c] += out->indirect[c];
+    }
     out->curvature = bh.prim < 0 ? 1.0f / r->s->spheres[-bh.prim - 1].r : 0.0f;
     out->depth = (sf.p[0] - cf->eye[0]) * cf->f[0] + (sf.p[1] - cf->eye[1]) * cf->f[1] +
                  (sf.p[2] - cf->eye[2]) * cf->f[2];
@@ -254,11 +256,6 @@ int image_point(renderer *r, const cam_frame *cf, float x, float y, int grads, u
     return 0;
 }
 
-/* The image gradient against central differences of an image shaded with
- * one set of light samples everywhere, at pixels whose 3 x 3 neighbours see
- * the same object: relative L2 error of the luminance gradient, and the
- * median of the per-pixel relative error where the gradient is above a
- * tenth of its mean. */
 /* Whether pixel (x, y) and its 8 neighbours see one object. */
 static int one_object(const img_point *ip, int w, int x, int y)
 {
@@ -270,13 +267,71 @@ static int one_object(const img_point *ip, int w, int x, int y)
     return same;
 }
 
+/* One part's luminance (0: direct, the rest; 1: indirect) and its
+ * gradient along axis a (-1: the value). */
+static double lum_part(const img_point *p, int part, int a)
+{
+    if (a < 0)
+        return part ? lum3(p->indirect) : (double)lum3(p->rgb) - lum3(p->indirect);
+    return part ? lum3(p->ind[a]) : (double)lum3(p->grad[a]) - lum3(p->ind[a]);
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    const double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* One part's gradient against central differences of that part's image,
+ * at pixels whose 3 x 3 neighbours see one object: relative L2 error, and
+ * the median and 90th percentile of the per-pixel relative error where
+ * |grad| is above a tenth of its mean. */
+static int part_check(const img_point *ip, int w, int h, int part, grad_part *out)
+{
+    double num = 0.0, den = 0.0, mean = 0.0, *rel = malloc(sizeof *rel * (size_t)w * (size_t)h);
+    int x, y, n = 0, nr = 0, pass;
+    if (!rel)
+        return -1;
+    for (pass = 0; pass < 2; pass++) { /* the mean first, then the errors */
+        for (y = 1; y < h - 1; y++)
+            for (x = 1; x < w - 1; x++) {
+                const img_point *c = &ip[y * w + x];
+                const double gx = lum_part(c, part, 0), gy = lum_part(c, part, 1),
+                             g = sqrt(gx * gx + gy * gy),
+                             fx = 0.5 * (lum_part(c + 1, part, -1) - lum_part(c - 1, part, -1)),
+                             fy = 0.5 * (lum_part(c + w, part, -1) - lum_part(c - w, part, -1)),
+                             e = sqrt((gx - fx) * (gx - fx) + (gy - fy) * (gy - fy));
+                if (!one_object(ip, w, x, y))
+                    continue;
+                if (pass == 0) {
+                    mean += g;
+                    n++;
+                    continue;
+                }
+                num += e * e;
+                den += g * g;
+                if (g > 0.1 * mean)
+                    rel[nr++] = e / g;
+            }
+        if (pass == 0)
+            mean = n ? mean / n : 0.0;
+    }
+    qsort(rel, (size_t)nr, sizeof *rel, cmp_double);
+    out->pixels = n;
+    out->strong = nr;
+    out->l2 = den > 0.0 ? sqrt(num / den) : 0.0;
+    out->median = nr ? rel[nr / 2] : 0.0;
+    out->p90 = nr ? rel[nr * 9 / 10] : 0.0;
+    free(rel);
+    return 0;
+}
+
 int image_gradient_check(renderer *r, const cam_frame *cf, int w, int h, int level,
                          grad_check *out)
 {
     const uint64_t key = 0x5eedull;
     img_point *ip = malloc(sizeof *ip * (size_t)w * (size_t)h);
-    double num = 0.0, den = 0.0, mean = 0.0, *rel;
-    int x, y, n = 0, nr = 0, st = 0;
+    int x, y, st = 0;
     const int frozen = r->o.frozen;
     memset(out, 0, sizeof *out);
     if (!ip)
@@ -288,46 +343,9 @@ int image_gradient_check(renderer *r, const cam_frame *cf, int w, int h, int lev
         for (x = 0; x < w && st == 0; x++)
             st = image_point(r, cf, (float)x + 0.5f, (float)y + 0.5f, level, key, &ip[y * w + x]);
     r->o.frozen = frozen;
-    rel = malloc(sizeof *rel * (size_t)w * (size_t)h);
-    for (y = 1; y < h - 1 && rel; y++)
-        for (x = 1; x < w - 1; x++) {
-            const img_point *c = &ip[y * w + x];
-            const float gx = lum3(c->grad[0]), gy = lum3(c->grad[1]);
-            if (!one_object(ip, w, x, y))
-                continue;
-            mean += sqrt((double)gx * gx + (double)gy * gy);
-            n++;
-        }
-    mean = n ? mean / n : 0.0;
-    for (y = 1; y < h - 1 && rel; y++)
-        for (x = 1; x < w - 1; x++) {
-            const img_point *c = &ip[y * w + x];
-            const double gx = lum3(c->grad[0]), gy = lum3(c->grad[1]),
-                         fx = 0.5 * ((double)lum3(ip[y * w + x + 1].rgb) - lum3(ip[y * w + x - 1].rgb)),
-                         fy = 0.5 * ((double)lum3(ip[(y + 1) * w + x].rgb) - lum3(ip[(y - 1) * w + x].rgb));
-            if (!one_object(ip, w, x, y))
-                continue;
-            num += (gx - fx) * (gx - fx) + (gy - fy) * (gy - fy);
-            den += gx * gx + gy * gy;
-            if (sqrt(gx * gx + gy * gy) > 0.1 * mean)
-                rel[nr++] = sqrt((gx - fx) * (gx - fx) + (gy - fy) * (gy - fy)) /
-                            sqrt(gx * gx + gy * gy);
-        }
-    if (rel && nr > 0) {
-        int i, j;
-        for (i = 1; i < nr; i++) /* insertion sort: a check, not a hot path */
-            for (j = i; j > 0 && rel[j - 1] > rel[j]; j--) {
-                const double t = rel[j];
-                rel[j] = rel[j - 1];
-                rel[j - 1] = t;
-            }
-        out->median = rel[nr / 2];
-        out->p90 = rel[nr * 9 / 10];
-    }
-    out->pixels = n;
-    out->strong = nr;
-    out->l2 = den > 0.0 ? sqrt(num / den) : 0.0;
-    free(rel);
+    if (st == 0 && (part_check(ip, w, h, 0, &out->direct) < 0 ||
+                    part_check(ip, w, h, 1, &out->indirect) < 0))
+        st = -1;
     free(ip);
-    return rel ? st : -1;
+    return st;
 }

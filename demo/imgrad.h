@@ -31,6 +31,7 @@
 
 typedef struct img_point {
     float rgb[3];
+    float indirect[3];   /* rgb's indirect part, kd/pi E */
     int object;          /* what the ray hit (a surface, not a triangle);
                             -1: the environment */
     int lit;             /* 1 when at least half the light samples that face
@@ -71,13 +72,21 @@ int image_point(renderer *r, const cam_frame *cf, float x, float y, int grads, u
 
 /* The gradient against the image's own differences: every pixel centre
  * shaded with one set of light samples (so the image is smooth where its
- * light is), the gradient's luminance at pixels whose 3 x 3 neighbours see
- * one object against central differences of the image's. */
-typedef struct grad_check {
+ * light is), each part's luminance gradient (direct: everything but the
+ * indirect light; indirect: kd/pi E) against central differences of that
+ * part's image, at pixels whose 3 x 3 neighbours see one object.  The
+ * indirect image's differences also carry the lookups' weights changing
+ * (records entering and leaving reach), which the records' gradients
+ * leave out by design. */
+typedef struct grad_part {
     int pixels;          /* compared */
     double l2;           /* |grad - difference| over |grad|, summed in L2 */
     int strong;          /* pixels whose |grad| is above 0.1 of the mean */
     double median, p90;  /* their relative errors */
+} grad_part;
+
+typedef struct grad_check {
+    grad_part direct, indirect;
 } grad_check;
 
 int image_gradient_check(renderer *r, const cam_frame *cf, int w, int h, int level,

@@ -1,12 +1,14 @@
 /*
  * adaptive.c -- the first-order paper's adaptive image sampling (Sec. 5)
  * on a scene, against the full render: three importance metrics on the
- * same sample budgets, each sample shaded by the demo's integrator (cache
- * for E, the full render's light samples), the image rebuilt by Delaunay
- * interpolation (demo/adaptive.c).
+ * same sample budgets, each sample at a pixel centre shaded by the demo's
+ * integrator (cache for E, the full render's light samples there), the
+ * image rebuilt by Delaunay interpolation (demo/adaptive.c).
  *   gradient:  |grad I| at the sample, the image gradient of demo/imgrad.c
  *              (Eq. 25-27: spatial, curvature-directional, view and
- *              indirect terms);
+ *              indirect terms; IMG_GRADIENT_FAST), and its visibility
+ *              term: where the lit side of a shadow edge meets the other,
+ *              the luminance jump (Eq. 34's delta; adaptive.h, region);
  *   frequency: Durand et al.'s heuristic as the first-order paper quotes
  *              it, (1/gamma) 2 k z / (n0.v) Omega_rho, Omega_rho =
  *              sqrt(6 s) for a Phong exponent s (s = 1 for a diffuse
@@ -15,13 +17,18 @@
  * Every metric splits object boundaries first.  Prints, per metric and
  * budget, the relative RMSE against the full render (sqrt(sum (a-b)^2 /
  * sum b^2)), its largest error on the bumpy sphere's pixels (material
- * "bumpy", if the scene has one), the wall time and the share spent on
- * gradients, and writes the reconstructions and the sample positions as
- * PNGs to build/adaptive-out/.  With --check it first compares the image
- * gradient with central differences of an image rendered with one set of
- * light samples for every pixel (--check-only: only that).  Everything
+ * "bumpy", if the scene has one), the time and the share spent on
+ * gradients, twice: cold (the cache starts empty, as the full render's
+ * did) and warm (the cache starts with the full render's records; the
+ * full render is redone the same way), every time the least of three
+ * runs.  Writes the reconstructions and the sample positions as PNGs to
+ * build/adaptive-out/.  With --check it first compares the image gradient
+ * (central, then the sampler's) with central differences of an image
+ * rendered with one set of light samples for every pixel, direct and
+ * indirect parts apart (--check-only: only that).  --light-samples sets
+ * the pixel's light samples (16 by default; at most 256).  Everything
  * runs on one thread.
- *   adaptive SCENE [W H] [--check | --check-only]
+ *   adaptive SCENE [W H] [--check | --check-only] [--light-samples N]
  */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
@@ -310,7 +317,7 @@ int main(int argc, char **argv)
     unsigned char *bumpy;
     double full_s, again_s;
     uint64_t first;
-    int w, h, m, b, nb = 0, do_check = 0, i, rc = 0;
+    int w, h, m, b, nb = 0, do_check = 0, i, k, rc = 0;
     if (argc < 2) {
         fprintf(stderr, "usage: adaptive SCENE [W H] [--check | --check-only] "
                         "[--light-samples N]\n");
@@ -340,6 +347,8 @@ int main(int argc, char **argv)
     h = s.cam.height;
     base = strrchr(argv[1], '/') ? strrchr(argv[1], '/') + 1 : argv[1];
     snprintf(tag, sizeof tag, "%.*s", (int)(strcspn(base, ".")), base);
+    if (light_samples > 0) /* its own PNGs */
+        snprintf(tag + strlen(tag), sizeof tag - strlen(tag), "-ls%d", light_samples);
     mkdir("build", 0777);
     mkdir("build/adaptive-out", 0777);
     full = malloc(sizeof *full * 3 * (size_t)w * (size_t)h);
@@ -362,13 +371,18 @@ int main(int argc, char **argv)
     for (i = 0; i < 2 && do_check && rc == 0; i++) { /* the full gradient, the sampler's */
         grad_check g;
         if (image_gradient_check(&r, &cf, w, h, i ? IMG_GRADIENT_FAST : IMG_GRADIENT_PARTS,
-                                 &g) < 0)
+                                 &g) < 0) {
             rc = 1;
-        else
-            printf("gradient check, %s (%dx%d, %d pixels inside objects): relative L2 error "
-                   "%.4f; per pixel (|grad| > 0.1 mean, %d pixels): median %.4f, 90th "
-                   "percentile %.4f\n", i ? "sampler's (fast)" : "central", w, h, g.pixels,
-                   g.l2, g.strong, g.median, g.p90);
+            break;
+        }
+        for (k = 0; k < 2; k++) {
+            const grad_part *p = k ? &g.indirect : &g.direct;
+            printf("gradient check, %s, %s part (%dx%d, %d pixels inside objects): relative "
+                   "L2 error %.4f; per pixel (|grad| > 0.1 mean, %d pixels): median %.4f, "
+                   "90th percentile %.4f\n", i ? "sampler's (fast)" : "central",
+                   k ? "indirect" : "direct", w, h, p->pixels, p->l2, p->strong, p->median,
+                   p->p90);
+        }
     }
     for (b = 0; b < 2 && rc == 0 && do_check < 2; b++)
         for (m = 0; m < M_COUNT && rc == 0; m++)

@@ -644,9 +644,10 @@ typedef struct irc_gradient {
  * record set, not of the light (the first-order paper's image-space
  * gradient, Sec. 5, takes the light field's gradient the same way).  A
  * cache without translational (rotational) gradients answers dp (dn) = 0.
- * rgb and grad must not be NULL (IRC_ERR_NULL).  Returns what
- * irc_cache_lookup returns; on IRC_MISS rgb and grad are zero; rgb, grad
- * and the counters are as irc_cache_lookup leaves them.
+ * rgb and grad must not be NULL (IRC_ERR_NULL); an SH cache answers
+ * IRC_ERR_UNSUPPORTED.  rgb, *weight, the status and the lookup counters
+ * are irc_cache_lookup's; on IRC_MISS grad is zero too, and
+ * IRC_ERR_NONFINITE also covers a gradient that overflows float.
  */
 IRC_API int irc_cache_lookup_gradient(irc_cache *cache, const float p[3], const float n[3],
                                       float rgb[3], irc_gradient *grad, float *weight);
