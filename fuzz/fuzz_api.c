@@ -179,6 +179,18 @@ static int call(fuzz_in *in, irc_cache *c, uint32_t cap)
         read_vec(in, rec.grad_r[fz_u8(in) % 3]);
         return irc_cache_insert(c, &rec);
     case 2:
+        if (fz_u8(in) & 1) { /* the gradient lookup answers as the lookup does */
+            irc_gradient g;
+            float r2[3], w2;
+            const int s2 = irc_cache_lookup(c, p, n, r2, &w2);
+            s = irc_cache_lookup_gradient(c, p, n, rgb, &g, &w);
+            check(s == s2 && (s < 0 || (memcmp(rgb, r2, sizeof r2) == 0 && w == w2)));
+            for (k = 0; k < 9 && s == IRC_OK; k++)
+                check(g.dp[k / 3][k % 3] - g.dp[k / 3][k % 3] == 0.0f &&
+                      g.dn[k / 3][k % 3] - g.dn[k / 3][k % 3] == 0.0f);
+            return s;
+        }
+        /* fall through */
     case 3:
         s = op == 2            ? irc_cache_lookup(c, p, n, rgb, &w)
             : fz_u8(in) & 1    ? irc_cache_lookup_or_compute(c, p, n, rgb, &w, NULL)
