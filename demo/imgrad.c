@@ -72,9 +72,9 @@ static int aside(const renderer *r, const cam_frame *cf, float x, float y, int p
 /* E's gradient from the cache at a surface (irc_cache_lookup_gradient:
  * the records' gradients, not the lookups' differences, which jump where
  * records enter and leave reach): 0 on a miss or without a cache. */
-static int cached_gradient(const renderer *r, const surface *sf, irc_gradient *g)
+static int cached_gradient(const renderer *r, const surface *sf, float e[3], irc_gradient *g)
 {
-    float p[3], e[3], w;
+    float p[3], w;
     if (r->o.mode != MODE_CACHE || (r->o.features & IRC_FEATURE_SH))
         return 0;
     cache_point(sf, p);
@@ -126,7 +126,8 @@ static void part(const light_sample *ls, int n, int samples, const surface *sf,
 static void axis_gradient(const renderer *r, const cam_frame *cf, float x, float y, int axis,
                           int prim, const surface *sf, const float d[3],
                           const light_sample *ls, int n, int samples, float scale,
-                          const irc_gradient *ge, int level, img_point *out)
+                          const irc_gradient *ge, const float centre[3], int level,
+                          img_point *out)
 {
     const int parts = level == IMG_GRADIENT_PARTS;
     surface s[2];
@@ -157,8 +158,12 @@ static void axis_gradient(const renderer *r, const cam_frame *cf, float x, float
     for (c = 0; c < 3; c++)
         kd[c] = sf->m->kd[c] / (float)PI;
     if (!parts) { /* the whole move at once: two shadings, not six */
-        for (k = 0; k < 2; k++)
-            shade(ls, n, samples, &s[k], dd[k], f[k]);
+        for (k = 0; k < 2; k++) {
+            if (level == IMG_GRADIENT_FAST && ok[k] == 0) /* the point: done once */
+                memcpy(f[k], centre, sizeof f[k]);
+            else
+                shade(ls, n, samples, &s[k], dd[k], f[k]);
+        }
         if (ge)
             indirect_part(ge, kd, s, step, out->ind[axis]);
         for (c = 0; c < 3; c++)
@@ -208,7 +213,8 @@ int image_point(renderer *r, const cam_frame *cf, float x, float y, int grads, u
     bvh_hit bh;
     surface sf;
     uint64_t rays = 0;
-    int c, n, axis, err;
+    irc_gradient ge;
+    int c, n, axis, err, have = 0;
     memset(out, 0, sizeof *out);
     if (!key)
         key = light_key(x, y);
@@ -223,7 +229,11 @@ int image_point(renderer *r, const cam_frame *cf, float x, float y, int grads, u
     cache_point(&sf, p);
     memcpy(pn, p, sizeof p);
     memcpy(pn + 3, sf.nsm, sizeof sf.nsm);
-    if ((err = render_points(r, pn, 1, e, &st)) < 0)
+    /* A gradient wanted: one lookup gives E and its gradient; a miss takes
+     * the renderer's way (a record), then looks again. */
+    if (grads)
+        have = cached_gradient(r, &sf, e, &ge);
+    if (!have && (err = render_points(r, pn, 1, e, &st)) < 0)
         return err;
     n = direct_samples(&r->b, &r->l, &sf, 0, samples, samples, key, ls, &rays);
     out->lit = rays == 0 ? -1 : 2 * (uint64_t)n >= rays; /* rays: samples facing sf */
@@ -241,16 +251,20 @@ int image_point(renderer *r, const cam_frame *cf, float x, float y, int grads, u
         const int most = grads == IMG_GRADIENT_FAST ? FAST_SAMPLES : MAX_LIGHT,
                   k = (samples + most - 1) / most;
         light_sample *sub = ls;
-        irc_gradient ge;
-        int have, m = n, j;
+        float centre[3] = {0.0f, 0.0f, 0.0f}, e2[3];
+        int m = n, j;
         t0 = seconds();
         if (k > 1) /* in place: the shading above is done with them */
             for (j = m = 0; j < n; j += k)
                 sub[m++] = ls[j];
-        have = cached_gradient(r, &sf, &ge);
+        if (!have)
+            have = cached_gradient(r, &sf, e2, &ge);
+        if (grads == IMG_GRADIENT_FAST)
+            shade(sub, m, samples, &sf, d, centre);
         for (axis = 0; axis < 2; axis++)
             axis_gradient(r, cf, x, y, axis, bh.prim, &sf, d, sub, m, samples,
-                          m ? (float)n / (float)m : 0.0f, have ? &ge : NULL, grads, out);
+                          m ? (float)n / (float)m : 0.0f, have ? &ge : NULL, centre, grads,
+                          out);
         out->grad_s = seconds() - t0;
     }
     return 0;
