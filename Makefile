@@ -179,7 +179,7 @@ adaptive: $(BUILD)/adaptive $(BUILD)/terms
 	$(BUILD)/adaptive demo/scenes/fig5.scene --check
 	$(BUILD)/adaptive demo/scenes/fig5.scene --light-samples 128
 	$(BUILD)/adaptive demo/scenes/cornell.scene --check
-	for s in sh leak fig15; do $(BUILD)/adaptive demo/scenes/$$s.scene 256 192 --check-only; done
+	for s in sh leak fig15 fig15-sharp; do $(BUILD)/adaptive demo/scenes/$$s.scene 256 192 --check-only; done
 	$(BUILD)/terms demo/scenes/fig5.scene
 
 # The SH-gradient paper's experiments (README: "SH records").
