@@ -90,7 +90,8 @@ printf '  %-34s %7d\n' "an index node (8 per 32 records)" 12
 
 echo "4. worst-case stack of each entry point, Cortex-M4F (bytes; the host's callbacks not counted)"
 entries=$(sed -n 's/^IRC_API [^(]*[ *]\(irc_[a-z0-9_]*\)(.*/\1/p' include/irrcache.h | tr '\n' ' ')
-irr=$(echo "$entries" | tr ' ' '\n' | grep -v '^irc_sh_' | tr '\n' ' ')
+irr=$(echo "$entries" | tr ' ' '\n' | grep -v '^irc_sh_' | grep -v '^irc_cache_lookup_gradient$' |
+    tr '\n' ' ')
 shs=$(echo "$entries" | tr ' ' '\n' | grep '^irc_sh_' | tr '\n' ' ')
 # The check can fail: a made-up graph where a reaches b and b reaches a.
 printf '%s\n' 'node: { title: "a" label: "a\nx.c:1:1\n8 bytes (static)" }' \
@@ -104,6 +105,9 @@ st=0
 echo "  irradiance caches (target 1024):"
 awk -v kind=irr -v map=embedded/indirect.txt -v entries="$irr" -f embedded/stack.awk \
     $B/m4/*.ci > $B/stack-irr.txt || st=1
+# The gradient lookup's own accumulator (irrg: in indirect.txt).
+awk -v kind=irrg -v map=embedded/indirect.txt -v entries=irc_cache_lookup_gradient \
+    -f embedded/stack.awk $B/m4/*.ci >> $B/stack-irr.txt || st=1
 sed 's/^/    /' $B/stack-irr.txt
 echo "  SH caches (target 4096):"
 awk -v kind=sh -v map=embedded/indirect.txt -v entries="$shs $irr" -f embedded/stack.awk \

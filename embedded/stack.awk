@@ -5,7 +5,7 @@
 # libgcc's soft-float routines) are not known and count as 0.  Fails
 # (exit 1) when any function of the library can reach itself: the
 # library must not recurse.
-#   awk -v kind=irr|sh -v map=embedded/indirect.txt -v entries="irc_a irc_b" -f stack.awk *.ci
+#   awk -v kind=irr|irrg|sh -v map=embedded/indirect.txt -v entries="irc_a irc_b" -f stack.awk *.ci
 function base(t,   b) {
     b = t
     sub(/^.*:/, "", b)
@@ -27,7 +27,8 @@ BEGIN {
             if (w[i] == "") continue
             if (caller == "") { caller = w[i]; mapped[caller] = 1; continue }
             t = w[i]
-            if (t ~ /^irr:/) { if (kind != "irr") continue; t = substr(t, 5) }
+            if (t ~ /^irrg:/) { if (kind != "irrg") continue; t = substr(t, 6) }
+            else if (t ~ /^irr:/) { if (kind != "irr" && kind != "irrg") continue; t = substr(t, 5) }
             else if (t ~ /^sh:/) { if (kind != "sh") continue; t = substr(t, 4) }
             if (t != "-") targets[caller] = targets[caller] " " t
         }

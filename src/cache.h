@@ -337,7 +337,9 @@ void irc__oct_frame(uint32_t code, float t1[3], float t2[3]);
 int irc__weigh(const irc_cache *c, const irc__rec *r, const float p[3],
                const float n[3], float *w, float ni[3]);
 void irc__extrapolate(const irc_cache *c, const irc__rec *r, const float ni[3],
-                      const float p[3], const float n[3], float out[3], float g[2][3][3]);
+                      const float p[3], const float n[3], float out[3]);
+void irc__extrapolate_grad(const irc_cache *c, const irc__rec *r, const float ni[3],
+                           const float val[3], float f, irc_gradient *g);
 float irc__grad_scale(const irc__grad *g, int ch);
 
 /* store.c: the handle, scratch slots, insert and eviction, the lookup

@@ -216,7 +216,7 @@ static void irc__irr_accumulate(const irc_cache *c, const irc__rec *r, const irc
 {
     float v[3], *a = (float *)acc, f;
     int ch;
-    irc__extrapolate(c, r, ni, q->p, q->n, v, NULL);
+    irc__extrapolate(c, r, ni, q->p, q->n, v);
     a[3] += w;
     f = w / a[3];
     for (ch = 0; ch < 3; ch++)
@@ -256,54 +256,50 @@ static int irc__irr_find(irc_cache *c, const irc__query *q, void *out, float *we
     return irc__lookup_once(c, &irc__kind_irr, q, out, weight, acc);
 }
 
-/* The gradient lookup: the same records and weights, the accumulator
- * carries the running means of E (0-2), the weight (3), then each
- * record's dE/dp (4-12) and dE/dn (13-21) per channel. */
-#define IRC__GACC 22
-
-static void irc__irrg_begin(const irc_cache *c, void *acc)
-{
-    (void)c;
-    IRC_MEMSET(acc, 0, IRC__GACC * sizeof(float));
-}
-
-static void irc__irrg_accumulate(const irc_cache *c, const irc__rec *r, const irc__query *q,
-                                 float w, const float ni[3], void *acc)
-{
-    float v[3], g[2][3][3], *a = (float *)acc, f;
-    int ch, k;
-    irc__extrapolate(c, r, ni, q->p, q->n, v, g);
-    a[3] += w;
-    f = w / a[3];
-    for (ch = 0; ch < 3; ch++) {
-        a[ch] += f * (v[ch] - a[ch]);
-        for (k = 0; k < 3; k++) {
-            a[4 + 3 * ch + k] += f * (g[0][ch][k] - a[4 + 3 * ch + k]);
-            a[13 + 3 * ch + k] += f * (g[1][ch][k] - a[13 + 3 * ch + k]);
-        }
-    }
-}
+/* The gradient lookup: the same records and weights; its accumulator is
+ * the value's (running means of E, then the weight) and the answer's
+ * gradient, whose fields hold the running means of the records' dE/dp
+ * and dE/dn (irc__extrapolate_grad). */
+typedef struct irc__grad_acc {
+    float m[4];
+    irc_gradient *grad;
+} irc__grad_acc;
 
 typedef struct irc__grad_out {
     float *rgb;
     irc_gradient *grad;
 } irc__grad_out;
 
+static void irc__irrg_begin(const irc_cache *c, void *acc)
+{
+    irc__grad_acc *a = (irc__grad_acc *)acc;
+    irc__irr_begin(c, a->m);
+    IRC_MEMSET(a->grad, 0, sizeof *a->grad);
+}
+
+static void irc__irrg_accumulate(const irc_cache *c, const irc__rec *r, const irc__query *q,
+                                 float w, const float ni[3], void *acc)
+{
+    irc__grad_acc *a = (irc__grad_acc *)acc;
+    float v[3], f;
+    int ch;
+    irc__extrapolate(c, r, ni, q->p, q->n, v);
+    a->m[3] += w;
+    f = w / a->m[3];
+    for (ch = 0; ch < 3; ch++)
+        a->m[ch] += f * (v[ch] - a->m[ch]);
+    irc__extrapolate_grad(c, r, ni, v, f, a->grad);
+}
+
 static int irc__irrg_finish(const irc_cache *c, const irc__query *q, const void *acc,
                             float w, void *out)
 {
-    const float *a = (const float *)acc;
-    irc__grad_out *o = (irc__grad_out *)out;
-    int ch, k, st = irc__irr_finish(c, q, acc, w, o->rgb);
-    for (ch = 0; ch < 3; ch++)
-        for (k = 0; k < 3; k++) {
-            o->grad->dp[ch][k] = w > 0.0f ? a[4 + 3 * ch + k] : 0.0f;
-            o->grad->dn[ch][k] = w > 0.0f ? a[13 + 3 * ch + k] : 0.0f;
-        }
-    if (st == IRC_OK && !(irc__finite3(o->grad->dp[0]) && irc__finite3(o->grad->dp[1]) &&
-                          irc__finite3(o->grad->dp[2]) && irc__finite3(o->grad->dn[0]) &&
-                          irc__finite3(o->grad->dn[1]) && irc__finite3(o->grad->dn[2])))
-        return IRC_ERR_NONFINITE;
+    const irc__grad_acc *a = (const irc__grad_acc *)acc;
+    const irc_gradient *g = a->grad;
+    int ch, st = irc__irr_finish(c, q, a->m, w, ((irc__grad_out *)out)->rgb);
+    for (ch = 0; ch < 3 && st == IRC_OK; ch++)
+        if (!irc__finite3(g->dp[ch]) || !irc__finite3(g->dn[ch]))
+            st = IRC_ERR_NONFINITE;
     return st;
 }
 
@@ -317,8 +313,9 @@ static const irc__kind irc__kind_irr_grad = {
 
 static int irc__irrg_find(irc_cache *c, const irc__query *q, void *out, float *weight)
 {
-    float acc[IRC__GACC];
-    return irc__lookup_once(c, &irc__kind_irr_grad, q, out, weight, acc);
+    irc__grad_acc acc;
+    acc.grad = ((irc__grad_out *)out)->grad;
+    return irc__lookup_once(c, &irc__kind_irr_grad, q, out, weight, &acc);
 }
 
 const irc__kind irc__kind_irr = {

@@ -121,61 +121,73 @@ static float irc__grad_dot(const irc__grad *g, int ch, float a, float b)
 }
 
 /* E_i + (p - p_i).grad_t + (n_i x n).grad_r, each gradient stored in the
- * tangent frame of the decoded normal, clamped at 0 per channel.  With
- * g not NULL, also the record's derivatives of that value: g[0][ch] along
- * p, grad_t itself, and g[1][ch] along n, grad_r x n_i (since (n_i x
- * n).grad_r = n.(grad_r x n_i)); a channel clamped at 0 gets none. */
+ * tangent frame of the decoded normal, clamped at 0 per channel. */
 void irc__extrapolate(const irc_cache *c, const irc__rec *r, const float ni[3],
-                      const float p[3], const float n[3], float out[3], float g[2][3][3])
+                      const float p[3], const float n[3], float out[3])
 {
     const unsigned char *b = (const unsigned char *)r;
     float t1[3], t2[3], nd[3];
-    int ch, k;
+    int ch;
     for (ch = 0; ch < 3; ch++)
         out[ch] = r->e[ch];
-    if (g)
-        IRC_MEMSET(g, 0, sizeof(float[2][3][3]));
     if (!c->off_t && !c->off_r)
         return;
     nd[0] = ni[0]; nd[1] = ni[1]; nd[2] = ni[2];
     irc__frame(nd, t1, t2);
     if (c->off_t) {
-        const irc__grad *gt = (const irc__grad *)(const void *)(b + c->off_t);
+        const irc__grad *g = (const irc__grad *)(const void *)(b + c->off_t);
         float d[3], da, db;
         d[0] = (float)p[0] - r->p[0];
         d[1] = (float)p[1] - r->p[1];
         d[2] = (float)p[2] - r->p[2];
         da = irc__dot3(d, t1);
         db = irc__dot3(d, t2);
-        for (ch = 0; ch < 3; ch++) {
-            out[ch] += irc__grad_dot(gt, ch, da, db);
-            if (g)
-                for (k = 0; k < 3; k++)
-                    g[0][ch][k] = irc__grad_dot(gt, ch, t1[k], t2[k]);
-        }
+        for (ch = 0; ch < 3; ch++)
+            out[ch] += irc__grad_dot(g, ch, da, db);
     }
     if (c->off_r) {
-        const irc__grad *gr = (const irc__grad *)(const void *)(b + c->off_r);
+        const irc__grad *g = (const irc__grad *)(const void *)(b + c->off_r);
         float q[3], x[3], da, db;
         q[0] = n[0]; q[1] = n[1]; q[2] = n[2];
         irc__cross3(nd, q, x);
         da = irc__dot3(x, t1);
         db = irc__dot3(x, t2);
-        for (ch = 0; ch < 3; ch++) {
-            out[ch] += irc__grad_dot(gr, ch, da, db);
-            if (g) {
-                float w[3];
-                for (k = 0; k < 3; k++)
-                    w[k] = irc__grad_dot(gr, ch, t1[k], t2[k]);
-                irc__cross3(w, nd, g[1][ch]);
-            }
-        }
+        for (ch = 0; ch < 3; ch++)
+            out[ch] += irc__grad_dot(g, ch, da, db);
     }
     for (ch = 0; ch < 3; ch++)
-        if (!(out[ch] > 0.0f)) {
+        if (!(out[ch] > 0.0f))
             out[ch] = 0.0f;
-            if (g)
-                for (k = 0; k < 3; k++)
-                    g[0][ch][k] = g[1][ch][k] = 0.0f;
+}
+
+/* The record's derivatives of its extrapolated value val (irc__extrapolate's)
+ * blended into running means with factor f (m += f (v - m)): g->dp[ch]
+ * along p (grad_t itself) and g->dn[ch] along n (grad_r x n_i, since (n_i
+ * x n).grad_r = n.(grad_r x n_i)); a channel clamped at 0 blends in
+ * zeros.  The means live in the caller's answer, the derivatives are
+ * made one at a time: the lookup's stack stays within make size's bound. */
+void irc__extrapolate_grad(const irc_cache *c, const irc__rec *r, const float ni[3],
+                           const float val[3], float f, irc_gradient *g)
+{
+    const unsigned char *b = (const unsigned char *)r;
+    float t1[3], t2[3], nd[3], v[3];
+    int ch, k;
+    nd[0] = ni[0]; nd[1] = ni[1]; nd[2] = ni[2];
+    irc__frame(nd, t1, t2);
+    for (ch = 0; ch < 3; ch++) {
+        const int live = val[ch] > 0.0f;
+        for (k = 0; k < 3; k++) {
+            v[k] = c->off_t && live ? irc__grad_dot((const irc__grad *)(const void *)(b + c->off_t),
+                                                    ch, t1[k], t2[k])
+                                    : 0.0f;
+            g->dp[ch][k] += f * (v[k] - g->dp[ch][k]);
         }
+        for (k = 0; k < 3; k++)
+            v[k] = c->off_r && live ? irc__grad_dot((const irc__grad *)(const void *)(b + c->off_r),
+                                                    ch, t1[k], t2[k])
+                                    : 0.0f;
+        for (k = 0; k < 3; k++) /* (v x n_i)[k] */
+            g->dn[ch][k] += f * (v[(k + 1) % 3] * nd[(k + 2) % 3] -
+                                 v[(k + 2) % 3] * nd[(k + 1) % 3] - g->dn[ch][k]);
+    }
 }

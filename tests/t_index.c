@@ -120,7 +120,7 @@ static uint32_t compare(irc_cache *c, uint32_t queries, int decades, unsigned lo
                 if (ns < 4096)
                     scan[ns] = i;
                 ns++;
-                irc__extrapolate(c, irc__rec_at(c, i), ni, p, n, v, NULL);
+                irc__extrapolate(c, irc__rec_at(c, i), ni, p, n, v);
                 for (k = 0; k < 3; k++)
                     sum[k] += w * v[k];
                 wsum += w;
