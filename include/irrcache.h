@@ -843,7 +843,8 @@ IRC_API int irc_pass_end(irc_cache *cache, uint32_t *added);
  * Bytes per record: 32 + 4 L^2 channels, + 12 L^2 channels with gradients
  * (L = 3, RGB: 140, with gradients 464).  The irradiance calls
  * (irc_record_compute, irc_cache_insert, irc_cache_lookup,
- * irc_cache_lookup_or_compute, irc_cache_record, irc_occlusion_compute) return
+ * irc_cache_lookup_gradient, irc_cache_lookup_or_compute, irc_cache_record,
+ * irc_occlusion_compute) return
  * IRC_ERR_UNSUPPORTED on an SH cache, and the irc_sh_* calls on any other.
  */
 typedef struct irc_sh {
