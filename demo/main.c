@@ -43,6 +43,11 @@ static const char usage[] =
     "  --size WxH              override the scene's resolution\n"
     "  --indirect              show only the indirect term kd/pi E\n"
     "  --light-samples N       light samples at camera-ray hits (default 16)\n"
+    "  --glossy N              glossy surfaces reflect indirect light too: from\n"
+    "                          SH records (--features sh) while the Phong\n"
+    "                          exponent is at most --sh-lobe-max S (default\n"
+    "                          L^2), else from N samples of the lobe\n"
+    "  --sh-bands L            SH records' bands, 1..5 (default 3)\n"
     "  --seed S                random seed (default 1)\n"
     "  --out PREFIX            write PREFIX.exr, PREFIX.png (+ PREFIX-records.png)\n"
     "  --half                  write the EXR as half floats\n"
@@ -137,6 +142,9 @@ static int parse_args(int argc, char **argv, cli *c)
         else if (!strcmp(a, "--load-cache")) { NEED(c->loads < MAX_LOADS); c->load[c->loads++] = n; }
         else if (!strcmp(a, "--no-new-records")) c->o.frozen = 1;
         else if (!strcmp(a, "--light-samples")) { NEED(parse_uint(n, 0, 4096, &v)); c->o.light_samples = (int)v; }
+        else if (!strcmp(a, "--glossy")) { NEED(parse_uint(n, 1, 1 << 20, &v)); c->o.lobe_rays = (int)v; }
+        else if (!strcmp(a, "--sh-lobe-max")) NEED(parse_float(n, &c->o.sh_lobe_max));
+        else if (!strcmp(a, "--sh-bands")) { NEED(parse_uint(n, 1, IRC_SH_MAX_BANDS, &v)); c->o.sh_bands = (uint32_t)v; }
         else if (!strcmp(a, "--seed")) { NEED(parse_uint(n, 0, 0x7fffffff, &v)); c->o.seed = (uint64_t)v; }
         else if (!strcmp(a, "--out")) { NEED(1); c->out = n; }
         else if (!strcmp(a, "--half")) c->half = 1;

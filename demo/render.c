@@ -4,6 +4,7 @@
  */
 #define _POSIX_C_SOURCE 200809L
 #include "render.h"
+#include "glossy.h"
 #include "camera.h"
 
 #include <float.h>
@@ -242,18 +243,21 @@ static void reference_e(const renderer *r, const float p[3], const float n[3], u
         e[c] = (float)(PI * sum[c] / total);
 }
 
-/* Indirect irradiance at a surface, from the cache or by brute force. */
+/* Indirect irradiance at a surface, from the cache or by brute force;
+ * sh gets the SH record it came from (sh->bands 0: none). */
 static int irradiance(renderer *r, const float p[3], const float n[3], uint64_t key,
-                      float e[3], tstate *ts)
+                      float e[3], irc_sh *sh, tstate *ts)
 {
+    sh->bands = 0;
     if (r->o.mode == MODE_CACHE) {
         double t0 = now(), tr0 = ts->trace_s;
         int st;
         if (r->o.features & IRC_FEATURE_SH) {
-            irc_sh sh;
-            st = irc_sh_lookup_or_compute(r->cache, p, n, &sh, NULL, ts);
+            st = irc_sh_lookup_or_compute(r->cache, p, n, sh, NULL, ts);
             if (st >= 0)
-                st = irc_sh_irradiance(&sh, n, e);
+                st = irc_sh_irradiance(sh, n, e);
+            else
+                sh->bands = 0;
         } else if (r->o.frozen) {
             irc_record rec;
             if ((st = irc_cache_lookup(r->cache, p, n, e, NULL)) == IRC_MISS &&
@@ -271,6 +275,43 @@ static int irradiance(renderer *r, const float p[3], const float n[3], uint64_t 
     return 0;
 }
 
+/* Glossy indirect light (glossy.h) added to out: from the SH record when
+ * there is one and its bands carry the lobe (s <= sh_lobe_max), else by
+ * lobe_rays samples of the lobe from p. */
+static void glossy_indirect(const renderer *r, const surface *sf, const float p[3],
+                            const float d[3], const irc_sh *sh, uint64_t key, float out[3],
+                            tstate *ts)
+{
+    irc_ray rays[64];
+    irc_hit hits[64];
+    float wt[64][3], axis[3], g[3];
+    double sum[3] = {0.0, 0.0, 0.0};
+    const int n = r->o.lobe_rays;
+    int i, j, c, nb = 0;
+    const float most = r->o.sh_lobe_max > 0.0f ? r->o.sh_lobe_max : (float)(sh->bands * sh->bands);
+    if (sh->bands && sf->m->ns <= most && glossy_from_sh(sh, sf, d, g) == IRC_OK) {
+        for (c = 0; c < 3; c++)
+            out[c] += g[c];
+        return;
+    }
+    glossy_axis(sf, d, axis);
+    for (i = 0; i < n; i++) {
+        glossy_sample(sf, axis, key, i, n, rays[nb].dir, wt[nb]);
+        memcpy(rays[nb].org, p, sizeof rays[nb].org);
+        if (wt[nb][0] + wt[nb][1] + wt[nb][2] > 0.0f)
+            nb++; /* below the surface: counted, not cast */
+        if (nb > 0 && (nb == 64 || i == n - 1)) {
+            cast(r, rays, hits, (uint32_t)nb, ts);
+            for (j = 0; j < nb; j++)
+                for (c = 0; c < 3; c++)
+                    sum[c] += (double)wt[j][c] * hits[j].radiance[c];
+            nb = 0;
+        }
+    }
+    for (c = 0; c < 3 && n > 0; c++)
+        out[c] += (float)(sum[c] / n);
+}
+
 static int shade_pixel(renderer *r, const cam_frame *cf, int x, int y, float out[3],
                        tstate *ts)
 {
@@ -282,6 +323,7 @@ static int shade_pixel(renderer *r, const cam_frame *cf, int x, int y, float out
     uint64_t pix = (uint64_t)y << 32 | (uint32_t)x, key = hash64(r->o.seed ^ pix);
     bvh_hit bh;
     surface sf;
+    irc_sh sh;
     int i, st;
     camera_ray(cf, c, x, y, d);
     ts->rays++;
@@ -294,10 +336,12 @@ static int shade_pixel(renderer *r, const cam_frame *cf, int x, int y, float out
     }
     surface_at(r->s, cf->eye, d, &bh, &sf);
     cache_point(&sf, p);
-    if ((st = irradiance(r, p, sf.nsm, key, e, ts)) < 0)
+    if ((st = irradiance(r, p, sf.nsm, key, e, &sh, ts)) < 0)
         return st;
     for (i = 0; i < 3; i++)
         out[i] = sf.m->kd[i] / (float)PI * e[i];
+    if (r->o.lobe_rays > 0 && glossy_has(&sf))
+        glossy_indirect(r, &sf, p, d, &sh, hash64(key ^ 0x6c6f6265ull), out, ts);
     if (r->o.show == SHOW_FULL) {
         emitted(&sf, ld);
         for (i = 0; i < 3; i++)
@@ -500,7 +544,8 @@ int render_points(renderer *r, const float *pn, int n, float *rgb, render_stats 
     for (i = 0; i < n; i++) {
         const float *p = &pn[6 * i], *nn = &pn[6 * i + 3];
         uint64_t key = hash64(r->o.seed ^ (uint64_t)i);
-        if ((e = irradiance(r, p, nn, key, &rgb[3 * i], &ts)) < 0)
+        irc_sh sh;
+        if ((e = irradiance(r, p, nn, key, &rgb[3 * i], &sh, &ts)) < 0)
             return e;
     }
     collect(r, &ts, 1, now() - t0, st);

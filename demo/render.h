@@ -4,7 +4,8 @@
  * (explicit sampling, Lambert + Phong) + one bounce of indirect diffuse
  * light, kd/pi x E, where E (irradiance from the environment and from the
  * direct-lit surfaces seen from the hit) comes from the cache or from
- * brute-force hemisphere sampling.
+ * brute-force hemisphere sampling; with lobe_rays, glossy surfaces also
+ * reflect one bounce of indirect light through their lobe (glossy.h).
  */
 #ifndef DEMO_RENDER_H
 #define DEMO_RENDER_H
@@ -32,6 +33,13 @@ typedef struct render_opts {
     int threads;
     int show;             /* SHOW_FULL or SHOW_INDIRECT (kd/pi E only) */
     int light_samples;    /* at the camera ray's hit; 1 at secondary hits */
+    int lobe_rays;        /* > 0: glossy surfaces also reflect indirect light
+                             (glossy.h): from the SH record in an SH cache
+                             while the exponent is at most sh_lobe_max,
+                             else from this many samples of the lobe;
+                             0: none (direct light's lobe only) */
+    float sh_lobe_max;    /* the largest Phong exponent SH records shade
+                             (0: L^2, irc_sh_glossy's rule of thumb) */
     uint64_t seed;
     int progress;         /* draw a progress bar on stderr after a second */
     int stride;           /* > 1: shade only pixels whose x and y are
