@@ -182,6 +182,15 @@ adaptive: $(BUILD)/adaptive $(BUILD)/terms
 	for s in sh leak fig15 fig15-sharp; do $(BUILD)/adaptive demo/scenes/$$s.scene 256 192 --check-only; done
 	$(BUILD)/terms demo/scenes/fig5.scene
 
+# Glossy indirect light from SH records against sampling the lobe, by
+# Phong exponent (README: "Glossy indirect light").
+$(BUILD)/glossy: experiments/glossy.c $(DEMO_LIB_SRC) demo/*.h $(LIBA)
+	$(CC) $(DEMO_CFLAGS) experiments/glossy.c $(DEMO_LIB_SRC) $(LIBA) -o $@ -lm -lpthread
+
+glossy: $(BUILD)/glossy
+	$(BUILD)/glossy demo/scenes/sh.scene object 128 128
+	$(BUILD)/glossy demo/scenes/fig5.scene glossy 256 192
+
 # The SH-gradient paper's experiments (README: "SH records").
 $(BUILD)/shexp: experiments/shexp.c $(DEMO_LIB_SRC) demo/*.h $(LIBA)
 	$(CC) $(DEMO_CFLAGS) experiments/shexp.c $(DEMO_LIB_SRC) $(LIBA) -o $@ -lm -lpthread
@@ -307,4 +316,4 @@ install: all
 clean:
 	rm -rf build build-*
 
-.PHONY: all lib cross embedded-test embedded-host size examples test coverage demo fig15 adaptive sh-experiments fuzz replay bench-core bench-lookups bench-records bench bench-fill farm-demo install clean
+.PHONY: all lib cross embedded-test embedded-host size examples test coverage demo fig15 adaptive glossy sh-experiments fuzz replay bench-core bench-lookups bench-records bench bench-fill farm-demo install clean

@@ -24,15 +24,20 @@ float glossy_axis(const surface *sf, const float d[3], float r[3])
 
 int glossy_from_sh(const irc_sh *sh, const surface *sf, const float d[3], float out[3])
 {
-    const float s = sf->m->ns;
-    float r[3], l[3];
-    const float c = glossy_axis(sf, d, r);
-    int i, st = irc_sh_glossy(sh, r, s, l);
-    /* ks (s + 2)/(2 pi) times the integral of L (r.w)^s (n.w), with n.w
-     * taken as (r.n) (s + 1)/(s + 2): exact for uniform radiance when r
-     * is the normal (both sides then give ks L). */
-    for (i = 0; i < 3; i++)
-        out[i] = st == IRC_OK ? sf->m->ks[i] * (s + 1.0f) / (2.0f * (float)PI) * c * l[i] : 0.0f;
+    float r[3], w[3], wt[3], l[3];
+    double sum[3] = {0.0, 0.0, 0.0};
+    int i, c, st = IRC_OK;
+    glossy_axis(sf, d, r);
+    /* The same stratified pattern about r at every pixel: its quadrature
+     * error varies smoothly over the image, as the record's radiance does. */
+    for (i = 0; i < GLOSSY_SH_DIRS && st == IRC_OK; i++) {
+        glossy_sample(sf, r, 0x9e3779b97f4a7c15ull, i, GLOSSY_SH_DIRS, w, wt);
+        if (wt[0] + wt[1] + wt[2] > 0.0f && (st = irc_sh_radiance(sh, w, l)) == IRC_OK)
+            for (c = 0; c < 3; c++)
+                sum[c] += (double)wt[c] * l[c];
+    }
+    for (c = 0; c < 3; c++)
+        out[c] = st == IRC_OK ? (float)(sum[c] / GLOSSY_SH_DIRS) : 0.0f;
     return st;
 }
 

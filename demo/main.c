@@ -43,6 +43,7 @@ static const char usage[] =
     "  --size WxH              override the scene's resolution\n"
     "  --indirect              show only the indirect term kd/pi E\n"
     "  --light-samples N       light samples at camera-ray hits (default 16)\n"
+    "  --secondary-samples N   light samples at secondary hits (default 1)\n"
     "  --glossy N              glossy surfaces reflect indirect light too: from\n"
     "                          SH records (--features sh) while the Phong\n"
     "                          exponent is at most --sh-lobe-max S (default\n"
@@ -142,6 +143,7 @@ static int parse_args(int argc, char **argv, cli *c)
         else if (!strcmp(a, "--load-cache")) { NEED(c->loads < MAX_LOADS); c->load[c->loads++] = n; }
         else if (!strcmp(a, "--no-new-records")) c->o.frozen = 1;
         else if (!strcmp(a, "--light-samples")) { NEED(parse_uint(n, 0, 4096, &v)); c->o.light_samples = (int)v; }
+        else if (!strcmp(a, "--secondary-samples")) { NEED(parse_uint(n, 1, 4096, &v)); c->o.secondary_samples = (int)v; }
         else if (!strcmp(a, "--glossy")) { NEED(parse_uint(n, 1, 1 << 20, &v)); c->o.lobe_rays = (int)v; }
         else if (!strcmp(a, "--sh-lobe-max")) NEED(parse_float(n, &c->o.sh_lobe_max));
         else if (!strcmp(a, "--sh-bands")) { NEED(parse_uint(n, 1, IRC_SH_MAX_BANDS, &v)); c->o.sh_bands = (uint32_t)v; }

@@ -44,13 +44,14 @@ static uint64_t ray_key(const float o[3], const float d[3], uint64_t seed)
 }
 
 /* Radiance leaving a secondary hit toward the ray's origin: direct light
- * (one light sample), plus emission only from spheres: emissive triangles
+ * (secondary_samples light samples, default one), plus emission only from spheres: emissive triangles
  * are the sampled lights, whose light the camera ray's hit already counts
  * as direct. */
 static void secondary(const renderer *r, const surface *sf, int prim, const float d[3],
                       uint64_t key, float out[3], uint64_t *rays)
 {
-    direct_light(&r->b, &r->l, sf, d, 1, key, out, rays);
+    direct_light(&r->b, &r->l, sf, d, r->o.secondary_samples > 0 ? r->o.secondary_samples : 1,
+                 key, out, rays);
     if (prim < 0) {
         float e[3];
         int i;

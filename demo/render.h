@@ -32,7 +32,9 @@ typedef struct render_opts {
     int no_leak_guard;    /* cache: irc_config.no_leak_guard */
     int threads;
     int show;             /* SHOW_FULL or SHOW_INDIRECT (kd/pi E only) */
-    int light_samples;    /* at the camera ray's hit; 1 at secondary hits */
+    int light_samples;    /* at the camera ray's hit */
+    int secondary_samples;/* at secondary hits (0: 1): the noise of every
+                             record's and reference ray's radiance */
     int lobe_rays;        /* > 0: glossy surfaces also reflect indirect light
                              (glossy.h): from the SH record in an SH cache
                              while the exponent is at most sh_lobe_max,

@@ -932,6 +932,14 @@ IRC_API int irc_sh_irradiance(const irc_sh *sh, const float n[3], float rgb[3]);
  */
 IRC_API int irc_sh_glossy(const irc_sh *sh, const float r[3], float s, float rgb[3]);
 
+/*
+ * The band-limited radiance arriving from the unit-ish direction w, sum
+ * over l, m of c_lm y_lm(w): what a host integrates its own BRDF against
+ * (e.g. over samples of a lobe whose product with the cosine is not
+ * zonal).  Returns as irc_sh_irradiance.
+ */
+IRC_API int irc_sh_radiance(const irc_sh *sh, const float w[3], float rgb[3]);
+
 typedef struct irc_stats {
     uint64_t records;        /* live records */
     uint64_t capacity;       /* max_records */

@@ -202,18 +202,21 @@ static int irc__sh_valid(const irc_sh *sh, const float r[3], const float *rgb,
     return irc__check_normal(r, u);
 }
 
-int irc_sh_glossy(const irc_sh *sh, const float r[3], float s, float rgb[3])
+/* sum over l, m of A_l c_lm y_lm(r): A_l the zonal lobe's of exponent s,
+ * or with radiance, A_l = 1 (the band-limited radiance itself). */
+static int irc__sh_convolve(const irc_sh *sh, const float r[3], float s, int radiance,
+                            float rgb[3])
 {
     float u[3], y[IRC__SH_MAX_BANDS * IRC__SH_MAX_BANDS], sum[3] = {0, 0, 0};
     uint32_t ch;
     int st = irc__sh_valid(sh, r, rgb, u), l, m;
     if (st < 0)
         return st;
-    if (!(s >= 0.0f && s <= 1e4f))
+    if (!radiance && !(s >= 0.0f && s <= 1e4f))
         return IRC_ERR_RANGE;
     irc__sh_eval((int)sh->bands, u, y, NULL);
     for (l = 0; l < (int)sh->bands; l++) {
-        float a = irc__sh_zonal(l, s);
+        float a = radiance ? 1.0f : irc__sh_zonal(l, s);
         for (m = -l; m <= l; m++)
             for (ch = 0; ch < sh->channels; ch++)
                 sum[ch] += a * sh->c[ch][l * l + l + m] * y[l * l + l + m];
@@ -223,9 +226,19 @@ int irc_sh_glossy(const irc_sh *sh, const float r[3], float s, float rgb[3])
     return IRC_OK;
 }
 
+int irc_sh_glossy(const irc_sh *sh, const float r[3], float s, float rgb[3])
+{
+    return irc__sh_convolve(sh, r, s, 0, rgb);
+}
+
 int irc_sh_irradiance(const irc_sh *sh, const float n[3], float rgb[3])
 {
     return irc_sh_glossy(sh, n, 1.0f, rgb);
+}
+
+int irc_sh_radiance(const irc_sh *sh, const float w[3], float rgb[3])
+{
+    return irc__sh_convolve(sh, w, 0.0f, 1, rgb);
 }
 
 #else /* IRC_NO_SH: SH records left out of the build (util.h) */
@@ -239,6 +252,12 @@ int irc_sh_glossy(const irc_sh *sh, const float r[3], float s, float rgb[3])
 int irc_sh_irradiance(const irc_sh *sh, const float n[3], float rgb[3])
 {
     (void)sh; (void)n; (void)rgb;
+    return IRC_ERR_UNSUPPORTED;
+}
+
+int irc_sh_radiance(const irc_sh *sh, const float w[3], float rgb[3])
+{
+    (void)sh; (void)w; (void)rgb;
     return IRC_ERR_UNSUPPORTED;
 }
 #endif

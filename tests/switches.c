@@ -83,7 +83,8 @@ int main(void)
               irc_sh_insert(c, &sh) == IRC_ERR_UNSUPPORTED &&
               irc_sh_record(c, 0, &sh) == IRC_ERR_UNSUPPORTED &&
               irc_sh_irradiance(&sh, n, rgb) == IRC_ERR_UNSUPPORTED &&
-              irc_sh_glossy(&sh, n, 8.0f, rgb) == IRC_ERR_UNSUPPORTED,
+              irc_sh_glossy(&sh, n, 8.0f, rgb) == IRC_ERR_UNSUPPORTED &&
+              irc_sh_radiance(&sh, n, rgb) == IRC_ERR_UNSUPPORTED,
           "the SH calls: IRC_ERR_UNSUPPORTED");
     check(irc_sh_lookup(NULL, p, n, &sh, &w) == IRC_ERR_NULL, "an SH call on NULL: IRC_ERR_NULL");
     check(irc_occlusion_compute(c, p, n, &occ, NULL) == IRC_ERR_UNSUPPORTED,

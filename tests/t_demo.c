@@ -404,11 +404,10 @@ TEST(test_image_gradient)
 /* Glossy indirect light (demo/glossy.c) under radiance L(w) = a + b w_z
  * about the normal z, Phong exponent s = 20, ks = 0.5: the lobe's samples
  * average to the closed form ks (s + 2)/(2 pi) int (n.w)^s (n.w) L dw =
- * ks (a + b (s + 2)/(s + 3)) at normal incidence, and the SH path, from
- * L's exact two-band coefficients, to its own closed form ks (a + b (s +
- * 1)/(s + 2)) (Funk-Hecke: int (r.w)^s (a + b w_z) dw = 2 pi (a/(s + 1) +
- * b (r.z)/(s + 2))).  30 degrees off the normal the two agree to the
- * cosine-at-the-axis approximation (printed, held to 3%). */
+ * ks (a + b (s + 2)/(s + 3)) at normal incidence, and so does the SH path
+ * (the lobe against L's exact two-band coefficients over 64 stratified
+ * directions: quadrature error only); 30 degrees off the normal the SH
+ * path agrees with 16384 lobe samples. */
 static double lin_radiance(const float w[3])
 {
     return 1.0 + 0.5 * w[2];
@@ -438,22 +437,21 @@ TEST(test_glossy_lobe)
     for (k = 0; k < 2; k++) {
         const double th = k ? 30.0 * PI_ / 180.0 : 0.0;
         const float d[3] = {(float)sin(th), 0.0f, (float)-cos(th)};
-        const double c = glossy_axis(&sf, d, r);
-        double mc = 0.0, want_sh;
+        glossy_axis(&sf, d, r);
+        double mc = 0.0;
         for (i = 0; i < n; i++) {
             glossy_sample(&sf, r, 0x1234ull, i, n, w, wt);
             mc += wt[0] * lin_radiance(w) / n;
         }
         CHECK(glossy_from_sh(&sh, &sf, d, out) == IRC_OK, "SH path");
-        want_sh = ks * (s + 1.0) / (2.0 * PI_) * c * 2.0 * PI_ * (a / (s + 1.0) + b * r[2] / (s + 2.0));
-        printf("  %2.0f degrees: lobe samples %.5f, SH %.5f (its closed form %.5f)\n",
-               th * 180.0 / PI_, mc, out[0], want_sh);
-        CHECK(fabs(out[0] - want_sh) < 1e-5 * want_sh, "SH path %g vs %g", out[0], want_sh);
+        printf("  %2.0f degrees: lobe samples %.5f, SH path %.5f\n", th * 180.0 / PI_, mc,
+               out[0]);
         if (k == 0) {
             const double want = ks * (a + b * (s + 2.0) / (s + 3.0));
             CHECK(fabs(mc - want) < 0.002 * want, "lobe samples %g vs %g", mc, want);
+            CHECK(fabs(out[0] - want) < 0.005 * want, "SH path %g vs %g", out[0], want);
         } else {
-            CHECK(fabs(out[0] - mc) < 0.03 * mc, "off the normal: SH %g vs lobe %g", out[0], mc);
+            CHECK(fabs(out[0] - mc) < 0.005 * mc, "off the normal: SH %g vs lobe %g", out[0], mc);
         }
     }
 }

@@ -298,6 +298,48 @@ TEST(test_sh_irradiance_convolution)
 /* irc_sh_glossy on a record holding one basis function y_lm equals
  * A_l(s) y_lm(r), A_l(s) = 2 pi integral_0^1 z^s P_l(z) dz by Simpson's
  * rule here (the library uses moments of P_l's coefficients). */
+/* irc_sh_radiance: the band-limited radiance of a record whose
+ * coefficients are those of L(w) = a + b w_z + c w_x (two bands, closed
+ * form: c_00 = 2 sqrt(pi) a, c_10 = 2 sqrt(pi/3) b, c_11 = -2 sqrt(pi/3) c
+ * with the Condon-Shortley phase) comes back as L at 50 directions of
+ * every length; bad input is refused. */
+TEST(test_sh_radiance_closed_form)
+{
+    const double a = 0.7, b = 0.4, c = -0.25;
+    unsigned long long st = 11;
+    irc_sh sh;
+    float w[3], rgb[3];
+    int t, k;
+    memset(&sh, 0, sizeof sh);
+    sh.bands = 2;
+    sh.channels = 3;
+    for (k = 0; k < 3; k++) {
+        sh.c[k][0] = (float)(2.0 * sqrt(TPI) * a);
+        sh.c[k][2] = (float)(2.0 * sqrt(TPI / 3.0) * b);
+        sh.c[k][3] = (float)(-2.0 * sqrt(TPI / 3.0) * c);
+    }
+    for (t = 0; t < 50; t++) {
+        double l = 0.0, want;
+        for (k = 0; k < 3; k++) {
+            w[k] = (float)(xrand(&st) * 2.0 - 1.0);
+            l += (double)w[k] * w[k];
+        }
+        l = sqrt(l);
+        for (k = 0; k < 3; k++)
+            w[k] *= (float)pow(10.0, (double)(t % 5) - 2.0); /* lengths 0.01 .. 100 */
+        want = a + b * w[2] / (l * pow(10.0, (double)(t % 5) - 2.0)) +
+               c * w[0] / (l * pow(10.0, (double)(t % 5) - 2.0));
+        CHECK(irc_sh_radiance(&sh, w, rgb) == IRC_OK, "radiance");
+        CHECK(fabs(rgb[0] - want) < 1e-5 && rgb[2] == rgb[0], "L %g vs %g", rgb[0], want);
+    }
+    w[0] = w[1] = w[2] = 0.0f;
+    CHECK(irc_sh_radiance(&sh, w, rgb) == IRC_ERR_NORMAL, "zero direction");
+    CHECK(irc_sh_radiance(NULL, w, rgb) == IRC_ERR_NULL, "NULL record");
+    w[2] = 1.0f;
+    sh.bands = 0;
+    CHECK(irc_sh_radiance(&sh, w, rgb) == IRC_ERR_RANGE, "no bands");
+}
+
 TEST(test_sh_glossy_zonal)
 {
     static const float expo[] = {0.0f, 1.0f, 7.5f, 100.0f};

@@ -1,0 +1,192 @@
+/*
+ * glossy.c -- glossy indirect light from SH records against sampling the
+ * lobe (issue: SH records where they matter).  For one glossy material of
+ * a scene, its diffuse part set to 0 so that its pixels show only the
+ * glossy bounce (--indirect image: kd/pi E elsewhere), and its Phong
+ * exponent s set in turn to each value below, renders:
+ *   reference  lobe sampling with 4096 rays a pixel;
+ *   SH, L      an SH cache of L bands (3, 4, 5), every lobe from the
+ *              record (irc_sh_glossy about the mirror direction);
+ *   lobe, K    an irradiance cache for E and K lobe rays a pixel, K = 16,
+ *              64, and the K whose render takes as long as the L = 5 SH
+ *              render's (from the 16- and 64-ray times, linear in K).
+ * and prints the relative RMSE on the material's pixels against the
+ * reference and each render's time (one thread; the least of two runs).
+ *   glossy SCENE MATERIAL [W H]
+ */
+#define _POSIX_C_SOURCE 200809L
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "bvh.h"
+#include "camera.h"
+#include "render.h"
+
+static double seconds(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+/* Renders s with o into img; returns the least time of `runs`, or < 0. */
+static int secondary = 16; /* light samples at secondary hits, every render */
+
+static double render(const scene *s, const render_opts *in, float *img, int runs)
+{
+    render_opts o_ = *in, *o = &o_;
+    double best = HUGE_VAL;
+    int k;
+    o->secondary_samples = secondary;
+    for (k = 0; k < runs; k++) {
+        renderer r;
+        render_stats st;
+        char err[256];
+        double t0;
+        if (renderer_init(&r, s, o, err, sizeof err) < 0) {
+            fprintf(stderr, "glossy: %s\n", err);
+            return -1.0;
+        }
+        t0 = seconds();
+        if (render_image(&r, img, &st) < 0) {
+            renderer_free(&r);
+            return -1.0;
+        }
+        if (seconds() - t0 < best)
+            best = seconds() - t0;
+        renderer_free(&r);
+    }
+    return best;
+}
+
+/* Relative RMSE of a against b over the pixels of mask. */
+static double masked_rmse(const float *a, const float *b, const unsigned char *mask, int n)
+{
+    double num = 0.0, den = 0.0;
+    int i, k;
+    for (i = 0; i < n; i++)
+        for (k = 0; k < 3 && mask[i]; k++) {
+            num += ((double)a[3 * i + k] - b[3 * i + k]) * ((double)a[3 * i + k] - b[3 * i + k]);
+            den += (double)b[3 * i + k] * b[3 * i + k];
+        }
+    return den > 0.0 ? sqrt(num / den) : 0.0;
+}
+
+/* The pixels whose centre sees material mat. */
+static int mask_of(const scene *s, int mat, unsigned char *mask)
+{
+    renderer r;
+    render_opts o;
+    cam_frame cf;
+    char err[256];
+    int x, y, count = 0;
+    render_opts_defaults(&o);
+    o.mode = MODE_REFERENCE;
+    o.ref_rays = 1;
+    if (renderer_init(&r, s, &o, err, sizeof err) < 0)
+        return -1;
+    camera_frame(&s->cam, &cf);
+    for (y = 0; y < s->cam.height; y++)
+        for (x = 0; x < s->cam.width; x++) {
+            float d[3];
+            bvh_hit bh;
+            const int i = y * s->cam.width + x;
+            camera_ray(&cf, &s->cam, x, y, d);
+            mask[i] = bvh_intersect(&r.b, cf.eye, d, 0.0f, 1e30f, &bh) &&
+                      (bh.prim >= 0 ? s->tris[bh.prim].mat : s->spheres[-bh.prim - 1].mat) == mat;
+            count += mask[i];
+        }
+    renderer_free(&r);
+    return count;
+}
+
+int main(int argc, char **argv)
+{
+    static const float exps[] = {2, 5, 10, 20, 40, 80};
+    scene s;
+    render_opts o;
+    char err[1024];
+    float *ref, *img;
+    unsigned char *mask;
+    int mat = -1, i, e, n, pixels;
+    if (argc < 3) {
+        fprintf(stderr, "usage: glossy SCENE MATERIAL [W H]\n");
+        return 2;
+    }
+    if (scene_load(argv[1], &s, err, sizeof err) < 0) {
+        fprintf(stderr, "%s\n", err);
+        return 1;
+    }
+    if (argc >= 5) {
+        s.cam.width = atoi(argv[3]);
+        s.cam.height = atoi(argv[4]);
+    }
+    for (i = 0; i < s.nmats; i++)
+        if (strcmp(s.mats[i].name, argv[2]) == 0)
+            mat = i;
+    n = s.cam.width * s.cam.height;
+    ref = malloc(sizeof *ref * 3 * (size_t)n);
+    img = malloc(sizeof *img * 3 * (size_t)n);
+    mask = malloc((size_t)n);
+    if (mat < 0 || !ref || !img || !mask || (pixels = mask_of(&s, mat, mask)) <= 0) {
+        fprintf(stderr, "glossy: no material %s in view\n", argv[2]);
+        return 1;
+    }
+    s.mats[mat].kd[0] = s.mats[mat].kd[1] = s.mats[mat].kd[2] = 0.0f;
+    if (!(s.mats[mat].ks[0] + s.mats[mat].ks[1] + s.mats[mat].ks[2] > 0.0f))
+        s.mats[mat].ks[0] = s.mats[mat].ks[1] = s.mats[mat].ks[2] = 0.5f;
+    printf("%s, material %s (%d pixels), %dx%d, one thread; relative RMSE of its glossy "
+           "bounce against 4096 lobe rays, and render times\n", argv[1], argv[2], pixels,
+           s.cam.width, s.cam.height);
+    for (e = 0; e < (int)(sizeof exps / sizeof exps[0]); e++) {
+        double t_sh[6], t16, t64, rm[6], r16, r64, req, teq;
+        int L, keq;
+        s.mats[mat].ns = exps[e];
+        render_opts_defaults(&o);
+        o.show = SHOW_INDIRECT;
+        o.mode = MODE_REFERENCE;
+        o.ref_rays = 64;
+        o.lobe_rays = 4096;
+        if (render(&s, &o, ref, 1) < 0)
+            return 1;
+        for (L = 3; L <= 5; L++) {
+            render_opts_defaults(&o);
+            o.show = SHOW_INDIRECT;
+            o.features = IRC_FEATURE_SH;
+            o.sh_bands = (uint32_t)L;
+            o.lobe_rays = 1;
+            o.sh_lobe_max = 1e4f;
+            if ((t_sh[L] = render(&s, &o, img, 2)) < 0)
+                return 1;
+            rm[L] = masked_rmse(img, ref, mask, n);
+        }
+        render_opts_defaults(&o);
+        o.show = SHOW_INDIRECT;
+        o.lobe_rays = 16;
+        t16 = render(&s, &o, img, 2);
+        r16 = masked_rmse(img, ref, mask, n);
+        o.lobe_rays = 64;
+        t64 = render(&s, &o, img, 2);
+        r64 = masked_rmse(img, ref, mask, n);
+        /* t(K) = t16 + (K - 16) (t64 - t16)/48; at least one ray */
+        keq = (int)lrint(16.0 + (t_sh[5] - t16) * 48.0 / (t64 - t16));
+        if (keq < 1)
+            keq = 1;
+        o.lobe_rays = keq;
+        teq = render(&s, &o, img, 2);
+        req = masked_rmse(img, ref, mask, n);
+        printf("s %3.0f: SH L=3 %.4f (%.2f s), L=4 %.4f (%.2f s), L=5 %.4f (%.2f s); lobe 16 "
+               "%.4f (%.2f s), 64 %.4f (%.2f s), %d %.4f (%.2f s): SH L=5 / lobe at its time "
+               "%.2f\n", exps[e], rm[3], t_sh[3], rm[4], t_sh[4], rm[5], t_sh[5], r16, t16, r64,
+               t64, keq, req, teq, rm[5] / req);
+        fflush(stdout);
+    }
+    free(ref);
+    free(img);
+    free(mask);
+    scene_free(&s);
+    return 0;
+}
