@@ -7,11 +7,13 @@
  *   reference  lobe sampling with 4096 rays a pixel;
  *   SH, L      an SH cache of L bands (3, 4, 5), every lobe from the
  *              record (irc_sh_glossy about the mirror direction);
- *   lobe, K    an irradiance cache for E and K lobe rays a pixel, K = 16,
- *              64, and the K whose render takes as long as the L = 5 SH
- *              render's (from the 16- and 64-ray times, linear in K).
+ *   lobe, K    an irradiance cache for E and K lobe rays a pixel, K = 1,
+ *              4, 16, 64;
  * and prints the relative RMSE on the material's pixels against the
- * reference and each render's time (one thread; the least of two runs).
+ * reference and each render's time (one thread; the least of two runs),
+ * and the L = 5 SH render's error over that of the lobe render with the
+ * most rays that took no longer (or, when every one took longer, the
+ * one-ray render's).
  *   glossy SCENE MATERIAL [W H]
  */
 #define _POSIX_C_SOURCE 200809L
@@ -142,8 +144,9 @@ int main(int argc, char **argv)
            "bounce against 4096 lobe rays, and render times\n", argv[1], argv[2], pixels,
            s.cam.width, s.cam.height);
     for (e = 0; e < (int)(sizeof exps / sizeof exps[0]); e++) {
-        double t_sh[6], t16, t64, rm[6], r16, r64, req, teq;
-        int L, keq;
+        static const int rays[4] = {1, 4, 16, 64};
+        double t_sh[6], rm[6], t_lobe[4], r_lobe[4];
+        int L, k, eq;
         s.mats[mat].ns = exps[e];
         render_opts_defaults(&o);
         o.show = SHOW_INDIRECT;
@@ -165,23 +168,20 @@ int main(int argc, char **argv)
         }
         render_opts_defaults(&o);
         o.show = SHOW_INDIRECT;
-        o.lobe_rays = 16;
-        t16 = render(&s, &o, img, 2);
-        r16 = masked_rmse(img, ref, mask, n);
-        o.lobe_rays = 64;
-        t64 = render(&s, &o, img, 2);
-        r64 = masked_rmse(img, ref, mask, n);
-        /* t(K) = t16 + (K - 16) (t64 - t16)/48; at least one ray */
-        keq = (int)lrint(16.0 + (t_sh[5] - t16) * 48.0 / (t64 - t16));
-        if (keq < 1)
-            keq = 1;
-        o.lobe_rays = keq;
-        teq = render(&s, &o, img, 2);
-        req = masked_rmse(img, ref, mask, n);
-        printf("s %3.0f: SH L=3 %.4f (%.2f s), L=4 %.4f (%.2f s), L=5 %.4f (%.2f s); lobe 16 "
-               "%.4f (%.2f s), 64 %.4f (%.2f s), %d %.4f (%.2f s): SH L=5 / lobe at its time "
-               "%.2f\n", exps[e], rm[3], t_sh[3], rm[4], t_sh[4], rm[5], t_sh[5], r16, t16, r64,
-               t64, keq, req, teq, rm[5] / req);
+        printf("s %3.0f: SH L=3 %.4f (%.2f s), L=4 %.4f (%.2f s), L=5 %.4f (%.2f s); lobe", exps[e],
+               rm[3], t_sh[3], rm[4], t_sh[4], rm[5], t_sh[5]);
+        eq = -1;
+        for (k = 0; k < 4; k++) {
+            o.lobe_rays = rays[k];
+            if ((t_lobe[k] = render(&s, &o, img, 2)) < 0)
+                return 1;
+            r_lobe[k] = masked_rmse(img, ref, mask, n);
+            printf(" %d %.4f (%.2f s)%s", rays[k], r_lobe[k], t_lobe[k], k < 3 ? "," : "");
+            if (t_lobe[k] <= t_sh[5])
+                eq = k;
+        }
+        printf(": SH L=5 / lobe %d (%s) %.2f\n", rays[eq < 0 ? 0 : eq],
+               eq < 0 ? "slower still" : "no slower", rm[5] / r_lobe[eq < 0 ? 0 : eq]);
         fflush(stdout);
     }
     free(ref);
