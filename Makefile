@@ -190,6 +190,7 @@ $(BUILD)/glossy: experiments/glossy.c $(DEMO_LIB_SRC) demo/*.h $(LIBA)
 glossy: $(BUILD)/glossy
 	$(BUILD)/glossy demo/scenes/sh.scene object 128 128
 	$(BUILD)/glossy demo/scenes/fig5.scene glossy 256 192
+	$(BUILD)/glossy demo/scenes/cornell-glossy.scene glossy 128 128
 
 # The SH-gradient paper's experiments (README: "SH records").
 $(BUILD)/shexp: experiments/shexp.c $(DEMO_LIB_SRC) demo/*.h $(LIBA)

@@ -114,6 +114,7 @@ TEST(test_bvh_shipped_scenes)
     bvh_vs_brute("demo/scenes/fig15.scene");
     bvh_vs_brute("demo/scenes/sh.scene");
     bvh_vs_brute("demo/scenes/leak.scene");
+    bvh_vs_brute("demo/scenes/cornell-glossy.scene");
 }
 
 /* The demo's brute-force irradiance (--reference N) on the core tests'
