@@ -44,9 +44,9 @@ static uint64_t ray_key(const float o[3], const float d[3], uint64_t seed)
 }
 
 /* Radiance leaving a secondary hit toward the ray's origin: direct light
- * (secondary_samples light samples, default one), plus emission only from spheres: emissive triangles
- * are the sampled lights, whose light the camera ray's hit already counts
- * as direct. */
+ * (secondary_samples light samples, default one), plus emission only from
+ * spheres: emissive triangles are the sampled lights, whose light the
+ * camera ray's hit already counts as direct. */
 static void secondary(const renderer *r, const surface *sf, int prim, const float d[3],
                       uint64_t key, float out[3], uint64_t *rays)
 {
