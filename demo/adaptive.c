@@ -45,20 +45,21 @@ static void place(const ad_opts *o, float *x, float *y)
     if (*y > (float)o->height - 0.5f) *y = (float)o->height - 0.5f;
 }
 
+/* The table slot that holds the sample at (x, y), or the empty one where
+ * it would go. */
 static unsigned slot_of(const ad_state *a, float x, float y)
 {
-    const unsigned h = (unsigned)(long)(4.0f * x) * 0x9e3779b1u ^ (unsigned)(long)(4.0f * y) * 0x85ebca77u;
-    return (h ^ h >> 15) & a->mask;
+    unsigned h = (unsigned)(long)(4.0f * x) * 0x9e3779b1u ^ (unsigned)(long)(4.0f * y) * 0x85ebca77u;
+    for (h = (h ^ h >> 15) & a->mask; a->at[h] >= 0; h = (h + 1) & a->mask)
+        if (a->s[a->at[h]].x == x && a->s[a->at[h]].y == y)
+            break;
+    return h;
 }
 
 /* The sample already at (x, y), or -1. */
 static int find_sample(const ad_state *a, float x, float y)
 {
-    unsigned h;
-    for (h = slot_of(a, x, y); a->at[h] >= 0; h = (h + 1) & a->mask)
-        if (a->s[a->at[h]].x == x && a->s[a->at[h]].y == y)
-            return a->at[h];
-    return -1;
+    return a->at[slot_of(a, x, y)];
 }
 
 /* The sample at (x, y) after place(): one already there (squares of two
@@ -71,9 +72,9 @@ static int add_sample(ad_state *a, float x, float y)
     unsigned h;
     int st;
     place(a->o, &x, &y);
-    for (h = slot_of(a, x, y); a->at[h] >= 0; h = (h + 1) & a->mask)
-        if (a->s[a->at[h]].x == x && a->s[a->at[h]].y == y)
-            return a->at[h];
+    h = slot_of(a, x, y);
+    if (a->at[h] >= 0)
+        return a->at[h];
     if (a->n == a->cap)
         return -1;
     t = &a->s[a->n];

@@ -2,14 +2,12 @@
  * imgrad.c -- the image and its gradient at a point of the image plane
  * (imgrad.h).
  */
-#define _POSIX_C_SOURCE 200809L
 #include "imgrad.h"
 
 #include <float.h>
 #include <stdlib.h>
 #include <math.h>
 #include <string.h>
-#include <time.h>
 
 #define PI 3.14159265358979323846
 #define MAX_LIGHT 256
@@ -56,17 +54,22 @@ static void shade(const light_sample *ls, int n, int samples, const surface *sf,
     direct_eval(ls, n, samples, sf, d, out);
 }
 
-/* The surface the ray through (x, y) meets on primitive prim, and the
- * ray's direction. */
-static int aside(const renderer *r, const cam_frame *cf, float x, float y, int prim,
-                 surface *sf, float d[3])
+/* The point moved off pixels along the image's axis (0: x, 1: y): the
+ * surface the moved camera ray meets on the same primitive, and the ray's
+ * direction; returns 0 and the point itself when that ray leaves the
+ * primitive. */
+static int side(const renderer *r, const cam_frame *cf, float x, float y, int axis, float off,
+                int prim, const surface *sf, const float d[3], surface *s, float dd[3])
 {
     bvh_hit h;
-    camera_ray_at(cf, &r->s->cam, x, y, d);
-    if (!hit_surface_of(r->s, prim, cf->eye, d, &h))
-        return 0;
-    surface_at(r->s, cf->eye, d, &h, sf);
-    return 1;
+    camera_ray_at(cf, &r->s->cam, x + (axis ? 0.0f : off), y + (axis ? off : 0.0f), dd);
+    if (hit_surface_of(r->s, prim, cf->eye, dd, &h)) {
+        surface_at(r->s, cf->eye, dd, &h, s);
+        return 1;
+    }
+    *s = *sf;
+    memcpy(dd, d, sizeof(float[3]));
+    return 0;
 }
 
 /* E's gradient from the cache at a surface (irc_cache_lookup_gradient:
@@ -133,24 +136,15 @@ static void axis_gradient(const renderer *r, const cam_frame *cf, float x, float
     surface s[2];
     float dd[2][3], f[2][3], kd[3], step;
     int ok[2], k, c;
-    for (k = level == IMG_GRADIENT_FAST; k < 2; k++) {
-        const float off = k ? HALF : -HALF;
-        ok[k] = aside(r, cf, x + (axis ? 0.0f : off), y + (axis ? off : 0.0f), prim, &s[k],
-                      dd[k]);
-        if (!ok[k]) { /* this side is the point itself */
-            s[k] = *sf;
-            memcpy(dd[k], d, sizeof dd[k]);
-        }
-    }
-    if (level == IMG_GRADIENT_FAST) { /* the point, then the side that stays on */
+    if (level == IMG_GRADIENT_FAST) { /* the point and HALF beyond it, or behind it */
         ok[0] = 0;
         s[0] = *sf;
         memcpy(dd[0], d, sizeof dd[0]);
-        if (!ok[1] && (ok[0] = aside(r, cf, x - (axis ? 0.0f : HALF), y - (axis ? HALF : 0.0f),
-                                     prim, &s[0], dd[0])) != 0) {
-            s[1] = *sf;
-            memcpy(dd[1], d, sizeof dd[1]);
-        }
+        if (!(ok[1] = side(r, cf, x, y, axis, HALF, prim, sf, d, &s[1], dd[1])))
+            ok[0] = side(r, cf, x, y, axis, -HALF, prim, sf, d, &s[0], dd[0]);
+    } else {
+        for (k = 0; k < 2; k++)
+            ok[k] = side(r, cf, x, y, axis, k ? HALF : -HALF, prim, sf, d, &s[k], dd[k]);
     }
     if (!ok[0] && !ok[1])
         return;
@@ -193,13 +187,6 @@ static uint64_t light_key(float x, float y)
     memcpy(&bx, &x, 4);
     memcpy(&by, &y, 4);
     return hash64(hash64(0x9e3779b97f4a7c15ull ^ bx) ^ (uint64_t)by << 32);
-}
-
-static double seconds(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
 int image_point(renderer *r, const cam_frame *cf, float x, float y, int grads, uint64_t key,
@@ -253,7 +240,7 @@ int image_point(renderer *r, const cam_frame *cf, float x, float y, int grads, u
         light_sample *sub = ls;
         float centre[3] = {0.0f, 0.0f, 0.0f}, e2[3];
         int m = n, j;
-        t0 = seconds();
+        t0 = render_clock();
         if (k > 1) /* in place: the shading above is done with them */
             for (j = m = 0; j < n; j += k)
                 sub[m++] = ls[j];
@@ -265,7 +252,7 @@ int image_point(renderer *r, const cam_frame *cf, float x, float y, int grads, u
             axis_gradient(r, cf, x, y, axis, bh.prim, &sf, d, sub, m, samples,
                           m ? (float)n / (float)m : 0.0f, have ? &ge : NULL, centre, grads,
                           out);
-        out->grad_s = seconds() - t0;
+        out->grad_s = render_clock() - t0;
     }
     return 0;
 }

@@ -24,7 +24,7 @@ typedef struct tstate {
 
 
 
-static double now(void)
+double render_clock(void)
 {
     struct timespec t;
     clock_gettime(CLOCK_MONOTONIC, &t);
@@ -65,7 +65,7 @@ static void secondary(const renderer *r, const surface *sf, int prim, const floa
 static void cast(const renderer *r, const irc_ray *rays, irc_hit *hits, uint32_t count,
                  tstate *ts)
 {
-    double t0 = now();
+    double t0 = render_clock();
     uint32_t i;
     for (i = 0; i < count; i++) {
         const float *o = rays[i].org, *d = rays[i].dir;
@@ -84,7 +84,7 @@ static void cast(const renderer *r, const irc_ray *rays, irc_hit *hits, uint32_t
             secondary(r, &sf, bh.prim, d, ray_key(o, d, r->o.seed), h->radiance, &ts->rays);
         }
     }
-    ts->trace_s += now() - t0;
+    ts->trace_s += render_clock() - t0;
 }
 
 static int host_trace(const irc_trace_args *a)
@@ -251,7 +251,7 @@ static int irradiance(renderer *r, const float p[3], const float n[3], uint64_t 
 {
     sh->bands = 0;
     if (r->o.mode == MODE_CACHE) {
-        double t0 = now(), tr0 = ts->trace_s;
+        double t0 = render_clock(), tr0 = ts->trace_s;
         int st;
         if (r->o.features & IRC_FEATURE_SH) {
             st = irc_sh_lookup_or_compute(r->cache, p, n, sh, NULL, ts);
@@ -269,7 +269,7 @@ static int irradiance(renderer *r, const float p[3], const float n[3], uint64_t 
         } else {
             st = irc_cache_lookup_or_compute(r->cache, p, n, e, NULL, ts);
         }
-        ts->cache_s += (now() - t0) - (ts->trace_s - tr0);
+        ts->cache_s += (render_clock() - t0) - (ts->trace_s - tr0);
         return st < 0 ? st : 0;
     }
     reference_e(r, p, n, key, e, ts);
@@ -369,7 +369,7 @@ typedef struct job {
 
 static void progress(job *j, int done)
 {
-    double el = now() - j->start;
+    double el = render_clock() - j->start;
     int all = j->r->s->cam.width * j->r->s->cam.height, bar = 40, k, n = (int)((double)done * bar / all);
     char line[64];
     if (!j->r->o.progress || el < 1.0 || (done < all && el - j->shown < 0.25))
@@ -494,7 +494,7 @@ int render_image(renderer *r, float *rgb, render_stats *st)
         return -1;
     j->r = r;
     j->rgb = rgb;
-    j->start = now();
+    j->start = render_clock();
     /* Passes of pixels P apart, coarse to fine, P^2 of them: the first
      * passes place records far apart, later ones find most pixels served.
      * Two misses of one pass both make records where one might have
@@ -530,7 +530,7 @@ int render_image(renderer *r, float *rgb, render_stats *st)
     for (t = 1; t < n; t++)
         pthread_join(th[t], NULL);
     pthread_barrier_destroy(&j->wall);
-    collect(r, j->ts, n, now() - j->start, st);
+    collect(r, j->ts, n, render_clock() - j->start, st);
     e = j->error;
     free(j);
     return e;
@@ -539,7 +539,7 @@ int render_image(renderer *r, float *rgb, render_stats *st)
 int render_points(renderer *r, const float *pn, int n, float *rgb, render_stats *st)
 {
     tstate ts;
-    double t0 = now();
+    double t0 = render_clock();
     int i, e;
     memset(&ts, 0, sizeof ts);
     for (i = 0; i < n; i++) {
@@ -549,7 +549,7 @@ int render_points(renderer *r, const float *pn, int n, float *rgb, render_stats 
         if ((e = irradiance(r, p, nn, key, &rgb[3 * i], &sh, &ts)) < 0)
             return e;
     }
-    collect(r, &ts, 1, now() - t0, st);
+    collect(r, &ts, 1, render_clock() - t0, st);
     return 0;
 }
 

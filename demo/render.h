@@ -92,6 +92,10 @@ void renderer_free(renderer *r);
 /* Renders the camera's image into rgb (w x h x 3). */
 int render_image(renderer *r, float *rgb, render_stats *st);
 
+/* Seconds on a monotonic clock: what every render and experiment times
+ * with. */
+double render_clock(void);
+
 /* Irradiance E at n points (p, n: 6 floats a point) into rgb (3 a point). */
 int render_points(renderer *r, const float *pn, int n, float *rgb, render_stats *st);
 

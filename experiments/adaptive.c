@@ -36,7 +36,6 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
-#include <time.h>
 
 #include "adaptive.h"
 #include "image.h"
@@ -54,21 +53,14 @@ typedef struct ctx {
     int error;
 } ctx;
 
-static double seconds(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
-
 static int eval(void *vc, ad_sample *s)
 {
     ctx *c = (ctx *)vc;
     img_point ip;
-    const double t0 = seconds();
+    const double t0 = render_clock();
     int k, st = image_point(c->r, &c->cf, s->x, s->y,
                                 c->metric == M_GRADIENT ? IMG_GRADIENT_FAST : IMG_NO_GRADIENT, 0, &ip);
-    c->shade_s += seconds() - t0;
+    c->shade_s += render_clock() - t0;
     if (st < 0)
         return c->error = st;
     for (k = 0; k < 3; k++)
@@ -208,12 +200,12 @@ static int full_render(const scene *s, const snap *sn, float *out, double *secs,
         double t0, t;
         if (fresh_renderer(&r, s, sn) < 0)
             return -1;
-        t0 = seconds();
+        t0 = render_clock();
         if (render_image(&r, out, st) < 0) {
             renderer_free(&r);
             return -1;
         }
-        t = seconds() - t0;
+        t = render_clock() - t0;
         if (t < *secs)
             *secs = t;
         if (keep && rep + 1 == REPEAT)
@@ -255,12 +247,12 @@ static int run(const scene *s, const char *tag, const float *full, double full_s
         c.gamma = 0.5f * (float)h / c.cf.ty;
         free(smp);
         smp = NULL;
-        t0 = seconds();
+        t0 = render_clock();
         st = adaptive_sample(&o, eval, &c, &smp, &n);
-        t2 = seconds();
+        t2 = render_clock();
         if (st == 0)
             st = adaptive_reconstruct(smp, n, w, h, 0.5f, img);
-        t1 = seconds();
+        t1 = render_clock();
         if (st < 0) {
             fprintf(stderr, "adaptive: %s %s failed (%d)\n", tag, metric_name[metric], c.error);
             renderer_free(&own);
@@ -304,9 +296,64 @@ static int run(const scene *s, const char *tag, const float *full, double full_s
     return 0;
 }
 
-int main(int argc, char **argv)
+/* Every metric at both budgets against the full render ref. */
+static int all_runs(const scene *s, const char *tag, const float *ref, double ref_s,
+                    const snap *warm, const unsigned char *bumpy, float *img, float *dots)
 {
     static const double budgets[2] = {0.10, 0.17};
+    int b, m;
+    for (b = 0; b < 2; b++)
+        for (m = 0; m < M_COUNT; m++)
+            if (run(s, tag, ref, ref_s, warm, bumpy, m, budgets[b], img, dots) < 0)
+                return -1;
+    return 0;
+}
+
+/* Warm: the full render again, its cache holding r's records (the first
+ * full render's), then every run the same way (records cost little in
+ * either; pixels and gradients do). */
+static int warm_runs(const scene *s, const char *tag, renderer *r, uint64_t first,
+                     const unsigned char *bumpy, float *again, float *img, float *dots)
+{
+    snap sn = {NULL, 0};
+    render_stats st;
+    double again_s;
+    int rc = -1;
+    if (irc_snapshot_size(r->cache, &sn.size) == IRC_OK && (sn.bytes = malloc(sn.size)) &&
+        irc_snapshot_write(r->cache, 0, sn.bytes, sn.size, NULL, NULL, NULL) == IRC_OK &&
+        full_render(s, &sn, again, &again_s, &st, NULL) == 0) {
+        printf("%s: full render from the first one's records %.2f s (%llu records added)\n",
+               tag, again_s, (unsigned long long)(st.records - first));
+        rc = all_runs(s, tag, again, again_s, &sn, bumpy, img, dots);
+    }
+    free(sn.bytes);
+    return rc;
+}
+
+/* The image gradient against the image's differences: the full one, then
+ * the sampler's; each part apart. */
+static int checks(renderer *r, const cam_frame *cf, int w, int h)
+{
+    int i, k;
+    for (i = 0; i < 2; i++) {
+        grad_check g;
+        if (image_gradient_check(r, cf, w, h, i ? IMG_GRADIENT_FAST : IMG_GRADIENT_PARTS, &g) <
+            0)
+            return -1;
+        for (k = 0; k < 2; k++) {
+            const grad_part *p = k ? &g.indirect : &g.direct;
+            printf("gradient check, %s, %s part (%dx%d, %d pixels inside objects): relative "
+                   "L2 error %.4f; per pixel (|grad| > 0.1 mean, %d pixels): median %.4f, "
+                   "90th percentile %.4f\n", i ? "sampler's (fast)" : "central",
+                   k ? "indirect" : "direct", w, h, p->pixels, p->l2, p->strong, p->median,
+                   p->p90);
+        }
+    }
+    return 0;
+}
+
+int main(int argc, char **argv)
+{
     scene s;
     renderer r;
     render_stats st;
@@ -315,9 +362,9 @@ int main(int argc, char **argv)
     const char *base;
     float *full, *img, *dots, *again;
     unsigned char *bumpy;
-    double full_s, again_s;
+    double full_s;
     uint64_t first;
-    int w, h, m, b, nb = 0, do_check = 0, i, k, rc = 0;
+    int w, h, nb = 0, do_check = 0, i, rc = 0;
     if (argc < 2) {
         fprintf(stderr, "usage: adaptive SCENE [W H] [--check | --check-only] "
                         "[--light-samples N]\n");
@@ -368,44 +415,12 @@ int main(int argc, char **argv)
         free(bumpy);
         bumpy = NULL;
     }
-    for (i = 0; i < 2 && do_check && rc == 0; i++) { /* the full gradient, the sampler's */
-        grad_check g;
-        if (image_gradient_check(&r, &cf, w, h, i ? IMG_GRADIENT_FAST : IMG_GRADIENT_PARTS,
-                                 &g) < 0) {
-            rc = 1;
-            break;
-        }
-        for (k = 0; k < 2; k++) {
-            const grad_part *p = k ? &g.indirect : &g.direct;
-            printf("gradient check, %s, %s part (%dx%d, %d pixels inside objects): relative "
-                   "L2 error %.4f; per pixel (|grad| > 0.1 mean, %d pixels): median %.4f, "
-                   "90th percentile %.4f\n", i ? "sampler's (fast)" : "central",
-                   k ? "indirect" : "direct", w, h, p->pixels, p->l2, p->strong, p->median,
-                   p->p90);
-        }
-    }
-    for (b = 0; b < 2 && rc == 0 && do_check < 2; b++)
-        for (m = 0; m < M_COUNT && rc == 0; m++)
-            if (run(&s, tag, full, full_s, NULL, bumpy, m, budgets[b], img, dots) < 0)
-                rc = 1;
-    /* Warm: the full render again, its cache holding the first one's
-     * records, then each run the same way (records cost little in either;
-     * pixels and gradients do). */
-    if (rc == 0 && do_check < 2) {
-        snap sn = {NULL, 0};
-        if (irc_snapshot_size(r.cache, &sn.size) < 0 || !(sn.bytes = malloc(sn.size)) ||
-            irc_snapshot_write(r.cache, 0, sn.bytes, sn.size, NULL, NULL, NULL) < 0 ||
-            full_render(&s, &sn, again, &again_s, &st, NULL) < 0)
-            rc = 1;
-        else
-            printf("%s: full render from the first one's records %.2f s (%llu records "
-                   "added)\n", tag, again_s, (unsigned long long)(st.records - first));
-        for (b = 0; b < 2 && rc == 0; b++)
-            for (m = 0; m < M_COUNT && rc == 0; m++)
-                if (run(&s, tag, again, again_s, &sn, bumpy, m, budgets[b], img, dots) < 0)
-                    rc = 1;
-        free(sn.bytes);
-    }
+    if (do_check && checks(&r, &cf, w, h) < 0)
+        rc = 1;
+    if (rc == 0 && do_check < 2 &&
+        (all_runs(&s, tag, full, full_s, NULL, bumpy, img, dots) < 0 ||
+         warm_runs(&s, tag, &r, first, bumpy, again, img, dots) < 0))
+        rc = 1;
     renderer_free(&r);
     free(again);
     free(bumpy);

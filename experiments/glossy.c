@@ -21,18 +21,10 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "bvh.h"
 #include "camera.h"
 #include "render.h"
-
-static double seconds(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
 
 /* Renders s with o into img; returns the least time of `runs`, or < 0. */
 static int secondary = 16; /* light samples at secondary hits, every render */
@@ -47,18 +39,19 @@ static double render(const scene *s, const render_opts *in, float *img, int runs
         renderer r;
         render_stats st;
         char err[256];
-        double t0;
+        double t0, t;
         if (renderer_init(&r, s, o, err, sizeof err) < 0) {
             fprintf(stderr, "glossy: %s\n", err);
             return -1.0;
         }
-        t0 = seconds();
+        t0 = render_clock();
         if (render_image(&r, img, &st) < 0) {
             renderer_free(&r);
             return -1.0;
         }
-        if (seconds() - t0 < best)
-            best = seconds() - t0;
+        t = render_clock() - t0;
+        if (t < best)
+            best = t;
         renderer_free(&r);
     }
     return best;
@@ -105,15 +98,62 @@ static int mask_of(const scene *s, int mat, unsigned char *mask)
     return count;
 }
 
+/* One line of the table at exponent expo (already set in s): the reference, the SH
+ * renders of 3, 4 and 5 bands, the lobe renders of 1, 4, 16, 64 rays, and
+ * the 5-band SH error over the most-ray lobe render's that took no
+ * longer (or the one-ray render's, when every one took longer). */
+static int row(const scene *s, float expo, const unsigned char *mask, int n, float *ref,
+               float *img)
+{
+    static const int rays[4] = {1, 4, 16, 64};
+    double t_sh[6], rm[6], t_lobe[4], r_lobe[4];
+    render_opts o;
+    int L, k, eq = -1;
+    render_opts_defaults(&o);
+    o.show = SHOW_INDIRECT;
+    o.mode = MODE_REFERENCE;
+    o.ref_rays = 64;
+    o.lobe_rays = 4096;
+    if (render(s, &o, ref, 1) < 0)
+        return 1;
+    for (L = 3; L <= 5; L++) {
+        render_opts_defaults(&o);
+        o.show = SHOW_INDIRECT;
+        o.features = IRC_FEATURE_SH;
+        o.sh_bands = (uint32_t)L;
+        o.lobe_rays = 1;
+        o.sh_lobe_max = 1e4f;
+        if ((t_sh[L] = render(s, &o, img, 2)) < 0)
+            return 1;
+        rm[L] = masked_rmse(img, ref, mask, n);
+    }
+    render_opts_defaults(&o);
+    o.show = SHOW_INDIRECT;
+    printf("s %3.0f: SH L=3 %.4f (%.2f s), L=4 %.4f (%.2f s), L=5 %.4f (%.2f s); lobe", expo,
+           rm[3], t_sh[3], rm[4], t_sh[4], rm[5], t_sh[5]);
+    for (k = 0; k < 4; k++) {
+        o.lobe_rays = rays[k];
+        if ((t_lobe[k] = render(s, &o, img, 2)) < 0)
+            return 1;
+        r_lobe[k] = masked_rmse(img, ref, mask, n);
+        printf(" %d %.4f (%.2f s)%s", rays[k], r_lobe[k], t_lobe[k], k < 3 ? "," : "");
+        if (t_lobe[k] <= t_sh[5])
+            eq = k;
+    }
+    printf(": SH L=5 / lobe %d (%s) %.2f\n", rays[eq < 0 ? 0 : eq],
+           eq < 0 ? "slower still" : "no slower", rm[5] / r_lobe[eq < 0 ? 0 : eq]);
+    fflush(stdout);
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     static const float exps[] = {2, 5, 10, 20, 40, 80};
     scene s;
-    render_opts o;
     char err[1024];
     float *ref, *img;
     unsigned char *mask;
-    int mat = -1, i, e, n, pixels;
+    int mat = -1, i, e, n, pixels, rc = 0;
     if (argc < 3) {
         fprintf(stderr, "usage: glossy SCENE MATERIAL [W H]\n");
         return 2;
@@ -143,50 +183,13 @@ int main(int argc, char **argv)
     printf("%s, material %s (%d pixels), %dx%d, one thread; relative RMSE of its glossy "
            "bounce against 4096 lobe rays, and render times\n", argv[1], argv[2], pixels,
            s.cam.width, s.cam.height);
-    for (e = 0; e < (int)(sizeof exps / sizeof exps[0]); e++) {
-        static const int rays[4] = {1, 4, 16, 64};
-        double t_sh[6], rm[6], t_lobe[4], r_lobe[4];
-        int L, k, eq;
+    for (e = 0; e < (int)(sizeof exps / sizeof exps[0]) && rc == 0; e++) {
         s.mats[mat].ns = exps[e];
-        render_opts_defaults(&o);
-        o.show = SHOW_INDIRECT;
-        o.mode = MODE_REFERENCE;
-        o.ref_rays = 64;
-        o.lobe_rays = 4096;
-        if (render(&s, &o, ref, 1) < 0)
-            return 1;
-        for (L = 3; L <= 5; L++) {
-            render_opts_defaults(&o);
-            o.show = SHOW_INDIRECT;
-            o.features = IRC_FEATURE_SH;
-            o.sh_bands = (uint32_t)L;
-            o.lobe_rays = 1;
-            o.sh_lobe_max = 1e4f;
-            if ((t_sh[L] = render(&s, &o, img, 2)) < 0)
-                return 1;
-            rm[L] = masked_rmse(img, ref, mask, n);
-        }
-        render_opts_defaults(&o);
-        o.show = SHOW_INDIRECT;
-        printf("s %3.0f: SH L=3 %.4f (%.2f s), L=4 %.4f (%.2f s), L=5 %.4f (%.2f s); lobe", exps[e],
-               rm[3], t_sh[3], rm[4], t_sh[4], rm[5], t_sh[5]);
-        eq = -1;
-        for (k = 0; k < 4; k++) {
-            o.lobe_rays = rays[k];
-            if ((t_lobe[k] = render(&s, &o, img, 2)) < 0)
-                return 1;
-            r_lobe[k] = masked_rmse(img, ref, mask, n);
-            printf(" %d %.4f (%.2f s)%s", rays[k], r_lobe[k], t_lobe[k], k < 3 ? "," : "");
-            if (t_lobe[k] <= t_sh[5])
-                eq = k;
-        }
-        printf(": SH L=5 / lobe %d (%s) %.2f\n", rays[eq < 0 ? 0 : eq],
-               eq < 0 ? "slower still" : "no slower", rm[5] / r_lobe[eq < 0 ? 0 : eq]);
-        fflush(stdout);
+        rc = row(&s, exps[e], mask, n, ref, img);
     }
     free(ref);
     free(img);
     free(mask);
     scene_free(&s);
-    return 0;
+    return rc;
 }

@@ -26,11 +26,11 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "bvh.h"
 #include "irrcache.h"
 #include "scene.h"
+#include "render.h"
 #include "shade.h"
 
 #define PI 3.14159265358979323846
@@ -43,13 +43,6 @@ typedef struct env {
     lights l;
     uint64_t seed;
 } env;
-
-static double now(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
 
 /* Radiance reaching the ray's origin: emission (the lights) plus the
  * direct light on what it hits (4 light samples). */
@@ -420,15 +413,15 @@ static double per_record(irc_cache *c, int reps)
     double best = 1e30;
     int run, i;
     for (run = 0; run < 3; run++) {
-        double t0 = now();
+        double t0 = render_clock();
         for (i = 0; i < reps; i++) {
             float p[3] = {0.001f * i, 0, 0};
             irc_sh r;
             if (irc_sh_compute(c, p, NULL, &r, NULL) < 0)
                 return -1.0;
         }
-        if (now() - t0 < best)
-            best = now() - t0;
+        if (render_clock() - t0 < best)
+            best = render_clock() - t0;
     }
     return 1e6 * best / reps;
 }

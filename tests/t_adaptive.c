@@ -123,10 +123,8 @@ static int misplaced(const ad_sample *s, int n, int at_pixels)
 /* The reconstruction reproduces an affine image at every pixel (linear
  * interpolation is exact there), whatever the sample positions: at the
  * squares' centres and at pixel centres. */
-TEST(test_adaptive_reconstruct_affine)
+static void affine_case(int mode)
 {
-    int mode;
-    for (mode = 0; mode < 2; mode++) {
     const ad_opts o = {96, 64, 8, 0.2, 1.0f, mode};
     tctx t = {-1.0f, 0};
     ad_sample *s = NULL;
@@ -146,16 +144,19 @@ TEST(test_adaptive_reconstruct_affine)
     CHECK(worst < 1e-5f, "an affine image is not reproduced: %g", worst);
     free(s);
     free(img);
-    }
+}
+
+TEST(test_adaptive_reconstruct_affine)
+{
+    affine_case(0); /* at the squares' centres */
+    affine_case(1); /* at pixel centres */
 }
 
 /* Samples follow importance: the budget is kept (to the 3 a split may
  * pass it by), every sample was evaluated once, and the right third,
  * 30 times as important, holds far more than a third of them. */
-TEST(test_adaptive_density)
+static void density_case(int mode)
 {
-    int mode;
-    for (mode = 0; mode < 2; mode++) {
     const ad_opts o = {96, 64, 8, 0.15, 1.0f, mode};
     tctx t = {-1.0f, 0};
     ad_sample *s = NULL;
@@ -169,16 +170,19 @@ TEST(test_adaptive_density)
     CHECK(right > n / 2, "only %d of %d samples where importance is 30x", right, n);
     CHECK(misplaced(s, n, mode) == 0, "misplaced samples");
     free(s);
-    }
+}
+
+TEST(test_adaptive_density)
+{
+    density_case(0); /* at the squares' centres */
+    density_case(1); /* at pixel centres */
 }
 
 /* An object boundary at x = 37.3 is refined to the smallest squares
  * first: with importance the same everywhere, samples within a pixel of
  * it are far denser than elsewhere. */
-TEST(test_adaptive_boundary)
+static void boundary_case(int mode)
 {
-    int mode;
-    for (mode = 0; mode < 2; mode++) {
     const ad_opts o = {96, 64, 8, 0.1, 1.0f, mode};
     tctx t = {37.3f, 0};
     ad_sample *s = NULL;
@@ -189,7 +193,12 @@ TEST(test_adaptive_boundary)
     printf("  %d samples, %d within 1.5 pixels of the boundary (3/96 of the width)\n", n, near);
     CHECK(near * 96 > n * 3 * 4, "boundary not refined: %d of %d", near, n);
     free(s);
-    }
+}
+
+TEST(test_adaptive_boundary)
+{
+    boundary_case(0); /* at the squares' centres */
+    boundary_case(1); /* at pixel centres */
 }
 
 /* Evaluators for boundaries on a block line (y = 32: between pixel rows
