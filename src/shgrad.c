@@ -156,6 +156,15 @@ static void irc__edge_vector(const irc__grid *g, uint32_t k, const irc__cell *q,
     for (c = 0; c < 3; c++)
         nu[c] = q->z1 * (q->cc * g->t1[c] + q->sc * g->t2[c]) - q->s1 * q->axis[c];
     irc__edge(g, i, dn, up, q->s1 * dphi, nu, w);
+    /* A hemisphere's surface integral (Eq. 11) ends at the horizon plane,
+     * which moves with p along n: raised by h, it uncovers the strip of
+     * surface below the new horizon, a solid angle h/r per unit of azimuth
+     * at depth r (Leibniz's rule; tangential moves keep the plane).  So
+     * the last row adds, along n, the arc's length over its depth; -L y_i
+     * times it is d c_i/dn's share. */
+    if (q->dn < 0 && g->halves == 1 && irc__hit(&g->s[i]))
+        for (c = 0; c < 3; c++)
+            w[c] += q->s1 * dphi / g->s[i].d * q->axis[c];
 }
 
 /* One sample's share of the coefficients and, with gradients, of Eq. 11

@@ -14,7 +14,7 @@
     X(test_occlusion_sphere) X(test_sh_orthonormal) X(test_sh_closed_forms)  \
     X(test_sh_gradient) X(test_sh_cap_closed_form) X(test_sh_emitter_gradient) \
     X(test_sh_irradiance_convolution) X(test_sh_glossy_zonal) X(test_sh_radiance_closed_form) \
-    X(test_sh_surface_record) X(test_sh_lookup_by_hand) X(test_sh_bad_input) X(test_sh_footprint) \
+    X(test_sh_surface_record) X(test_sh_surface_record_horizon) X(test_sh_lookup_by_hand) X(test_sh_bad_input) X(test_sh_footprint) \
     X(test_insert_range_overflow) \
     X(test_hard_scale_invariance) X(test_hard_hemispheres) X(test_hard_lookups) X(test_hard_full_cache) \
     X(test_footprint_bounds) X(test_footprint_size_t) X(test_radius_limits) X(test_gradient_channels) \

@@ -432,6 +432,95 @@ TEST(test_sh_surface_record)
     block_free(&cfg);
 }
 
+/* The unit emitter's coefficients at p (bands 0-2) restricted to the
+ * hemisphere z > 0: for each of NPHI azimuths the directions that hit the
+ * sphere, A sin(theta) + B cos(theta) >= cos(alpha), form one interval of
+ * theta, cut at the horizon and integrated by Simpson's rule. */
+static void clipped_cap(const double p[3], const double cc[3], double rho, double c[NC])
+{
+    const int nphi = 20000, nth = 64;
+    double u[3], d = 0.0, ca;
+    int k, j, t;
+    for (k = 0; k < 3; k++) {
+        u[k] = cc[k] - p[k];
+        d += u[k] * u[k];
+    }
+    d = sqrt(d);
+    for (k = 0; k < 3; k++)
+        u[k] /= d;
+    ca = sqrt(1.0 - rho * rho / (d * d));
+    memset(c, 0, sizeof(double) * NC);
+    for (j = 0; j < nphi; j++) {
+        double ph = 2.0 * TPI * (j + 0.5) / nphi, a = u[0] * cos(ph) + u[1] * sin(ph);
+        double r = sqrt(a * a + u[2] * u[2]), t0, hw, lo, hi, h;
+        if (r <= ca)
+            continue;
+        t0 = atan2(a, u[2]);
+        hw = acos(ca / r);
+        lo = fmax(t0 - hw, 0.0);
+        hi = fmin(t0 + hw, 0.5 * TPI);
+        if (hi <= lo)
+            continue;
+        h = (hi - lo) / nth;
+        for (t = 0; t <= nth; t++) {
+            double th = lo + t * h, w[3], y[NC];
+            double f = (t == 0 || t == nth ? 1.0 : t % 2 ? 4.0 : 2.0) * h / 3.0 * sin(th) *
+                       (2.0 * TPI / nphi);
+            w[0] = sin(th) * cos(ph);
+            w[1] = sin(th) * sin(ph);
+            w[2] = cos(th);
+            sh_eval_d(3, w, y, NULL);
+            for (k = 0; k < 9; k++)
+                c[k] += f * y[k];
+        }
+    }
+}
+
+/* The emitter straddles the record's horizon: the gradient along n has
+ * the horizon's term (the plane moves with p), the tangential part not. */
+TEST(test_sh_surface_record_horizon)
+{
+    double cc[3] = {2.0, 0.5, 0.2}, o[3] = {0, 0, 0}, c0[NC], g[NC][3], big = 0, eg[2] = {0, 0};
+    float p[3] = {0, 0, 0}, n[3] = {0, 0, 1};
+    tscene s;
+    irc_config cfg;
+    irc_cache *c;
+    irc_sh rec;
+    int i, k;
+    scene_init(&s);
+    s.sky_a[0] = s.sky_a[1] = s.sky_a[2] = 0.0f;
+    s.has_sphere = 1;
+    s.radius = 1.0;
+    s.sphere_l[0] = s.sphere_l[1] = s.sphere_l[2] = 1.0f;
+    memcpy(s.centre, cc, sizeof cc);
+    clipped_cap(o, cc, 1.0, c0);
+    for (k = 0; k < 3; k++) {
+        double a[NC], b[NC], q[3] = {0, 0, 0};
+        q[k] = 1e-3;
+        clipped_cap(q, cc, 1.0, a);
+        q[k] = -1e-3;
+        clipped_cap(q, cc, 1.0, b);
+        for (i = 0; i < 9; i++)
+            g[i][k] = (a[i] - b[i]) / 2e-3;
+    }
+    cfg = sh_config(&s, IRC_FEATURE_SH_GRADIENT, 512, 2048, 3);
+    c = block_cache(&cfg, 4, 0);
+    CHECK(c && irc_sh_compute(c, p, n, &rec, NULL) == IRC_OK, "compute");
+    for (i = 0; i < 9; i++) {
+        double t2 = 0.0;
+        big = fmax(big, sqrt(g[i][0] * g[i][0] + g[i][1] * g[i][1] + g[i][2] * g[i][2]));
+        for (k = 0; k < 2; k++)
+            t2 += (rec.grad[0][i][k] - g[i][k]) * (rec.grad[0][i][k] - g[i][k]);
+        eg[0] = fmax(eg[0], sqrt(t2));
+        eg[1] = fmax(eg[1], fabs(rec.grad[0][i][2] - g[i][2]));
+    }
+    printf("  surface record, emitter across the horizon: gradient error tangential %.2f%%, "
+           "along n %.2f%% of the largest gradient\n", 100 * eg[0] / big, 100 * eg[1] / big);
+    CHECK(eg[0] < 0.03 * big, "tangential %.4f", eg[0] / big);
+    CHECK(eg[1] < 0.03 * big, "along n %.4f", eg[1] / big);
+    block_free(&cfg);
+}
+
 static irc_sh hand_record(float x, float y, float z, float r, int free, float base)
 {
     irc_sh h;
