@@ -48,7 +48,7 @@ static const char usage[] =
     "  --glossy N              glossy surfaces reflect indirect light too: from\n"
     "                          SH records (--features sh) while the Phong\n"
     "                          exponent is at most --sh-lobe-max S (default\n"
-    "                          L^2), else from N samples of the lobe\n"
+    "                          0.4 L^2), else from N samples of the lobe\n"
     "  --sh-bands L            SH records' bands, 1..5 (default 3)\n"
     "  --seed S                random seed (default 1)\n"
     "  --out PREFIX            write PREFIX.exr, PREFIX.png (+ PREFIX-records.png)\n"

@@ -289,7 +289,10 @@ static void glossy_indirect(const renderer *r, const surface *sf, const float p[
     double sum[3] = {0.0, 0.0, 0.0};
     const int n = r->o.lobe_rays;
     int i, j, c, nb = 0;
-    const float most = r->o.sh_lobe_max > 0.0f ? r->o.sh_lobe_max : (float)(sh->bands * sh->bands);
+    /* 0.4 L^2: where make glossy measured SH losing to 16 lobe rays (between
+     * s = 2 and 5 at L = 3, 5 and 10 at L = 4, 10 and 20 at L = 5). */
+    const float most = r->o.sh_lobe_max > 0.0f ? r->o.sh_lobe_max
+                                               : 0.4f * (float)(sh->bands * sh->bands);
     if (sh->bands && sf->m->ns <= most && glossy_from_sh(sh, sf, d, g) == IRC_OK) {
         for (c = 0; c < 3; c++)
             out[c] += g[c];

@@ -41,7 +41,7 @@ typedef struct render_opts {
                              else from this many samples of the lobe;
                              0: none (direct light's lobe only) */
     float sh_lobe_max;    /* the largest Phong exponent SH records shade
-                             (0: L^2, irc_sh_glossy's rule of thumb) */
+                             (0: 0.4 L^2, the measured crossover) */
     uint64_t seed;
     int progress;         /* draw a progress bar on stderr after a second */
     int stride;           /* > 1: shade only pixels whose x and y are
