@@ -18,6 +18,16 @@ if command -v gnuplot >/dev/null 2>&1; then
 else
     echo "gnuplot not found (apt-get install gnuplot-nox): CSV and table only"
 fi
+# Glossy indirect light on the glossy scenes (full runs, or BENCH_METHODS
+# naming glossy): SH records against lobe rays, warm and cold times.
+if [ "${BENCH_QUICK:-0}" != 1 ] && { [ -z "${BENCH_SCENES}${BENCH_METHODS}" ] ||
+    echo ",${BENCH_METHODS}," | grep -q ",glossy,"; }; then
+    g=build/bench/glossy.md
+    printf '| scene | s | SH L = 5 (warm; cold) | lobe 1 ray | 16 rays | 64 rays | SH / lobe at equal warm time |\n|---|---|---|---|---|---|---|\n' > $g
+    build/glossy demo/scenes/fig5.scene glossy 256 192 --exponents 2,10,40 --table $g
+    build/glossy demo/scenes/cornell-glossy.scene glossy 128 128 --exponents 2,10,40 --table $g
+    cat $g >> build/bench/table.md
+fi
 cat build/bench/table.md
 if [ "${BENCH_QUICK:-0}" != 1 ] && [ -z "${BENCH_SCENES}${BENCH_METHODS}" ]; then
     awk -v table=build/bench/table.md '
