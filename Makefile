@@ -10,12 +10,20 @@
 #   make embedded-test  that library's host run under QEMU (mps2-an386)
 #   make size       code, data and stack per object and entry point
 #   make fuzz       libFuzzer harnesses for FUZZ_SECONDS each (clang)
-#   make install    PREFIX=/usr/local
+#   make install    DESTDIR= PREFIX=/usr/local LIBDIR= INCLUDEDIR= (README
+#                   "Install"); make uninstall removes what it put there
 
 CC ?= cc
 CXX ?= c++
 AR ?= ar
+# Where make install puts things (GNU names); DESTDIR stages them under
+# another root for a package, the files still naming PREFIX.
 PREFIX ?= /usr/local
+LIBDIR ?= $(PREFIX)/lib
+INCLUDEDIR ?= $(PREFIX)/include
+PKGCONFIGDIR ?= $(LIBDIR)/pkgconfig
+CMAKEDIR ?= $(LIBDIR)/cmake/irrcache
+DESTDIR ?=
 BUILD ?= build
 OPT ?= -O2 -g
 WARN = -Wall -Wextra -Wpedantic -Werror -Wmissing-prototypes -Wshadow
@@ -28,7 +36,7 @@ CFLAGS_LIB = -std=c99 $(WARN) -Wdouble-promotion $(OPT) $(PIC) -fno-math-errno \
              -fvisibility=hidden -Iinclude $(CFLAGS)
 PIC = $(if $(filter none,$(PORT)),,-fPIC)
 
-SRC = src/status.c src/check.c src/config.c src/layout.c src/store.c src/kind_irr.c src/gradient.c \
+SRC = src/status.c src/version.c src/check.c src/config.c src/layout.c src/store.c src/kind_irr.c src/gradient.c \
       src/kind_sh.c src/sampler.c src/irradiance.c src/octa.c src/weight.c src/index.c src/compact.c \
       src/visibility.c src/hessian.c src/sh.c src/shgrad.c src/snapshot.c src/merge.c \
       src/pass.c
@@ -36,7 +44,15 @@ SRC = src/status.c src/check.c src/config.c src/layout.c src/store.c src/kind_ir
 PORT_SRC = $(sort port/$(PORT)/irc_port.c port/none/irc_port.c) port/irc_port_default.c
 OBJ = $(SRC:%.c=$(BUILD)/%.o)
 PORT_OBJ = $(PORT_SRC:%.c=$(BUILD)/%.o)
+# The version: irrcache.h's macros, the one place it is defined.
+version_part = $(shell sed -n 's/^\#define IRC_VERSION_$(1) \([0-9]*\)$$/\1/p' include/irrcache.h)
+MAJOR := $(call version_part,MAJOR)
+VERSION := $(MAJOR).$(call version_part,MINOR).$(call version_part,PATCH)
 LIBA = $(BUILD)/libirrcache.a
+# libirrcache.so.X.Y.Z, soname libirrcache.so.X, and the link the
+# linker's -lirrcache finds.
+SONAME = libirrcache.so.$(MAJOR)
+LIBSO_REAL = $(BUILD)/libirrcache.so.$(VERSION)
 LIBSO = $(BUILD)/libirrcache.so
 THREAD_LIBS = $(if $(filter posix,$(PORT)),-lpthread,)
 
@@ -67,8 +83,17 @@ $(LIBA): $(OBJ) $(PORT_OBJ)
 	rm -f $@
 	$(AR) rcs $@ $^
 
-$(LIBSO): $(OBJ) $(PORT_OBJ)
-	$(CC) -shared -o $@ $^ -lm $(THREAD_LIBS)
+$(LIBSO_REAL): $(OBJ) $(PORT_OBJ)
+	$(CC) -shared -Wl,-soname,$(SONAME) -o $@ $^ -lm $(THREAD_LIBS)
+
+$(LIBSO): $(LIBSO_REAL)
+	ln -sf $(notdir $(LIBSO_REAL)) $(BUILD)/$(SONAME)
+	ln -sf $(notdir $(LIBSO_REAL)) $@
+
+	sh pkg/cmake.sh '$(CMAKEDIR)' '$(LIBDIR)' '$(INCLUDEDIR)' '$(VERSION)' \
+	   '$(if $(filter none,$(PORT)),,$(notdir $(LIBSO_REAL)))' '$(SONAME)' \
+	   '$(if $(filter posix,$(PORT)),Threads::Threads,)' \
+	   "$$(echo __SIZEOF_POINTER__ | $(CC) -E -P - | tail -n 1)" $(dir $@)
 
 # ---------------------------------------------------------------- tests
 TEST_SRC = tests/main.c tests/harness.c tests/scenes.c tests/t_record.c tests/t_lookup.c \
@@ -287,7 +312,10 @@ $(BUILD)/minimal: examples/minimal.c $(LIBA)
 	$(CC) -std=c99 $(WARN) -Iinclude $(OPT) examples/minimal.c $(LIBA) -o $@ -lm $(THREAD_LIBS)
 $(BUILD)/threads: examples/threads.c $(LIBA)
 	$(CC) -std=c99 $(WARN) -D_POSIX_C_SOURCE=200809L -Iinclude $(OPT) examples/threads.c $(LIBA) -o $@ -lm -lpthread
-examples: $(BUILD)/minimal $(BUILD)/threads
+$(BUILD)/minimal_cpp: examples/minimal.cpp $(LIBA)
+	$(CXX) -std=c++11 -Wall -Wextra -Werror -pedantic -Iinclude $(OPT) examples/minimal.cpp $(LIBA) \
+	       -o $@ -lm $(THREAD_LIBS)
+examples: $(BUILD)/minimal $(BUILD)/threads $(BUILD)/minimal_cpp
 
 bench-core: $(BUILD)/bench_core
 	$(BUILD)/bench_core
@@ -324,12 +352,37 @@ $(BUILD)/bench_fill: bench/fill.c $(DEMO_LIB_SRC) demo/*.h $(LIBA)
 bench-fill: $(BUILD)/bench_fill
 	$(BUILD)/bench_fill
 
+# make install [DESTDIR=stage] [PREFIX=/usr/local] [LIBDIR=...] [INCLUDEDIR=...]
+# puts the header, both libraries (the shared one as libirrcache.so.X.Y.Z
+# with its soname link and development link), irrcache.pc and the CMake
+# package (written for these variables by pkg/pc.sh and pkg/cmake.sh, no
+# CMake needed); make uninstall, with the same variables, removes exactly
+# those.
+INSTALLED = $(INCLUDEDIR)/irrcache.h $(LIBDIR)/libirrcache.a $(PKGCONFIGDIR)/irrcache.pc \
+            $(CMAKEDIR)/irrcacheConfig.cmake $(CMAKEDIR)/irrcacheConfigVersion.cmake \
+            $(if $(filter none,$(PORT)),,$(LIBDIR)/libirrcache.so.$(VERSION) \
+                                          $(LIBDIR)/$(SONAME) $(LIBDIR)/libirrcache.so)
 install: all
-	install -d $(PREFIX)/include $(PREFIX)/lib
-	install -m 644 include/irrcache.h $(PREFIX)/include/
-	install -m 644 $(LIBA) $(LIBSO) $(PREFIX)/lib/
+	install -d $(DESTDIR)$(INCLUDEDIR) $(DESTDIR)$(LIBDIR) $(DESTDIR)$(PKGCONFIGDIR) \
+	           $(DESTDIR)$(CMAKEDIR)
+	install -m 644 include/irrcache.h $(DESTDIR)$(INCLUDEDIR)/
+	install -m 644 $(LIBA) $(DESTDIR)$(LIBDIR)/
+	sh pkg/pc.sh '$(PREFIX)' '$(LIBDIR)' '$(INCLUDEDIR)' '$(VERSION)' '-lm $(THREAD_LIBS)' \
+	   > $(DESTDIR)$(PKGCONFIGDIR)/irrcache.pc
+	sh pkg/cmake.sh '$(CMAKEDIR)' '$(LIBDIR)' '$(INCLUDEDIR)' '$(VERSION)' \
+	   '$(if $(filter none,$(PORT)),,libirrcache.so.$(VERSION))' '$(SONAME)' \
+	   '$(if $(filter posix,$(PORT)),Threads::Threads,)' \
+	   "$$(echo __SIZEOF_POINTER__ | $(CC) -E -P - | tail -n 1)" $(DESTDIR)$(CMAKEDIR)
+	chmod 644 $(DESTDIR)$(PKGCONFIGDIR)/irrcache.pc $(DESTDIR)$(CMAKEDIR)/irrcache*.cmake
+	$(if $(filter none,$(PORT)),,install -m 755 $(LIBSO_REAL) $(DESTDIR)$(LIBDIR)/)
+	$(if $(filter none,$(PORT)),,ln -sf libirrcache.so.$(VERSION) $(DESTDIR)$(LIBDIR)/$(SONAME))
+	$(if $(filter none,$(PORT)),,ln -sf $(SONAME) $(DESTDIR)$(LIBDIR)/libirrcache.so)
+
+uninstall:
+	rm -f $(addprefix $(DESTDIR),$(INSTALLED))
+	rmdir $(DESTDIR)$(CMAKEDIR) 2>/dev/null || true
 
 clean:
 	rm -rf build build-*
 
-.PHONY: all lib cross embedded-test embedded-host size examples test coverage demo fig15 adaptive glossy sh-experiments sh-animation fuzz replay bench-core bench-lookups bench-records bench bench-fill farm-demo install clean
+.PHONY: all lib cross embedded-test embedded-host size examples test coverage demo fig15 adaptive glossy sh-experiments sh-animation fuzz replay bench-core bench-lookups bench-records bench bench-fill farm-demo install uninstall clean

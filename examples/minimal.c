@@ -39,6 +39,11 @@ int main(void)
     irc_cache *cache;
     size_t bytes;
     int i, st;
+    /* Linked against the shared library: the one loaded must be the ABI
+     * this file was compiled for (major.minor while the major is 0). */
+    if (irc_version_number() / 100 != IRC_VERSION_NUMBER / 100)
+        return fprintf(stderr, "irrcache %s loaded, %s expected\n", irc_version_string(),
+                       IRC_VERSION_STRING), 1;
     cfg.trace = trace;
     cfg.max_batch = 64;
     cfg.features = IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION;

@@ -73,9 +73,19 @@
 extern "C" {
 #endif
 
+/* The one place the version is defined (the Makefile reads it from here
+ * for the shared object's name, irrcache.pc and the CMake package).  A
+ * different major version, or a different minor one while the major is 0,
+ * is another ABI. */
 #define IRC_VERSION_MAJOR 0
 #define IRC_VERSION_MINOR 2
 #define IRC_VERSION_PATCH 0
+#define IRC_VERSION_NUMBER \
+    (IRC_VERSION_MAJOR * 10000 + IRC_VERSION_MINOR * 100 + IRC_VERSION_PATCH)
+#define IRC__STR_(x) #x
+#define IRC__STR(x) IRC__STR_(x)
+#define IRC_VERSION_STRING \
+    IRC__STR(IRC_VERSION_MAJOR) "." IRC__STR(IRC_VERSION_MINOR) "." IRC__STR(IRC_VERSION_PATCH)
 
 /* Every declaration of this header, and nothing else of the library, is
  * visible from the shared library (the library builds with
@@ -159,6 +169,15 @@ typedef enum irc_status {
 /* A one-line English description of any status code (never NULL).  Thread
  * safe. */
 IRC_API const char *irc_strerror(int status);
+
+/* The version of the library the program runs with, as IRC_VERSION_NUMBER
+ * and IRC_VERSION_STRING were when it was built: a host checks that the
+ * header it compiled against matches the library it loaded, e.g.
+ *     if (irc_version_number() / 100 != IRC_VERSION_NUMBER / 100) fail;
+ * (major and minor, as long as the major is 0).  Any time, any thread; no
+ * cache needed. */
+IRC_API unsigned irc_version_number(void);
+IRC_API const char *irc_version_string(void);
 
 /* ------------------------------------------------------------------------ */
 /* Host callback: the library asks the host to cast rays.                   */

@@ -24,6 +24,10 @@
 #            QEMU (make embedded-test; embedded/need.sh installs the Arm
 #            compiler, newlib and QEMU when missing), and make size
 #            (fails if the library can recurse)
+#   stage 8  make install into a temporary DESTDIR, then the example host
+#            built from the staged files with cc + pkg-config, with a CMake
+#            project (find_package), and from C++; make uninstall removes
+#            it all (tests/consumers.sh)
 set -u
 cd "$(dirname "$0")/.."
 P=0
@@ -39,6 +43,8 @@ need=""
 command -v clang >/dev/null 2>&1 || need="$need clang"
 command -v c++ >/dev/null 2>&1 || need="$need g++"
 command -v nm >/dev/null 2>&1 || need="$need binutils"
+# an installed irrcache used from a CMake project (stage 8)
+command -v cmake >/dev/null 2>&1 || need="$need cmake"
 # 32-bit builds (stage 2c)
 [ -e /usr/lib32/crt1.o ] || [ -e /usr/lib/i386-linux-gnu/crt1.o ] || need="$need gcc-multilib"
 ls /usr/lib/llvm-*/lib/clang/*/lib/linux/libclang_rt.tsan-x86_64.a >/dev/null 2>&1 ||
@@ -215,6 +221,7 @@ echo "== stage 5: header, example host and library rules"
 check examples $MAKE -s BUILD=build examples
 check example-minimal ./build/minimal
 check example-threads ./build/threads
+check example-minimal-cpp ./build/minimal_cpp
 check header-c99 cc -std=c99 -pedantic -Wall -Wextra -Werror -fsyntax-only -x c include/irrcache.h
 check header-cxx c++ -std=c++98 -pedantic -Wall -Wextra -Werror -Wno-long-long -Iinclude -c tests/header_cpp.cpp -o build/header_cpp.o
 no_allocator() {
@@ -248,6 +255,10 @@ echo "== stage 7: Cortex-M4F under QEMU"
 check embedded-need sh embedded/need.sh
 suite m4 $MAKE -s embedded-test
 check size sh embedded/size.sh
+
+echo "== stage 8: installed, and used from outside the tree"
+check consumers sh tests/consumers.sh
+grep -E '^(pkg-config|cmake|g\+\+|uninstall)' "$LOG/consumers.log" | sed 's/, e.g. .*//; s/^/[consumers] /'
 
 echo "$P passed, $F failed"
 [ "$F" -eq 0 ]

@@ -403,3 +403,19 @@ TEST(test_ports)
         block_free(&cfg);
     }
 }
+
+/* The runtime version is the header's, and the number encodes the string
+ * (each part below 100, so the encoding is one to one). */
+TEST(test_version)
+{
+    unsigned a = 999, b = 999, c = 999;
+    char tail = 0;
+    CHECK(irc_version_number() == IRC_VERSION_NUMBER, "number %u", irc_version_number());
+    CHECK(strcmp(irc_version_string(), IRC_VERSION_STRING) == 0, "string %s",
+          irc_version_string());
+    CHECK(sscanf(irc_version_string(), "%u.%u.%u%c", &a, &b, &c, &tail) == 3, "form %s",
+          irc_version_string());
+    CHECK(a == IRC_VERSION_MAJOR && b == IRC_VERSION_MINOR && c == IRC_VERSION_PATCH &&
+              b < 100 && c < 100 && a * 10000 + b * 100 + c == irc_version_number(),
+          "%u.%u.%u", a, b, c);
+}
