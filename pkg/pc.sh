@@ -4,7 +4,8 @@
 # written relative to ${prefix}, so `pkg-config --define-prefix` and
 # PKG_CONFIG_SYSROOT_DIR both find a staged (DESTDIR) tree.
 set -eu
-prefix=$1 libdir=$2 includedir=$3 version=$4 private=$5
+prefix=$1 libdir=$2 includedir=$3 version=$4
+private=$(echo $5)
 rel() {
     case $1 in
     "$prefix"/*) printf '${prefix}/%s' "${1#"$prefix"/}" ;;
