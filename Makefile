@@ -333,8 +333,8 @@ bench-records: $(BUILD)/bench_records
 
 # Speed against error on every shipped scene (README: "Speed against
 # error").  BENCH_QUICK=1: small images, fewer runs, under two minutes.
-$(BUILD)/bench_run: bench/bench.c $(DEMO_LIB_SRC) demo/*.h $(LIBA)
-	$(CC) $(DEMO_CFLAGS) bench/bench.c $(DEMO_LIB_SRC) $(LIBA) -o $@ -lm -lpthread
+$(BUILD)/bench_run: bench/bench.c bench/report.c bench/bench.h $(DEMO_LIB_SRC) demo/*.h $(LIBA)
+	$(CC) $(DEMO_CFLAGS) bench/bench.c bench/report.c $(DEMO_LIB_SRC) $(LIBA) -o $@ -lm -lpthread
 
 bench: $(BUILD)/bench_run $(BUILD)/glossy
 	sh bench/bench.sh $(BUILD)/bench_run

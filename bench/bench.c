@@ -33,20 +33,8 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "bench.h"
 #include "image.h"
-#include "render.h"
-
-#define OUT "build/bench"
-#define MAX_RUNS 192
-
-typedef struct bscene {
-    const char *name, *path;
-    int w, h, qw, qh; /* full and quick sizes */
-    int sh;           /* glossy or near lights: SH records too */
-    int secondary;    /* light samples at secondary hits, every method and
-                         the reference alike (0: 1) */
-    int ref_rays;     /* the reference's rays a pixel (0: the default) */
-} bscene;
 
 static const bscene scenes[] = {
     {"cornell", "demo/scenes/cornell.scene", 512, 512, 128, 128, 0, 0, 0},
@@ -57,24 +45,6 @@ static const bscene scenes[] = {
     {"sh", "demo/scenes/sh.scene", 128, 128, 64, 64, 1, 16, 65536},
 };
 
-typedef struct run {
-    char method[32];
-    double param;          /* rays per point, or a */
-    uint32_t m, n;         /* strata (cache runs) */
-    render_stats st;
-    double rmse, p99, p999, maxe; /* relative errors of pixels */
-    int over10;                   /* pixels more than 10% off */
-} run;
-
-typedef struct ctx {
-    int quick, threads, stride, ref_rays, w, h;
-    int secondary; /* the scene's (bscene) */
-    scene s;
-    float *ref;            /* the averaged reference (lattice pixels) */
-    double ref_noise;
-    run runs[MAX_RUNS];
-    int nruns;
-} ctx;
 
 static double elapsed(const struct timespec *t0)
 {
@@ -239,146 +209,6 @@ static int add_run(ctx *c, const char *method, double param, const render_opts *
     return 0;
 }
 
-/* Time at which a method first reaches relative RMSE `target`: along its
- * lower envelope (runs in order of time, each kept only if more accurate
- * than every faster one), interpolated log-log between the runs either
- * side; -1 if no run does.  When the fastest run already does, its time
- * (an upper bound) with *bound = 1. */
-static double time_to(const ctx *c, const char *method, double target, int *bound)
-{
-    int idx[MAX_RUNS], n = 0, i, j, k = 0;
-    for (i = 0; i < c->nruns; i++)
-        if (!strcmp(c->runs[i].method, method))
-            idx[n++] = i;
-    for (i = 1; i < n; i++)
-        for (j = i; j > 0 && c->runs[idx[j]].st.wall < c->runs[idx[j - 1]].st.wall; j--) {
-            int t = idx[j];
-            idx[j] = idx[j - 1];
-            idx[j - 1] = t;
-        }
-    for (i = 0; i < n; i++) /* the envelope, in place */
-        if (k == 0 || c->runs[idx[i]].rmse < c->runs[idx[k - 1]].rmse)
-            idx[k++] = idx[i];
-    *bound = 0;
-    if (k == 0)
-        return -1.0;
-    if (c->runs[idx[0]].rmse <= target) {
-        *bound = 1;
-        return c->runs[idx[0]].st.wall;
-    }
-    for (i = 1; i < k; i++) {
-        const run *a = &c->runs[idx[i - 1]], *b = &c->runs[idx[i]];
-        if (b->rmse <= target) {
-            double u = (log(target) - log(a->rmse)) / (log(b->rmse) - log(a->rmse));
-            return exp(log(a->st.wall) + u * (log(b->st.wall) - log(a->st.wall)));
-        }
-    }
-    return -1.0;
-}
-
-/* A method's relative RMSE at `records` records, interpolated log-log
- * along its accuracy sweep; -1 outside it. */
-static double rmse_at(const ctx *c, const char *method, double records)
-{
-    int i, j;
-    for (i = 0; i < c->nruns; i++)
-        for (j = 0; j < c->nruns; j++) {
-            const run *a = &c->runs[i], *b = &c->runs[j];
-            double ra = (double)a->st.records, rb = (double)b->st.records, u;
-            if (strcmp(a->method, method) || strcmp(b->method, method) || !(ra <= records) ||
-                !(rb >= records) || ra <= 0.0 || rb <= 0.0 || a->m != 16 || b->m != 16)
-                continue;
-            if (ra == rb)
-                return a->rmse;
-            /* the nearest bracket: no run of this method between them */
-            {
-                int k, inside = 0;
-                for (k = 0; k < c->nruns; k++)
-                    if (!strcmp(c->runs[k].method, method) && c->runs[k].m == 16 &&
-                        c->runs[k].st.records > ra && c->runs[k].st.records < rb)
-                        inside = 1;
-                if (inside)
-                    continue;
-            }
-            u = (log(records) - log(ra)) / (log(rb) - log(ra));
-            return exp(log(a->rmse) + u * (log(b->rmse) - log(a->rmse)));
-        }
-    return -1.0;
-}
-
-static void cell_time(FILE *f, const ctx *c, const char *method, double target, int is_brute)
-{
-    int bt, bm;
-    const double tb = time_to(c, "brute", target, &bt), t = time_to(c, method, target, &bm);
-    if (t < 0.0)
-        fprintf(f, " not reached |");
-    else if (is_brute || tb < 0.0)
-        fprintf(f, " %s%.2f s |", bm ? "<= " : "", t);
-    else if (bm && bt)
-        fprintf(f, " <= %.2f s |", t);
-    else
-        fprintf(f, " %s%.2f s (%s%.1fx) |", bm ? "<= " : "", t, bm ? ">= " : "", tb / t);
-}
-
-#define NMETHODS 6
-static const char *const methods[NMETHODS] = {"brute", "none", "trans+rot", "vis", "hess", "sh"};
-static const char *const method_names[NMETHODS] = {
-    "brute force", "cache, no gradients", "cache, translational + rotational",
-    "cache, visibility gradients", "cache, trans + rot, Hessian radii",
-    "cache, SH records L = 3 + gradients"};
-
-static void table(ctx *c, const bscene *b, FILE *md)
-{
-    int m, i;
-    fprintf(md, "\n**%s** (%dx%d; reference %d rays at every %dth pixel, noise %.4f; "
-                "%d light sample%s at secondary hits)\n\n",
-            b->name, c->w, c->h, c->ref_rays, c->stride, c->ref_noise,
-            c->secondary ? c->secondary : 1, c->secondary > 1 ? "s" : "");
-    fprintf(md, "| method | runs | best rel. RMSE | its p99 / p99.9 / max, px > 10%% | "
-                "time to 5%% (speedup) | time to 2%% (speedup) | records at a = 0.2, 16x64 "
-                "(their bytes) | cache share there |\n"
-                "|---|---|---|---|---|---|---|---|\n");
-    for (m = 0; m < NMETHODS; m++) {
-        const run *best = NULL, *mid = NULL;
-        int n = 0;
-        for (i = 0; i < c->nruns; i++) {
-            const run *r = &c->runs[i];
-            if (strcmp(r->method, methods[m]))
-                continue;
-            n++;
-            if (!best || r->rmse < best->rmse)
-                best = r;
-            if (m > 0 && fabs(r->param - 0.2) < 1e-6 && r->m == 16)
-                mid = r;
-        }
-        if (!n)
-            continue;
-        fprintf(md, "| %s | %d | %.4f | %.4f / %.4f / %.3f, %d |", method_names[m], n, best->rmse,
-                best->p99, best->p999, best->maxe, best->over10);
-        cell_time(md, c, methods[m], 0.05, m == 0);
-        cell_time(md, c, methods[m], 0.02, m == 0);
-        if (mid)
-            fprintf(md, " %llu (%.2f MB) | %.1f%% |\n", (unsigned long long)mid->st.records,
-                    (double)mid->st.records * mid->st.record_bytes / 1048576.0,
-                    100.0 * mid->st.cache_s / (c->threads * mid->st.wall));
-        else
-            fprintf(md, " | |\n");
-    }
-    for (i = 0; i < c->nruns; i++)
-        if (!strcmp(c->runs[i].method, "trans+rot") && fabs(c->runs[i].param - 0.2) < 1e-6 &&
-            c->runs[i].m == 16) {
-            double rec = (double)c->runs[i].st.records, e0 = rmse_at(c, "none", rec),
-                   e1 = c->runs[i].rmse, e2 = rmse_at(c, "vis", rec), e3 = rmse_at(c, "hess", rec);
-            fprintf(md, "\nAt %llu records (trans+rot, a = 0.2, 16x64), along the 16x64 sweeps: "
-                        "relative RMSE no gradients %.4f, "
-                        "translational + rotational %.4f, visibility %.4f, Hessian radii %.4f",
-                    (unsigned long long)rec, e0, e1, e2, e3);
-            if (e0 > 0.0 && e2 > 0.0)
-                fprintf(md, " (none / trans+rot = %.2f, trans+rot / visibility = %.2f)", e0 / e1,
-                        e1 / e2);
-            fprintf(md, "; -1: the record count is outside that method's sweep.\n");
-        }
-}
 
 /* Whether NAME is in the comma-separated list in environment variable VAR
  * (unset: everything is). */
@@ -508,38 +338,6 @@ static int equal_records_table(ctx *c, const bscene *b, FILE *csv, FILE *md)
     return 0;
 }
 
-/* One data file per method for gnuplot: time, RMSE. */
-static void data_files(const ctx *c, const bscene *b, FILE *gp)
-{
-    int m, i, first = 1;
-    fprintf(gp, "set output '" OUT "/%s.png'\nset title '%s (reference noise %.4f); cache: "
-                "a = 0.4 .. 0.1 at 16x64, then 32x128'\nplot ", b->name, b->name, c->ref_noise);
-    for (m = 0; m < NMETHODS; m++) {
-        char path[256];
-        FILE *f = NULL;
-        for (i = 0; i < c->nruns; i++)
-            if (!strcmp(c->runs[i].method, methods[m])) {
-                if (!f) {
-                    snprintf(path, sizeof path, OUT "/%s-%s.dat", b->name, methods[m]);
-                    f = fopen(path, "w");
-                    if (!f)
-                        return;
-                }
-                /* a blank line between strata grids: separate lines */
-                if (i > 0 && !strcmp(c->runs[i - 1].method, methods[m]) &&
-                    c->runs[i - 1].m != c->runs[i].m)
-                    fprintf(f, "\n");
-                fprintf(f, "%g %g\n", c->runs[i].st.wall, c->runs[i].rmse);
-            }
-        if (f) {
-            fclose(f);
-            fprintf(gp, "%s'%s' using 1:2 with linespoints title '%s'", first ? "" : ", ", path,
-                    method_names[m]);
-            first = 0;
-        }
-    }
-    fprintf(gp, "\n");
-}
 
 /* Brute force at 16 .. 4096 rays per point; each cache method at five a
  * and two strata grids (quick: 16 .. 256 rays, three a, one grid). */

@@ -1,0 +1,52 @@
+/*
+ * bench.h -- what make bench's driver (bench.c: the runs) and its report
+ * (report.c: the table and the plots' data) share.
+ */
+#ifndef BENCH_BENCH_H
+#define BENCH_BENCH_H
+
+#include <stdio.h>
+
+#include "render.h"
+
+#define OUT "build/bench"
+#define MAX_RUNS 192
+
+typedef struct bscene {
+    const char *name, *path;
+    int w, h, qw, qh; /* full and quick sizes */
+    int sh;           /* glossy or near lights: SH records too */
+    int secondary;    /* light samples at secondary hits, every method and
+                         the reference alike (0: 1) */
+    int ref_rays;     /* the reference's rays a pixel (0: the default) */
+} bscene;
+
+typedef struct run {
+    char method[32];
+    double param;          /* rays per point, or a */
+    uint32_t m, n;         /* strata (cache runs) */
+    render_stats st;
+    double rmse, p99, p999, maxe; /* relative errors of pixels */
+    int over10;                   /* pixels more than 10% off */
+} run;
+
+typedef struct ctx {
+    int quick, threads, stride, ref_rays, w, h;
+    int secondary; /* the scene's (bscene) */
+    scene s;
+    float *ref;            /* the averaged reference (lattice pixels) */
+    double ref_noise;
+    run runs[MAX_RUNS];
+    int nruns;
+} ctx;
+
+#define NMETHODS 6
+extern const char *const methods[NMETHODS];      /* short names (CSV, BENCH_METHODS) */
+extern const char *const method_names[NMETHODS]; /* the table's */
+
+/* The table of one scene's runs (README "Speed against error"). */
+void table(ctx *c, const bscene *b, FILE *md);
+/* One data file per method for gnuplot, and its lines in plot.gp. */
+void data_files(const ctx *c, const bscene *b, FILE *gp);
+
+#endif
