@@ -876,9 +876,12 @@ typedef struct irc_sh {
     uint32_t bands;        /* L */
     uint32_t channels;     /* 1 or 3 */
     float c[3][IRC_SH_MAX_COEFFS];       /* c[ch][i], i < L*L, ch < channels */
-    float grad[3][IRC_SH_MAX_COEFFS][3]; /* d c[ch][i] / dp (zero without
+    float grad[3][IRC_SH_MAX_COEFFS][3]; /* d c[ch][i] / dp, all three
+                                            components (a surface record's
+                                            along n includes what crosses
+                                            its horizon); zero without
                                             IRC_FEATURE_SH_GRADIENT; a
-                                            lookup: the weighted mean) */
+                                            lookup: the weighted mean */
     uint32_t features;     /* cfg.features */
     uint32_t rays;         /* rays cast, and how many were usable */
     uint32_t rays_used;
