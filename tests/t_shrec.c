@@ -113,6 +113,17 @@ static irc_config sh_config(tscene *s, uint32_t features, uint32_t m, uint32_t n
     return cfg;
 }
 
+/* Scene s: black sky, a sphere of radius 1 at cc emitting radiance l. */
+static void emitter_scene(tscene *s, const double cc[3], float l)
+{
+    scene_init(s);
+    s->sky_a[0] = s->sky_a[1] = s->sky_a[2] = 0.0f;
+    s->has_sphere = 1;
+    s->radius = 1.0;
+    s->sphere_l[0] = s->sphere_l[1] = s->sphere_l[2] = l;
+    memcpy(s->centre, cc, sizeof s->centre);
+}
+
 /* One free-point record (or the mean of `seeds` of them) at the origin
  * with a unit emitter at distance dr along a generic direction: the largest
  * coefficient and gradient errors relative to the largest coefficient and
@@ -128,13 +139,9 @@ static void emitter_errors(double dr, uint32_t m, uint32_t n, int seeds, double 
     irc_cache *c;
     irc_sh rec;
     int i, k, sd;
-    scene_init(&s);
-    s.sky_a[0] = s.sky_a[1] = s.sky_a[2] = 0.0f;
-    s.has_sphere = 1;
-    s.radius = 1.0;
-    s.sphere_l[0] = s.sphere_l[1] = s.sphere_l[2] = 1.0f;
     for (k = 0; k < 3; k++)
-        s.centre[k] = cc[k] = dr * dir[k];
+        cc[k] = dr * dir[k];
+    emitter_scene(&s, cc, 1.0f);
     cfg = sh_config(&s, IRC_FEATURE_SH_GRADIENT, m, n, 3);
     c = block_cache(&cfg, 4, 0);
     CHECK(c != NULL, "init");
@@ -405,12 +412,7 @@ TEST(test_sh_surface_record)
     irc_cache *c;
     irc_sh rec;
     int i, k;
-    scene_init(&s);
-    s.sky_a[0] = s.sky_a[1] = s.sky_a[2] = 0.0f;
-    s.has_sphere = 1;
-    s.radius = 1.0;
-    s.sphere_l[0] = s.sphere_l[1] = s.sphere_l[2] = 2.0f;
-    memcpy(s.centre, cc, sizeof cc);
+    emitter_scene(&s, cc, 2.0f);
     cfg = sh_config(&s, IRC_FEATURE_SH_GRADIENT, 512, 2048, 3);
     c = block_cache(&cfg, 4, 0);
     CHECK(c && irc_sh_compute(c, p, n, &rec, NULL) == IRC_OK, "compute");
@@ -487,12 +489,7 @@ TEST(test_sh_surface_record_horizon)
     irc_cache *c;
     irc_sh rec;
     int i, k;
-    scene_init(&s);
-    s.sky_a[0] = s.sky_a[1] = s.sky_a[2] = 0.0f;
-    s.has_sphere = 1;
-    s.radius = 1.0;
-    s.sphere_l[0] = s.sphere_l[1] = s.sphere_l[2] = 1.0f;
-    memcpy(s.centre, cc, sizeof cc);
+    emitter_scene(&s, cc, 1.0f);
     clipped_cap(o, cc, 1.0, c0);
     for (k = 0; k < 3; k++) {
         double a[NC], b[NC], q[3] = {0, 0, 0};
