@@ -229,7 +229,7 @@ sh-experiments: $(BUILD)/shexp
 # The paper's setting animated: the object on a loop among the emitters,
 # shaded per frame from 1 or 8 records with and without gradients against
 # a record per pixel, with Eq. 16's exponent at the default 2 and at 8
-# (README: "A moving object").  About 4 minutes.
+# (README: "A moving object").  About 8 minutes.
 $(BUILD)/shanim: experiments/shanim.c $(SHOBJ) $(DEMO_LIB_SRC) demo/*.h $(LIBA)
 	$(CC) $(DEMO_CFLAGS) experiments/shanim.c experiments/shobj.c $(DEMO_LIB_SRC) $(LIBA) \
 	      -o $@ -lm -lpthread
