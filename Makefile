@@ -90,11 +90,6 @@ $(LIBSO): $(LIBSO_REAL)
 	ln -sf $(notdir $(LIBSO_REAL)) $(BUILD)/$(SONAME)
 	ln -sf $(notdir $(LIBSO_REAL)) $@
 
-	sh pkg/cmake.sh '$(CMAKEDIR)' '$(LIBDIR)' '$(INCLUDEDIR)' '$(VERSION)' \
-	   '$(if $(filter none,$(PORT)),,$(notdir $(LIBSO_REAL)))' '$(SONAME)' \
-	   '$(if $(filter posix,$(PORT)),Threads::Threads,)' \
-	   "$$(echo __SIZEOF_POINTER__ | $(CC) -E -P - | tail -n 1)" $(dir $@)
-
 # ---------------------------------------------------------------- tests
 TEST_SRC = tests/main.c tests/harness.c tests/scenes.c tests/t_record.c tests/t_lookup.c \
            tests/t_index.c tests/t_api.c tests/t_threads.c tests/t_visibility.c tests/t_sh.c \
