@@ -102,12 +102,10 @@ static int frame(const anim_opts *o, sh_env *e, const material *mat, const spher
     paste(strip, o->w, 0, ref, pix, np);
     e->seed = 3;
     for (i = 0; i < METHODS; i++) {
+        /* 1 and 1+g: the centre alone; 8 and 8+g: the corners */
         t0 = render_clock();
-        if (i < 2 && sh_method(e, mat, pts, np, (const float(*)[3])obj->c, 1, feat[i], o->m,
-                               o->n, img) < 0)
-            goto done;
-        if (i >= 2 && sh_method(e, mat, pts, np, (const float(*)[3])at, 8, feat[i], o->m, o->n,
-                                img) < 0)
+        if (sh_method(e, mat, pts, np, i < 2 ? (const float(*)[3])obj->c : (const float(*)[3])at,
+                      i < 2 ? 1 : 8, feat[i], o->m, o->n, img) < 0)
             goto done;
         r->sec[i] = render_clock() - t0;
         r->err[i] = sh_rel_rmse(img, ref, np);
