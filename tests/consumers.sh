@@ -21,8 +21,10 @@ trap 'rm -rf "$T"' EXIT
 S=$T/stage
 P=/usr/local
 $MAKE -s BUILD=build install DESTDIR="$S" PREFIX=$P
-major=$(sed -n 's/^#define IRC_VERSION_MAJOR \([0-9]*\)$/\1/p' include/irrcache.h)
-version=$major.$(sed -n 's/^#define IRC_VERSION_MINOR \([0-9]*\)$/\1/p' include/irrcache.h).$(sed -n 's/^#define IRC_VERSION_PATCH \([0-9]*\)$/\1/p' include/irrcache.h)
+part() { sed -n "s/^#define IRC_VERSION_$1 \([0-9]*\)\$/\1/p" include/irrcache.h; }
+major=$(part MAJOR)
+minor=$(part MINOR)
+version=$major.$minor.$(part PATCH)
 for f in include/irrcache.h lib/libirrcache.a lib/libirrcache.so.$version lib/libirrcache.so.$major \
          lib/libirrcache.so lib/pkgconfig/irrcache.pc lib/cmake/irrcache/irrcacheConfig.cmake \
          lib/cmake/irrcache/irrcacheConfigVersion.cmake; do
@@ -67,7 +69,7 @@ checked "cmake, irrcache::irrcache" "$T/cm/minimal"
 checked "cmake, irrcache::irrcache_static" "$T/cm/minimal_static"
 checked "cmake, C++" "$T/cm/minimal_cpp"
 if cmake -S tests/consumer -B "$T/cm-new" -DCMAKE_PREFIX_PATH="$S$P" -DIRC_EXAMPLES="$PWD/examples" \
-    -DIRC_WANT=$major.$(( $(sed -n 's/^#define IRC_VERSION_MINOR \([0-9]*\)$/\1/p' include/irrcache.h) + 1 )) \
+    -DIRC_WANT=$major.$((minor + 1)) \
     >"$T/cmake-new.log" 2>&1; then
     echo "cmake: a newer version was accepted"; exit 1
 fi
