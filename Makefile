@@ -176,6 +176,19 @@ demo: $(BUILD)/irc_demo
 	$(BUILD)/irc_demo demo/scenes/cornell.scene $(DEMO_ARGS) --reference 1024 --seed 2 --compare $(DEMO_OUT)/cornell-reference.exr
 	$(BUILD)/irc_demo demo/scenes/cornell.scene $(DEMO_ARGS) --cache --compare $(DEMO_OUT)/cornell-reference.exr --out $(DEMO_OUT)/cornell-cache
 
+# The real scenes (the Dabrovic Sponza and the Stanford bunny, README
+# "Scene files"): shipped gzip'd, read from build/scenes with their scene
+# files and materials beside them.
+REAL_SCENES = $(BUILD)/scenes/sponza.obj $(BUILD)/scenes/bunny.obj $(BUILD)/scenes/sponza.mtl \
+              $(BUILD)/scenes/sponza-atrium.scene $(BUILD)/scenes/sponza-arcade.scene
+$(BUILD)/scenes/%.obj: demo/scenes/%.obj.gz
+	@mkdir -p $(dir $@)
+	gzip -dc $< > $@.part && mv $@.part $@
+$(BUILD)/scenes/%: demo/scenes/%
+	@mkdir -p $(dir $@)
+	cp $< $@
+real-scenes: $(REAL_SCENES)
+
 # The first-order paper's Fig. 15 experiment (README: "Visibility gradients").
 $(BUILD)/fig15: experiments/fig15.c $(DEMO_LIB_SRC) demo/*.h $(LIBA)
 	$(CC) $(DEMO_CFLAGS) experiments/fig15.c $(DEMO_LIB_SRC) $(LIBA) -o $@ -lm -lpthread
@@ -380,4 +393,4 @@ uninstall:
 clean:
 	rm -rf build build-*
 
-.PHONY: all lib cross embedded-test embedded-host size examples test coverage demo fig15 adaptive glossy sh-experiments sh-animation fuzz replay bench-core bench-lookups bench-records bench bench-fill farm-demo install uninstall clean
+.PHONY: all lib cross embedded-test embedded-host size examples test coverage demo real-scenes fig15 adaptive glossy sh-experiments sh-animation fuzz replay bench-core bench-lookups bench-records bench bench-fill farm-demo install uninstall clean

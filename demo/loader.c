@@ -285,6 +285,56 @@ static int scene_environment(ld_loader *L, const ld_reader *r)
     return 0;
 }
 
+/* sun DX DY DZ R G B: toward the light, and its irradiance */
+static int scene_sun(ld_loader *L, const ld_reader *r)
+{
+    sun *u = &L->s->sun;
+    float x[6], len;
+    if (ld_nargs(L, r, 6, 6) < 0 || ld_nums(L, r, 1, 6, x) < 0 || ld_nonneg(L, r, x + 3, 3) < 0)
+        return -1;
+    len = sqrtf(dot3(x, x));
+    if (!(len > 0.0f) || !isfinite(len))
+        return ld_fail(L, r, r->line, "sun: the direction must be a non-zero vector");
+    u->on = 1;
+    u->dir[0] = x[0] / len;
+    u->dir[1] = x[1] / len;
+    u->dir[2] = x[2] / len;
+    memcpy(u->e, x + 3, sizeof u->e);
+    return 0;
+}
+
+/* obj FILE [S TX TY TZ]: the file's vertices scaled by S > 0 about the
+ * origin, then moved by T (a model placed in a scene made elsewhere);
+ * normals are unchanged by a uniform scale. */
+static int scene_obj(ld_loader *L, const ld_reader *r)
+{
+    scene *s = L->s;
+    const int first = s->ntris;
+    float x[4];
+    int i, k, c;
+    if (ld_nargs(L, r, 1, 5) < 0)
+        return -1;
+    if (r->ntok != 2 && r->ntok != 6)
+        return ld_fail(L, r, r->line, "obj: expected a file, or a file, a scale and a move");
+    if (r->ntok == 6) {
+        if (ld_nums(L, r, 2, 4, x) < 0)
+            return -1;
+        if (!(x[0] > 0.0f))
+            return ld_fail(L, r, r->line, "obj: scale %g must be positive", (double)x[0]);
+    }
+    if (ld_load_obj(L, r, r->tok[1]) < 0)
+        return -1;
+    for (i = first; i < s->ntris && r->ntok == 6; i++)
+        for (k = 0; k < 3; k++)
+            for (c = 0; c < 3; c++) {
+                float v = x[0] * s->tris[i].v[k][c] + x[1 + c];
+                if (!isfinite(v))
+                    return ld_fail(L, r, r->line, "obj: a moved vertex is not finite");
+                s->tris[i].v[k][c] = v;
+            }
+    return 0;
+}
+
 /* sphere CX CY CZ R MATERIAL */
 static int scene_sphere(ld_loader *L, const ld_reader *r)
 {
@@ -324,7 +374,9 @@ static int scene_statement(ld_loader *L, const ld_reader *r)
     if (strcmp(k, "mtllib") == 0)
         return ld_nargs(L, r, 1, 1) < 0 ? -1 : ld_load_mtl(L, r, r->tok[1]);
     if (strcmp(k, "obj") == 0)
-        return ld_nargs(L, r, 1, 1) < 0 ? -1 : ld_load_obj(L, r, r->tok[1]);
+        return scene_obj(L, r);
+    if (strcmp(k, "sun") == 0)
+        return once(L, r, &L->have_sun) < 0 ? -1 : scene_sun(L, r);
     if (strcmp(k, "sphere") == 0)
         return scene_sphere(L, r);
     if (strcmp(k, "camera") == 0)

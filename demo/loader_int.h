@@ -30,7 +30,7 @@ typedef struct ld_loader {
     char **mtls; /* MTL files already read: a scene and its OBJ files may all
                     name the same one, which must not redefine its materials */
     int nmtls, cap_mtls;
-    int have_cam, have_res, have_env;
+    int have_cam, have_res, have_env, have_sun;
     char *err;
     size_t errlen;
 } ld_loader;

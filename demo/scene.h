@@ -52,6 +52,14 @@ typedef struct environment {
     float sigma_deg;
 } environment;
 
+/* A distant light (the sun): from direction dir (unit, toward the light),
+ * irradiance e on a surface facing it; one shadow ray a shading point. */
+typedef struct sun {
+    int on;
+    float dir[3];
+    float e[3];
+} sun;
+
 typedef struct scene {
     triangle *tris;
     int ntris;
@@ -61,6 +69,7 @@ typedef struct scene {
     int nmats;
     camera cam;
     environment env;
+    sun sun;
 } scene;
 
 /*

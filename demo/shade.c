@@ -1,6 +1,7 @@
 /* shade.c -- surfaces, environment, lights and the BRDF (see shade.h). */
 #include "shade.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -270,6 +271,27 @@ void direct_eval(const light_sample *ls, int n, int samples, const surface *sf, 
     }
 }
 
+/* The sun's light leaving sf toward -d, added to out: f e cos, one shadow
+ * ray toward it (a delta light: no samples to average). */
+static void sun_light(const bvh *b, const surface *sf, const float d[3], float out[3],
+                      uint64_t *rays)
+{
+    const sun *u = &b->s->sun;
+    const float eps = ray_offset(sf->p);
+    float o[3], f[3], c = dot3(sf->ns, u->dir);
+    int i;
+    if (!u->on || c <= 0.0f || dot3(sf->ng, u->dir) <= 0.0f)
+        return;
+    for (i = 0; i < 3; i++)
+        o[i] = sf->p[i] + eps * sf->ng[i];
+    ++*rays;
+    if (bvh_occluded(b, o, u->dir, 0.0f, FLT_MAX))
+        return;
+    brdf(sf, d, u->dir, f);
+    for (i = 0; i < 3; i++)
+        out[i] += f[i] * u->e[i] * c;
+}
+
 void direct_light(const bvh *b, const lights *l, const surface *sf, const float d[3],
                   int samples, uint64_t key, float out[3], uint64_t *rays)
 {
@@ -281,4 +303,5 @@ void direct_light(const bvh *b, const lights *l, const surface *sf, const float 
         direct_eval(buf, direct_samples(b, l, sf, k, k1, samples, key, buf, rays), samples, sf,
                     d, out);
     }
+    sun_light(b, sf, d, out, rays);
 }

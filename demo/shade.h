@@ -40,8 +40,8 @@ void env_radiance(const environment *e, const float d[3], float out[3]);
 void emitted(const surface *sf, float out[3]);
 
 /* Radiance leaving sf toward -d from direct lighting by the area lights,
- * with `samples` light samples; key seeds the random numbers.  *rays
- * counts the shadow rays cast. */
+ * with `samples` light samples, and by the scene's sun (one shadow ray);
+ * key seeds the random numbers.  *rays counts the shadow rays cast. */
 void direct_light(const bvh *b, const lights *l, const surface *sf, const float d[3],
                   int samples, uint64_t key, float out[3], uint64_t *rays);
 

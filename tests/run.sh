@@ -158,7 +158,7 @@ check build-ndebug $MAKE -s BUILD=build-ndebug OPT="-O2 -DIRC_NO_ASSERT" build-n
 suite ndebug IRC_TEST_QUICK=1 ./build-ndebug/irc_tests
 
 echo "== stage 2b: demo tracer"
-check build-demo $MAKE -s BUILD=build build/irc_demo build/demo_tests build/t_image build/t_loader build/t_exr \
+check build-demo $MAKE -s BUILD=build real-scenes build/irc_demo build/demo_tests build/t_image build/t_loader build/t_exr \
     build/adaptive_tests
 suite demo ./build/demo_tests
 suite adaptive ./build/adaptive_tests

@@ -457,7 +457,62 @@ TEST(test_glossy_lobe)
     }
 }
 
-#define TESTS(X) X(test_bvh_soup) X(test_bvh_shipped_scenes) X(test_reference_sphere_plane) X(test_leak_scene) X(test_deterministic_fill) \
+/* The sun (scene statement sun): a Lambertian plane z = 0 of albedo 0.5
+ * under a sun of irradiance 2 from (0.6, 0, 0.8), a black sphere of radius
+ * 1 at (0, 0, 2) above it.  Lit points reflect kd/pi E cos = 0.5/pi 2 0.8
+ * exactly; the point whose ray toward the sun passes through the
+ * sphere's centre, and points in its shadow, get nothing; one shadow ray
+ * each. */
+TEST(test_sun)
+{
+    static const float lit[3][2] = {{3, 3}, {2, -1}, {-1.5f, 1.2f}}, dark[2][2] = {{-1.5f, 0},
+                                                                                   {-1.2f, 0.3f}};
+    material mats[2];
+    triangle tris[2];
+    sphere sp;
+    scene s;
+    bvh b;
+    lights l;
+    const float want = 0.5f / (float)TPI * 2.0f * 0.8f, down[3] = {0, 0, -1};
+    int i, k;
+    memset(mats, 0, sizeof mats);
+    memset(tris, 0, sizeof tris);
+    memset(&s, 0, sizeof s);
+    mats[0].kd[0] = mats[0].kd[1] = mats[0].kd[2] = 0.5f;
+    {
+        static const float q[4][3] = {{-1e3f, -1e3f, 0}, {1e3f, -1e3f, 0}, {1e3f, 1e3f, 0}, {-1e3f, 1e3f, 0}};
+        memcpy(tris[0].v[0], q[0], 12); memcpy(tris[0].v[1], q[1], 12); memcpy(tris[0].v[2], q[2], 12);
+        memcpy(tris[1].v[0], q[0], 12); memcpy(tris[1].v[1], q[2], 12); memcpy(tris[1].v[2], q[3], 12);
+    }
+    sp.c[0] = sp.c[1] = 0.0f;
+    sp.c[2] = 2.0f;
+    sp.r = 1.0f;
+    sp.mat = 1;
+    s.tris = tris; s.ntris = 2; s.spheres = &sp; s.nspheres = 1; s.mats = mats; s.nmats = 2;
+    s.sun.on = 1;
+    s.sun.dir[0] = 0.6f;
+    s.sun.dir[2] = 0.8f;
+    s.sun.e[0] = s.sun.e[1] = s.sun.e[2] = 2.0f;
+    CHECK(bvh_build(&b, &s) == 0 && lights_build(&l, &s) == 0, "build");
+    for (i = 0; i < 5; i++) {
+        const float *xy = i < 3 ? lit[i] : dark[i - 3];
+        float o[3] = {xy[0], xy[1], 5.0f}, out[3];
+        uint64_t rays = 0;
+        bvh_hit h;
+        surface sf;
+        CHECK(bvh_intersect(&b, o, down, 0.0f, 1e30f, &h) && h.prim >= 0, "the plane at point %d", i);
+        surface_at(&s, o, down, &h, &sf);
+        direct_light(&b, &l, &sf, down, 4, 1, out, &rays);
+        for (k = 0; k < 3; k++)
+            CHECK(i < 3 ? fabsf(out[k] - want) <= 1e-6f * want : out[k] == 0.0f,
+                  "point %d: %g, want %g", i, (double)out[k], i < 3 ? (double)want : 0.0);
+        CHECK(rays == 1, "point %d: %llu shadow rays", i, (unsigned long long)rays);
+    }
+    bvh_free(&b);
+    lights_free(&l);
+}
+
+#define TESTS(X) X(test_sun) X(test_bvh_soup) X(test_bvh_shipped_scenes) X(test_reference_sphere_plane) X(test_leak_scene) X(test_deterministic_fill) \
     X(test_image_gradient) X(test_glossy_lobe)
 TESTS(TEST_DECL)
 

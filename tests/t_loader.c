@@ -21,7 +21,7 @@
 
 #define TESTS(X)                                                                           \
     X(test_bad_files) X(test_missing_message) X(test_good_crlf) X(test_big) X(test_cornell) \
-    X(test_fig5) X(test_fig15) X(test_sh)
+    X(test_fig5) X(test_fig15) X(test_sh) X(test_placed) X(test_real)
 TESTS(TEST_DECL)
 
 static int near(double a, double b, double tol)
@@ -111,6 +111,12 @@ static const bad_case bad_cases[] = {
     {"m_negative.scene", "m_negative.mtl:2", "negative"},
     {"m_newmtl_args.scene", "m_newmtl_args.mtl:1", "newmtl: expected 1 argument, got 0"},
     {"m_crlf.scene", "m_crlf.mtl:4", "unknown MTL statement \"bogus\""},
+    {"s_sun_dir0.scene", "s_sun_dir0.scene:3", "sun: the direction must be a non-zero vector"},
+    {"s_sun_neg.scene", "s_sun_neg.scene:3", "sun: negative value -1"},
+    {"s_sun_twice.scene", "s_sun_twice.scene:4", "sun given twice"},
+    {"s_obj_scale0.scene", "s_obj_scale0.scene:3", "obj: scale 0 must be positive"},
+    {"s_obj_args.scene", "s_obj_args.scene:3", "obj: expected a file, or a file, a scale and a move"},
+    {"s_obj_overflow.scene", "s_obj_overflow.scene:3", "obj: a moved vertex is not finite"},
 };
 
 /* One malformed file; every message names it. */
@@ -501,4 +507,56 @@ int main(int argc, char **argv)
         argv++;
     }
     return test_run(all, sizeof all / sizeof all[0], argc, argv);
+}
+
+/* obj FILE S TX TY TZ: each vertex is S v + T, exactly as float arithmetic
+ * gives it; normals unchanged; the sun's direction normalised. */
+TEST(test_placed)
+{
+    scene s;
+    int k, c;
+    if (load("tests/data/good/placed.scene", &s) < 0)
+        return;
+    CHECK(s.ntris == 2, "%d triangles", s.ntris);
+    if (s.ntris == 2) {
+        static const float t[3] = {1.0f, -2.0f, 0.5f};
+        for (k = 0; k < 3; k++)
+            for (c = 0; c < 3; c++)
+                CHECK(s.tris[1].v[k][c] == 2.0f * s.tris[0].v[k][c] + t[c], "vertex %d.%d: %g", k,
+                      c, (double)s.tris[1].v[k][c]);
+        CHECK(s.tris[0].v[2][2] == -0.5f && s.tris[1].v[2][2] == -0.5f, "z of the third vertex");
+        CHECK(s.tris[1].has_n && s.tris[1].n[0][2] == 1.0f, "normals kept");
+    }
+    CHECK(s.sun.on && near(s.sun.dir[1], 0.6, 1e-7) && near(s.sun.dir[2], 0.8, 1e-7) &&
+              s.sun.dir[0] == 0.0f && s.sun.e[1] == 2.0f && s.sun.e[2] == 0.5f,
+          "sun (%g %g %g)", (double)s.sun.dir[0], (double)s.sun.dir[1], (double)s.sun.dir[2]);
+    scene_free(&s);
+}
+
+/* The real scenes as make real-scenes leaves them in build/scenes: every
+ * face of both models (all triangles), the bunny standing on the atrium's
+ * floor (y = 0.0933), a sun and no area light. */
+TEST(test_real)
+{
+    static const char *const views[2] = {"build/scenes/sponza-atrium.scene",
+                                         "build/scenes/sponza-arcade.scene"};
+    int v, i, k;
+    for (v = 0; v < 2; v++) {
+        scene s;
+        float lo = 1e30f;
+        if (load(views[v], &s) < 0)
+            return;
+        CHECK(s.ntris == 66454 + 69451, "%s: %d triangles", views[v], s.ntris);
+        for (i = 66454; i < s.ntris; i++)
+            for (k = 0; k < 3; k++)
+                lo = s.tris[i].v[k][1] < lo ? s.tris[i].v[k][1] : lo;
+        CHECK(near(lo, 0.0933, 2e-4), "bunny's lowest point at y = %g", (double)lo);
+        CHECK(s.sun.on && s.env.kind == ENV_NONE, "sun, black sky");
+        for (i = 0; i < s.ntris; i++)
+            if (s.mats[s.tris[i].mat].ke[0] > 0.0f)
+                break;
+        CHECK(i == s.ntris, "no emitter");
+        CHECK(s.nmats == 1 && s.mats[0].kd[1] == 0.6f, "grey 0.6");
+        scene_free(&s);
+    }
 }
