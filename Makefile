@@ -344,7 +344,7 @@ bench-records: $(BUILD)/bench_records
 $(BUILD)/bench_run: bench/bench.c bench/report.c bench/bench.h $(DEMO_LIB_SRC) demo/*.h $(LIBA)
 	$(CC) $(DEMO_CFLAGS) bench/bench.c bench/report.c $(DEMO_LIB_SRC) $(LIBA) -o $@ -lm -lpthread
 
-bench: $(BUILD)/bench_run $(BUILD)/glossy
+bench: $(BUILD)/bench_run $(BUILD)/glossy real-scenes
 	sh bench/bench.sh $(BUILD)/bench_run
 
 # The Cornell box on a Slurm job array of 4 tile jobs, merged by a fifth

@@ -37,12 +37,16 @@
 #include "image.h"
 
 static const bscene scenes[] = {
-    {"cornell", "demo/scenes/cornell.scene", 512, 512, 128, 128, 0, 0, 0},
-    {"fig5", "demo/scenes/fig5.scene", 256, 192, 128, 96, 1, 0, 0},
-    {"fig15", "demo/scenes/fig15.scene", 256, 256, 96, 96, 0, 0, 0},
+    /* The real scenes (make real-scenes): brute force on the reference's
+     * lattice only, its time scaled to the whole image. */
+    {"sponza-atrium", "build/scenes/sponza-atrium.scene", 640, 480, 160, 120, 0, 0, 0, 8},
+    {"sponza-arcade", "build/scenes/sponza-arcade.scene", 640, 480, 160, 120, 0, 0, 0, 8},
+    {"cornell", "demo/scenes/cornell.scene", 512, 512, 128, 128, 0, 0, 0, 0},
+    {"fig5", "demo/scenes/fig5.scene", 256, 192, 128, 96, 1, 0, 0, 0},
+    {"fig15", "demo/scenes/fig15.scene", 256, 256, 96, 96, 0, 0, 0, 0},
     /* The ground's lit spots under three small emitters: one light sample
      * a secondary hit left a 16384-ray reference 3.5% noisy. */
-    {"sh", "demo/scenes/sh.scene", 128, 128, 64, 64, 1, 16, 65536},
+    {"sh", "demo/scenes/sh.scene", 128, 128, 64, 64, 1, 16, 65536, 0},
 };
 
 
@@ -53,18 +57,43 @@ static double elapsed(const struct timespec *t0)
     return (double)(t.tv_sec - t0->tv_sec) + 1e-9 * (double)(t.tv_nsec - t0->tv_nsec);
 }
 
-static int on_lattice(const ctx *c, int i)
+/* The lattice errors are measured on: every stride-th pixel from an odd
+ * offset, so that it never meets the coarse fill passes' pixels (multiples
+ * of powers of two), where records are made and a lookup answers with its
+ * own record: measured there, a cache's interpolation would go unseen. */
+static int lattice_offset(const ctx *c)
 {
-    return (i % c->w) % c->stride == 0 && (i / c->w) % c->stride == 0;
+    return c->stride / 2 + 1;
 }
 
-/* Relative RMSE and the 99th percentile of the per-pixel relative error
- * over the lattice. */
+static int on_lattice(const ctx *c, int i)
+{
+    const int o = lattice_offset(c), x = i % c->w - o, y = i / c->w - o;
+    return x >= 0 && y >= 0 && x % c->stride == 0 && y % c->stride == 0;
+}
+
+/* Shell sort, ascending: enough for a lattice of some 20k pixels. */
+static void sort(double *v, int m)
+{
+    int gap, i, j;
+    for (gap = m / 2; gap > 0; gap /= 2)
+        for (i = gap; i < m; i++) {
+            double x = v[i];
+            for (j = i; j >= gap && v[j - gap] > x; j -= gap)
+                v[j] = v[j - gap];
+            v[j] = x;
+        }
+}
+
+/* Over the lattice: relative RMSE, percentiles of the per-pixel relative
+ * error, the share of the squared error in the worst 1% of pixels, the
+ * pixels lit more than 25% of the mean above the reference (leaks) and
+ * the bias of the mean. */
 static void measure(const ctx *c, const float *img, const float *ref, run *r)
 {
     const int n = c->w * c->h;
-    double se = 0.0, sr = 0.0, mean = 0.0;
-    double *rel = malloc(sizeof(double) * (size_t)n);
+    double se = 0.0, sr = 0.0, mean = 0.0, sa = 0.0, sb = 0.0, top;
+    double *rel = malloc(sizeof(double) * (size_t)n), *sq = malloc(sizeof(double) * (size_t)n);
     int i, k, m = 0;
     for (i = 0; i < n; i++)
         if (on_lattice(c, i)) {
@@ -72,28 +101,32 @@ static void measure(const ctx *c, const float *img, const float *ref, run *r)
             m++;
         }
     mean /= m;
+    r->leaks = 0;
     for (i = 0, m = 0; i < n; i++) {
-        double a = 0.0, b = 0.0;
+        double a = 0.0, b = 0.0, sp = 0.0;
         if (!on_lattice(c, i))
             continue;
         for (k = 0; k < 3; k++) {
-            se += (img[3 * i + k] - ref[3 * i + k]) * (double)(img[3 * i + k] - ref[3 * i + k]);
+            sp += (img[3 * i + k] - ref[3 * i + k]) * (double)(img[3 * i + k] - ref[3 * i + k]);
             sr += ref[3 * i + k] * (double)ref[3 * i + k];
             a += img[3 * i + k];
             b += ref[3 * i + k];
         }
+        se += sp;
+        sq[m] = sp;
+        sa += a;
+        sb += b;
+        /* light where the reference has far less: a leak, as seen */
+        r->leaks += a - b > 0.25 * mean;
         rel[m++] = fabs(a - b) / (b + 0.05 * mean);
     }
-    { /* Shell sort: enough for a lattice of some 16k pixels */
-        int gap, j;
-        for (gap = m / 2; gap > 0; gap /= 2)
-            for (i = gap; i < m; i++) {
-                double v = rel[i];
-                for (j = i; j >= gap && rel[j - gap] > v; j -= gap)
-                    rel[j] = rel[j - gap];
-                rel[j] = v;
-            }
-    }
+    sort(rel, m);
+    sort(sq, m);
+    for (i = m - 1, top = 0.0; i >= m - (m + 99) / 100; i--)
+        top += sq[i];
+    r->worst1 = se > 0.0 ? top / se : 0.0;
+    r->bias = sb > 0.0 ? sa / sb - 1.0 : 0.0;
+    free(sq);
     /* Outliers seen, not averaged away: the 99.9th percentile, the worst
      * pixel, and how many are over 10%. */
     r->rmse = sr > 0.0 ? sqrt(se / sr) : 0.0;
@@ -103,6 +136,68 @@ static void measure(const ctx *c, const float *img, const float *ref, run *r)
     for (i = 0, r->over10 = 0; i < m; i++)
         r->over10 += rel[i] > 0.1;
     free(rel);
+}
+
+/* BENCH_IMAGES=1: the run's image, and its error on the lattice (red:
+ * above the reference, blue: below, by |A - B| / mean, each lattice pixel
+ * a block), as PNGs in OUT, to look at where the error sits. */
+static void save_images(const ctx *c, const bscene *b, const run *r, const float *img)
+{
+    const int n = c->w * c->h, s = c->stride;
+    float *err = calloc((size_t)n * 3, sizeof(float));
+    double mean = 0.0;
+    char path[256], e[256];
+    int i, k, m = 0;
+    if (!err)
+        return;
+    for (i = 0; i < n; i++)
+        if (on_lattice(c, i)) {
+            mean += c->ref[3 * i] + c->ref[3 * i + 1] + c->ref[3 * i + 2];
+            m++;
+        }
+    mean /= m;
+    for (i = 0; i < n; i++) {
+        const int o = lattice_offset(c), x = i % c->w, y = i / c->w;
+        const int j = (y < o ? o : y - (y - o) % s) * c->w + (x < o ? o : x - (x - o) % s);
+        double d = 0.0;
+        for (k = 0; k < 3; k++)
+            d += img[3 * j + k] - c->ref[3 * j + k];
+        err[3 * i + (d > 0.0 ? 0 : 2)] = (float)(fabs(d) / mean);
+    }
+    { /* the ten worst lattice pixels, by squared error */
+        int worst[10] = {-1, -1, -1, -1, -1, -1, -1, -1, -1, -1}, q;
+        double wv[10] = {0};
+        for (i = 0; i < n; i++) {
+            double d = 0.0;
+            if (!on_lattice(c, i))
+                continue;
+            for (k = 0; k < 3; k++)
+                d += (img[3 * i + k] - c->ref[3 * i + k]) * (double)(img[3 * i + k] - c->ref[3 * i + k]);
+            for (q = 10; q > 0 && d > wv[q - 1]; q--)
+                if (q < 10) {
+                    wv[q] = wv[q - 1];
+                    worst[q] = worst[q - 1];
+                }
+            if (q < 10) {
+                wv[q] = d;
+                worst[q] = i;
+            }
+        }
+        printf("    worst pixels (x y: image, reference, in means):");
+        for (q = 0; q < 10 && worst[q] >= 0; q++)
+            printf(" %d %d: %.2f %.2f;", worst[q] % c->w, worst[q] / c->w,
+                   (img[3 * worst[q]] + img[3 * worst[q] + 1] + img[3 * worst[q] + 2]) / mean,
+                   (c->ref[3 * worst[q]] + c->ref[3 * worst[q] + 1] + c->ref[3 * worst[q] + 2]) / mean);
+        printf("\n");
+    }
+    snprintf(path, sizeof path, OUT "/%s-%s-%g-%ux%u.png", b->name, r->method, r->param, r->m, r->n);
+    png_write(path, c->w, c->h, img, 4.0f, e, sizeof e);
+    strcpy(path + strlen(path) - 3, "exr");
+    exr_write(path, c->w, c->h, img, 0, e, sizeof e);
+    snprintf(path, sizeof path, OUT "/%s-%s-%g-%ux%u-err.png", b->name, r->method, r->param, r->m,
+             r->n);
+    png_write(path, c->w, c->h, err, 1.0f, e, sizeof e);
+    free(err);
 }
 
 static int render(ctx *c, const render_opts *o, float *img, render_stats *st)
@@ -122,6 +217,34 @@ static int render(ctx *c, const render_opts *o, float *img, render_stats *st)
     return e < 0 ? -1 : 0;
 }
 
+/* BENCH_SET="name=value,...": settings laid over every cache run, for
+ * experiments (minpx, maxpx: the pixel bounds, -1 none; guard: 0 or 1;
+ * maxr: max_radius, -1 the demo's view rule, 0 the library's; clamp: 0 or
+ * 1; nofp: 1 records ignore the footprint; free: 1 free fill; sm, sn: strata). */
+static void experiment_opts(render_opts *o)
+{
+    const char *l = getenv("BENCH_SET");
+    while (l && *l) {
+        char name[16];
+        double v;
+        int n = 0;
+        if (sscanf(l, "%15[a-z]=%lf%n", name, &v, &n) != 2)
+            break;
+        if (!strcmp(name, "minpx")) o->min_pixels = (float)v;
+        else if (!strcmp(name, "maxpx")) o->max_pixels = (float)v;
+        else if (!strcmp(name, "guard")) o->leak_guard = v != 0.0 ? IRC_ON : IRC_OFF;
+        else if (!strcmp(name, "maxr")) o->max_radius = (float)v;
+        else if (!strcmp(name, "clamp")) o->clamp_neighbours = v != 0.0 ? IRC_ON : IRC_OFF;
+        else if (!strcmp(name, "nofp")) o->no_footprint = v != 0.0;
+        else if (!strcmp(name, "free")) o->free_fill = v != 0.0;
+        else if (!strcmp(name, "sm")) o->strata_m = (uint32_t)v;
+        else if (!strcmp(name, "sn")) o->strata_n = (uint32_t)v;
+        else fprintf(stderr, "BENCH_SET: unknown %s\n", name);
+        l += n;
+        l += *l == ',';
+    }
+}
+
 static render_opts base_opts(const ctx *c)
 {
     render_opts o;
@@ -134,8 +257,8 @@ static render_opts base_opts(const ctx *c)
     o.strata_m = 16;
     o.strata_n = 64;
     o.max_records = 400000;
-    o.max_radius = -1.0f;
     o.secondary_samples = c->secondary;
+    experiment_opts(&o);
     return o;
 }
 
@@ -148,8 +271,8 @@ static int reference(ctx *c, const bscene *b)
     for (k = 0; k < 2; k++) {
         char path[256], err[256];
         int rw, rh;
-        snprintf(path, sizeof path, OUT "/ref-%s-%dx%d-s%d-r%d-l%d-seed%d.exr", b->name, c->w,
-                 c->h, c->stride, c->ref_rays, c->secondary, k + 1);
+        snprintf(path, sizeof path, OUT "/ref-%s-%dx%d-s%d-o%d-r%d-l%d-seed%d.exr", b->name, c->w,
+                 c->h, c->stride, lattice_offset(c), c->ref_rays, c->secondary, k + 1);
         if (exr_read(path, &rw, &rh, &one[k], err, sizeof err) == 0 && rw == c->w && rh == c->h) {
             printf("  reference %d: %s (cached)\n", k + 1, path);
             continue;
@@ -160,6 +283,7 @@ static int reference(ctx *c, const bscene *b)
             o.mode = MODE_REFERENCE;
             o.ref_rays = c->ref_rays;
             o.stride = c->stride;
+            o.stride_offset = lattice_offset(c);
             o.seed = (uint64_t)k + 1001;
             one[k] = malloc(sizeof(float) * 3 * (size_t)n);
             if (render(c, &o, one[k], &st) < 0 ||
@@ -191,21 +315,34 @@ static int add_run(ctx *c, const char *method, double param, const render_opts *
     float *img = malloc(sizeof(float) * 3 * (size_t)c->w * c->h);
     if (!img || c->nruns == MAX_RUNS || render(c, o, img, &r->st) < 0)
         return -1;
+    if (o->stride > 1) { /* a lattice stands for the image */
+        const int s = o->stride, off = o->stride_offset;
+        const double f = (double)c->w * c->h /
+                         (double)(((c->w - off + s - 1) / s) * ((c->h - off + s - 1) / s));
+        r->st.wall *= f;
+        r->st.trace_s *= f;
+        r->st.rays = (uint64_t)((double)r->st.rays * f);
+    }
     snprintf(r->method, sizeof r->method, "%s", method);
     r->param = param;
     measure(c, img, c->ref, r);
+    if (getenv("BENCH_IMAGES"))
+        save_images(c, b, r, img);
     free(img);
     c->nruns++;
-    fprintf(csv, "%s,%s,%g,%ux%u,%.4f,%.4f,%.4f,%llu,%llu,%zu,%zu,%.5f,%.5f,%.5f,%.5f,%.5f,%d\n",
+    fprintf(csv, "%s,%s,%g,%ux%u,%.4f,%.4f,%.4f,%llu,%llu,%zu,%zu,%.5f,%.5f,%.5f,%.5f,%.5f,%d,"
+                 "%.4f,%d,%.5f\n",
             b->name, method, param, r->m, r->n, r->st.wall, r->st.trace_s, r->st.cache_s,
             (unsigned long long)r->st.rays, (unsigned long long)r->st.records,
             (size_t)r->st.records * r->st.record_bytes, r->st.cache_bytes, r->rmse, r->p99,
-            c->ref_noise, r->p999, r->maxe, r->over10);
+            c->ref_noise, r->p999, r->maxe, r->over10, r->worst1, r->leaks, r->bias);
     fflush(csv);
     printf("  %-10s %5g %4ux%-4u %7.2f s, rel RMSE %.4f, p99 %.4f, p99.9 %.4f, max %.4f, "
-           "%d px > 10%%, records %llu, cache %.1f%% of thread time\n",
+           "%d px > 10%%, worst 1%% %.0f%%, leaks %d, bias %+.2f%%, records %llu, "
+           "cache %.1f%% of thread time\n",
            method, param, r->m, r->n, r->st.wall, r->rmse, r->p99, r->p999, r->maxe, r->over10,
-           (unsigned long long)r->st.records, 100.0 * r->st.cache_s / (c->threads * r->st.wall));
+           100.0 * r->worst1, r->leaks, 100.0 * r->bias, (unsigned long long)r->st.records,
+           100.0 * r->st.cache_s / (c->threads * r->st.wall));
     return 0;
 }
 
@@ -239,7 +376,7 @@ static const char *const rule_names[NRULES] = {
     "split sphere (no gradients)", "gradient-clamped (trans + rot)", "Hessian radii, no gradients",
     "Hessian radii + trans + rot", "the same with the leak guard (the default)"};
 static const uint32_t rule_feats[NRULES] = {
-    0, IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION, IRC_FEATURE_HESSIAN,
+    IRC_FEATURE_NONE, IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION, IRC_FEATURE_HESSIAN,
     IRC_FEATURE_HESSIAN | IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION,
     IRC_FEATURE_HESSIAN | IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION};
 
@@ -260,7 +397,7 @@ static int equal_records(ctx *c, const bscene *b, int rule, double target, FILE 
         const run *r;
         o.mode = MODE_CACHE;
         o.features = rule_feats[rule];
-        o.no_leak_guard = rule != 4;
+        o.leak_guard = rule == 4 ? IRC_ON : IRC_OFF;
         o.accuracy = (float)a;
         o.strata_m = 32;
         o.strata_n = 128;
@@ -346,17 +483,28 @@ static int sweep(ctx *c, const bscene *b, FILE *csv)
     static const int brute[] = {16, 64, 256, 1024, 4096};
     static const double a_full[] = {0.4, 0.3, 0.2, 0.15, 0.1}, a_quick[] = {0.4, 0.2, 0.1};
     static const uint32_t feats[NMETHODS] = {
-        0, 0, IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION,
+        0, IRC_FEATURE_NONE, IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION,
         IRC_FEATURE_VISIBILITY | IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION,
         IRC_FEATURE_HESSIAN | IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION,
         IRC_FEATURE_SH | IRC_FEATURE_SH_GRADIENT};
-    const int nb = c->quick ? 3 : 5, na = c->quick ? 3 : 5, ng = c->quick ? 1 : 2;
+    double a_set[8];
+    const char *al = getenv("BENCH_A");
+    int nb = c->quick ? 3 : 5, na = c->quick ? 3 : 5, ng = c->quick ? 1 : 2;
     const double *as = c->quick ? a_quick : a_full;
     int i, m, g;
+    if (al && *al) { /* BENCH_A=0.4,0.2: these a at 16x64 only */
+        for (na = 0; na < 8 && al && sscanf(al, "%lf", &a_set[na]) == 1; na++)
+            if ((al = strchr(al, ',')))
+                al++;
+        as = a_set;
+        ng = 1;
+    }
     for (i = 0; i < nb && wanted("BENCH_METHODS", "brute"); i++) {
         render_opts o = base_opts(c);
         o.mode = MODE_REFERENCE;
         o.ref_rays = brute[i];
+        o.stride = b->stride ? c->stride : 0;
+        o.stride_offset = lattice_offset(c);
         if (add_run(c, "brute", o.ref_rays, &o, b, csv) < 0)
             return -1;
     }
@@ -369,6 +517,7 @@ static int sweep(ctx *c, const bscene *b, FILE *csv)
                 o.accuracy = (float)as[i];
                 o.strata_m = 16u << g;
                 o.strata_n = 64u << g;
+                experiment_opts(&o);
                 if (add_run(c, methods[m], as[i], &o, b, csv) < 0)
                     return -1;
             }
@@ -384,9 +533,9 @@ int main(int argc, char **argv)
     time_t now = time(NULL);
     size_t k;
     memset(&c, 0, sizeof c);
+    setvbuf(stdout, NULL, _IOLBF, 0);
     c.quick = argc > 1 && !strcmp(argv[1], "quick");
     c.threads = (int)sysconf(_SC_NPROCESSORS_ONLN);
-    c.stride = 4;
     clock_gettime(CLOCK_MONOTONIC, &t0);
     mkdir("build", 0777);
     mkdir(OUT, 0777);
@@ -411,7 +560,7 @@ int main(int argc, char **argv)
     }
     fprintf(csv, "scene,method,param,strata,wall_s,trace_thread_s,cache_thread_s,rays,records,"
                  "record_bytes_used,block_bytes,rel_rmse,p99_rel_err,ref_noise,p999_rel_err,max_rel_err,"
-                 "pixels_over_10pct\n");
+                 "pixels_over_10pct,worst1_share,leaks,bias\n");
     fprintf(md, "`make bench%s` on %s (%d threads), %s. One-bounce indirect light kd/pi E "
                 "only. Speedups are brute force's time to the same error over the method's, "
                 "interpolated along each curve (log-log); plots in `" OUT "/SCENE.png`.\n",
@@ -433,6 +582,7 @@ int main(int argc, char **argv)
         c.s.cam.height = c.h;
         c.nruns = 0;
         c.secondary = b->secondary;
+        c.stride = b->stride ? b->stride : 4;
         c.ref_rays = b->ref_rays ? (c.quick ? b->ref_rays / 4 : b->ref_rays)
                                  : (c.quick ? 4096 : 16384);
         printf("%s at %dx%d\n", b->name, c.w, c.h);

@@ -19,6 +19,10 @@ typedef struct bscene {
     int secondary;    /* light samples at secondary hits, every method and
                          the reference alike (0: 1) */
     int ref_rays;     /* the reference's rays a pixel (0: the default) */
+    int stride;       /* the reference's lattice (0: 4); brute force then
+                         renders that lattice only, its time scaled by the
+                         image's pixels over the lattice's (a pixel's cost
+                         does not depend on its neighbours) */
 } bscene;
 
 typedef struct run {
@@ -28,6 +32,11 @@ typedef struct run {
     render_stats st;
     double rmse, p99, p999, maxe; /* relative errors of pixels */
     int over10;                   /* pixels more than 10% off */
+    double worst1;                /* share of the squared error in the
+                                     worst 1% of pixels */
+    int leaks;                    /* pixels above the reference by more
+                                     than 25% of its mean */
+    double bias;                  /* mean over the reference's, - 1 */
 } run;
 
 typedef struct ctx {

@@ -405,7 +405,7 @@ static void cornell_rows(void)
 int main(void)
 {
     static const struct { uint32_t f; const char *name; } sets[] = {
-        {0, "none"}, {IRC_FEATURE_TRANSLATION, "trans"}, {IRC_FEATURE_ROTATION, "rot"},
+        {IRC_FEATURE_NONE, "none"}, {IRC_FEATURE_TRANSLATION, "trans"}, {IRC_FEATURE_ROTATION, "rot"},
         {IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION, "trans+rot"},
         {IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION | IRC_FEATURE_HESSIAN, "trans+rot+hess"}};
     const size_t nsets = sizeof sets / sizeof sets[0];
@@ -444,7 +444,7 @@ int main(void)
          * L = 3 SH record with gradients over one without. */
         printf("gradient_cost_over_bare,trans+rot,,,%ux%u,%.3f,x\n", strata[k][0],
                strata[k][1],
-               cost_ratio(0, IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION, strata[k][0],
+               cost_ratio(IRC_FEATURE_NONE, IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION, strata[k][0],
                           strata[k][1]));
         printf("gradient_cost_over_bare,sh L=3,,,%ux%u,%.3f,x\n", strata[k][0], strata[k][1],
                cost_ratio(IRC_FEATURE_SH, IRC_FEATURE_SH | IRC_FEATURE_SH_GRADIENT,

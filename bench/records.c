@@ -35,7 +35,7 @@ static double sum_of(const float *v, size_t n)
 int main(int argc, char **argv)
 {
     static const struct { const char *name; uint32_t f; } kinds[] = {
-        {"bare", 0u},
+        {"bare", IRC_FEATURE_NONE},
         {"trans", IRC_FEATURE_TRANSLATION},
         {"rot", IRC_FEATURE_ROTATION},
         {"both", IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION},

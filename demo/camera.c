@@ -50,6 +50,19 @@ void camera_ray_at(const cam_frame *cf, const camera *c, float x, float y, float
         d[i] /= l;
 }
 
+float camera_footprint(const cam_frame *cf, const camera *c, const float d[3], float t,
+                       const float n[3])
+{
+    /* a pixel is 2 ty / H wide on the image plane at distance 1 along f;
+     * its solid angle is that squared times (d.f)^3 */
+    const float s0 = 2.0f * cf->ty / (float)c->height;
+    float df = d[0] * cf->f[0] + d[1] * cf->f[1] + d[2] * cf->f[2];
+    float dn = fabsf(d[0] * n[0] + d[1] * n[1] + d[2] * n[2]);
+    if (dn < 0.05f)
+        dn = 0.05f;
+    return s0 * t * df * sqrtf(df / dn);
+}
+
 /* The point the cache sees for a surface: lifted off it so that hemisphere
  * rays start clear of it. */
 void cache_point(const surface *sf, float p[3])

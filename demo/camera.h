@@ -18,6 +18,12 @@ void camera_ray(const cam_frame *cf, const camera *c, int x, int y, float d[3]);
 /* The same through any point (x, y) of the image plane, in pixels from
  * its top-left corner (a pixel's centre is at + 0.5). */
 void camera_ray_at(const cam_frame *cf, const camera *c, float x, float y, float d[3]);
+/* The width of pixel (x, y)'s footprint on a surface of normal n hit at
+ * distance t along the pixel's direction d: the square root of the area
+ * the pixel's cone cuts from the surface's plane (pbrt's sqrt(|dp/dx x
+ * dp/dy|)); grazing surfaces count as 1/20 of facing ones at most. */
+float camera_footprint(const cam_frame *cf, const camera *c, const float d[3], float t,
+                       const float n[3]);
 /* The point the cache sees for a surface: lifted off it along the
  * geometric normal so that hemisphere rays start clear of it. */
 void cache_point(const surface *sf, float p[3]);

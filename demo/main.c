@@ -15,7 +15,8 @@
 
 static const char usage[] =
     "usage: irc_demo SCENE [options]\n"
-    "  --cache                 irradiance from the cache (the default)\n"
+    "  --cache                 irradiance from the cache (the default); every\n"
+    "                          cache setting not given is the library's default\n"
     "  --reference N           brute force: N hemisphere rays per shading point\n"
     "  --features LIST         cache gradients: none, trans, rot, trans,rot (default),\n"
     "                          any of these + \",hess\" (Hessian radii),\n"
@@ -25,9 +26,13 @@ static const char usage[] =
     "  --strata MxN            cache hemisphere strata (default 16x64)\n"
     "  --records N             cache capacity (default 200000; CLOCK eviction)\n"
     "  --min-radius R          cache minimum radius (scene units, default 0)\n"
-    "  --no-leak-guard         records keep no leak guard (irc_config.no_leak_guard)\n"
-    "  --max-radius R          cache maximum radius (default 0.1 x the diagonal of\n"
-    "                          what the camera sees; 0: no bound)\n"
+    "  --leak-guard            records keep a leak guard (irc_config.leak_guard)\n"
+    "  --no-clamp              no neighbour clamping (irc_config.clamp_neighbours)\n"
+    "  --pixels MIN,MAX        a record's reach in pixels (default 2.5,15; -1: no\n"
+    "                          bound on that side)\n"
+    "  --no-footprint          records ignore the pixel (the plain lookup-or-compute)\n"
+    "  --max-radius R          cache maximum radius (default 0: none; -1: 0.1 x the\n"
+    "                          diagonal of what the camera sees)\n"
     "  --threads T             render threads (default: the machine's cores)\n"
     "  --tiles K --tile I      render only the I-th of K bands of rows (0-based)\n"
     "  --save-cache F          after rendering, write the cache's records to F\n"
@@ -95,11 +100,11 @@ static int parse_features(const char *s, uint32_t *f)
         base[len - 5] = '\0';
         if (!strcmp(base, "hess") || !parse_features(base, f) || (*f & IRC_FEATURE_SH))
             return 0;
-        *f |= IRC_FEATURE_HESSIAN;
+        *f = (*f & ~(uint32_t)IRC_FEATURE_NONE) | IRC_FEATURE_HESSIAN;
         return 1;
     }
     if (!strcmp(s, "hess")) { *f = IRC_FEATURE_HESSIAN; return 1; }
-    if (!strcmp(s, "none")) *f = 0;
+    if (!strcmp(s, "none")) *f = IRC_FEATURE_NONE;
     else if (!strcmp(s, "trans")) *f = IRC_FEATURE_TRANSLATION;
     else if (!strcmp(s, "rot")) *f = IRC_FEATURE_ROTATION;
     else if (!strcmp(s, "trans,rot") || !strcmp(s, "rot,trans"))
@@ -136,7 +141,10 @@ static int parse_args(int argc, char **argv, cli *c)
         else if (!strcmp(a, "--threads")) { NEED(parse_uint(n, 1, 64, &v)); c->o.threads = (int)v; }
         else if (!strcmp(a, "--size")) NEED(sscanf(n, "%dx%d", &c->width, &c->height) == 2 && c->width > 0 && c->height > 0 && c->width <= 16384 && c->height <= 16384);
         else if (!strcmp(a, "--indirect")) c->o.show = SHOW_INDIRECT;
-        else if (!strcmp(a, "--no-leak-guard")) c->o.no_leak_guard = 1;
+        else if (!strcmp(a, "--leak-guard")) c->o.leak_guard = IRC_ON;
+        else if (!strcmp(a, "--no-clamp")) c->o.clamp_neighbours = IRC_OFF;
+        else if (!strcmp(a, "--no-footprint")) c->o.no_footprint = 1;
+        else if (!strcmp(a, "--pixels")) NEED(sscanf(n, "%f,%f", &c->o.min_pixels, &c->o.max_pixels) == 2);
         else if (!strcmp(a, "--free-fill")) c->o.free_fill = 1;
         else if (!strcmp(a, "--tiles")) { NEED(parse_uint(n, 1, 65536, &v)); c->o.tiles = (int)v; }
         else if (!strcmp(a, "--tile")) { NEED(parse_uint(n, 0, 65535, &v)); c->o.tile = (int)v; }
@@ -204,17 +212,34 @@ static float *read_points(const char *path, int *count)
     return pts ? pts : calloc(1, sizeof(float));
 }
 
+/* What the cache's records carry, as --features names it. */
+static const char *features_name(uint32_t f)
+{
+    static const char *const irr[8] = {"no gradients", "trans", "rot", "trans+rot",
+                                       "hess",         "trans+hess", "rot+hess", "trans+rot+hess"};
+    if (f == 0)
+        return "trans+rot (the library's default)";
+    if (f & IRC_FEATURE_SH)
+        return f & IRC_FEATURE_SH_GRADIENT ? "SH+gradient" : "SH";
+    if (f & IRC_FEATURE_VISIBILITY)
+        return f & IRC_FEATURE_HESSIAN ? (f & IRC_FEATURE_ROTATION ? "vis+rot+hess" : "vis+hess")
+                                       : (f & IRC_FEATURE_ROTATION ? "vis+rot" : "vis");
+    return irr[(f & 3u) | ((f & IRC_FEATURE_HESSIAN) ? 4u : 0u)];
+}
+
 static void report(FILE *f, const cli *c, const renderer *r, const render_stats *st)
 {
     double busy = st->trace_s + st->cache_s;
     fprintf(f, "%s: %s", c->scene, c->o.mode == MODE_CACHE ? "cache" : "reference");
-    if (c->o.mode == MODE_CACHE)
-        fprintf(f, " (%s, a = %g, %ux%u strata, max radius %g)",
-                (c->o.features & IRC_FEATURE_SH) ? (c->o.features & IRC_FEATURE_SH_GRADIENT ? "SH+gradient" : "SH")
-                : (c->o.features & IRC_FEATURE_VISIBILITY) ? (c->o.features & 2 ? "vis+rot" : "vis")
-                : c->o.features == 3 ? "trans+rot" : c->o.features == 1 ? "trans"
-                : c->o.features == 2 ? "rot" : "no gradients",
-                c->o.accuracy, c->o.strata_m, c->o.strata_n, r->o.max_radius);
+    if (c->o.mode == MODE_CACHE) { /* 0: the library's default */
+        char a[32] = "default", strata[32] = "default";
+        if (c->o.accuracy > 0.0f)
+            snprintf(a, sizeof a, "%g", c->o.accuracy);
+        if (c->o.strata_m)
+            snprintf(strata, sizeof strata, "%ux%u", c->o.strata_m, c->o.strata_n);
+        fprintf(f, " (%s, a %s, strata %s, max radius %g)", features_name(c->o.features), a,
+                strata, r->o.max_radius);
+    }
     else
         fprintf(f, " (%d rays per shading point)", c->o.ref_rays);
     fprintf(f, "\n  wall %.2f s; host ray casting %.2f thread-s, cache %.3f thread-s (%.2f%% of both)\n",

@@ -135,12 +135,7 @@ void render_opts_defaults(render_opts *o)
 {
     memset(o, 0, sizeof *o);
     o->mode = MODE_CACHE;
-    o->features = IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION;
-    o->accuracy = 0.2f;
-    o->strata_m = 16;
-    o->strata_n = 64;
     o->max_records = 200000;
-    o->max_radius = -1.0f;
     o->light_samples = 16;
     o->seed = 1;
     o->threads = 1;
@@ -169,7 +164,10 @@ int renderer_init(renderer *r, const scene *s, const render_opts *o, char *err, 
         cfg.strata_theta = o->strata_m;
         cfg.strata_phi = o->strata_n;
         cfg.min_radius = o->min_radius;
-        cfg.no_leak_guard = (uint32_t)o->no_leak_guard;
+        cfg.min_pixels = o->min_pixels;
+        cfg.max_pixels = o->max_pixels;
+        cfg.leak_guard = (uint32_t)o->leak_guard;
+        cfg.clamp_neighbours = (uint32_t)o->clamp_neighbours;
         cfg.max_radius = o->max_radius;
         if (o->max_radius < 0.0f)
             cfg.max_radius = r->o.max_radius = visible_size(r);
@@ -245,8 +243,10 @@ static void reference_e(const renderer *r, const float p[3], const float n[3], u
 }
 
 /* Indirect irradiance at a surface, from the cache or by brute force;
- * sh gets the SH record it came from (sh->bands 0: none). */
-static int irradiance(renderer *r, const float p[3], const float n[3], uint64_t key,
+ * sh gets the SH record it came from (sh->bands 0: none).  fp: the
+ * pixel's footprint there (0: no pixel), which bounds new records' reach
+ * in pixels (irc_cache_lookup_or_compute_px). */
+static int irradiance(renderer *r, const float p[3], const float n[3], float fp, uint64_t key,
                       float e[3], irc_sh *sh, tstate *ts)
 {
     sh->bands = 0;
@@ -267,7 +267,8 @@ static int irradiance(renderer *r, const float p[3], const float n[3], uint64_t 
                 ts->dropped++;
             }
         } else {
-            st = irc_cache_lookup_or_compute(r->cache, p, n, e, NULL, ts);
+            st = irc_cache_lookup_or_compute_px(r->cache, p, n, r->o.no_footprint ? 0.0f : fp,
+                                                e, NULL, ts);
         }
         ts->cache_s += (render_clock() - t0) - (ts->trace_s - tr0);
         return st < 0 ? st : 0;
@@ -340,7 +341,8 @@ static int shade_pixel(renderer *r, const cam_frame *cf, int x, int y, float out
     }
     surface_at(r->s, cf->eye, d, &bh, &sf);
     cache_point(&sf, p);
-    if ((st = irradiance(r, p, sf.nsm, key, e, &sh, ts)) < 0)
+    if ((st = irradiance(r, p, sf.nsm, camera_footprint(cf, c, d, bh.t, sf.ng), key, e, &sh,
+                         ts)) < 0)
         return st;
     for (i = 0; i < 3; i++)
         out[i] = sf.m->kd[i] / (float)PI * e[i];
@@ -412,6 +414,7 @@ static int shade_pass(job *j, tstate *ts, int id)
 {
     const camera *c = &j->r->s->cam;
     const int step = j->r->o.stride > 1 ? j->r->o.stride : 1, period = 1 << j->bits;
+    const int off = step > 1 ? j->r->o.stride_offset : 0;
     const int k = j->r->o.tiles > 1 ? j->r->o.tiles : 1, t = j->r->o.tile;
     const int y0 = (int)((long)c->height * t / k), y1 = (int)((long)c->height * (t + 1) / k);
     int ox, oy, nx, ny, m, st;
@@ -424,7 +427,7 @@ static int shade_pass(job *j, tstate *ts, int id)
             int x = ox + period * (m % nx), y = oy + period * (m / nx);
             if (__atomic_load_n(&j->error, __ATOMIC_RELAXED))
                 return 0;
-            if (x % step || y % step || y < y0 || y >= y1)
+            if ((x - off) % step || (y - off) % step || x < off || y < off || y < y0 || y >= y1)
                 continue;
             st = shade_pixel(j->r, &j->cf, x, y, &j->rgb[((size_t)y * c->width + x) * 3], ts);
             if (st < 0)
@@ -549,7 +552,7 @@ int render_points(renderer *r, const float *pn, int n, float *rgb, render_stats 
         const float *p = &pn[6 * i], *nn = &pn[6 * i + 3];
         uint64_t key = hash64(r->o.seed ^ (uint64_t)i);
         irc_sh sh;
-        if ((e = irradiance(r, p, nn, key, &rgb[3 * i], &sh, &ts)) < 0)
+        if ((e = irradiance(r, p, nn, 0.0f, key, &rgb[3 * i], &sh, &ts)) < 0)
             return e;
     }
     collect(r, &ts, 1, render_clock() - t0, st);

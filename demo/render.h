@@ -28,8 +28,13 @@ typedef struct render_opts {
     uint32_t strata_m, strata_n;
     uint32_t max_records;
     float min_radius, max_radius; /* max < 0: 0.1 x the diagonal of what
-                                     the camera sees */
-    int no_leak_guard;    /* cache: irc_config.no_leak_guard */
+                                     the camera sees; 0: the library's */
+    int leak_guard;       /* cache: irc_config.leak_guard (an irc_switch) */
+    float min_pixels, max_pixels; /* cache: irc_config's screen-space bounds
+                                     on records made for camera rays */
+    int clamp_neighbours; /* cache: irc_config.clamp_neighbours (an irc_switch) */
+    int no_footprint;     /* cache: records ignore the pixel's footprint
+                             (the plain lookup-or-compute call) */
     int threads;
     int show;             /* SHOW_FULL or SHOW_INDIRECT (kd/pi E only) */
     int light_samples;    /* at the camera ray's hit */
@@ -47,6 +52,7 @@ typedef struct render_opts {
     int stride;           /* > 1: shade only pixels whose x and y are
                              multiples of it (the rest stay 0), as for a
                              reference on a lattice */
+    int stride_offset;    /* ... plus this (0 <= offset < stride) */
     int tiles, tile;      /* tiles > 1: render only rows [tile H / tiles,
                              (tile + 1) H / tiles) (a farm job's share) */
     int frozen;           /* cache: add no records; a miss computes one,
@@ -81,9 +87,9 @@ typedef struct renderer {
     void *block;
 } renderer;
 
-/* irc_demo's defaults: the cache with both gradients, a = 0.2, 16 x 64
- * strata, 200,000 records, max_radius from the view, 16 light samples,
- * seed 1, one thread, deterministic fill passes; the rest 0. */
+/* irc_demo's defaults: the cache with the library's defaults (every cache
+ * field 0), 200,000 records, 16 light samples, seed 1, one thread,
+ * deterministic fill passes; the rest 0. */
 void render_opts_defaults(render_opts *o);
 
 int renderer_init(renderer *r, const scene *s, const render_opts *o, char *err, size_t n);

@@ -39,7 +39,7 @@ static void per_record(const char *name, uint32_t features)
 int main(void)
 {
     printf("  block bytes a record (%u-bit size_t)\n", (unsigned)(8 * sizeof(size_t)));
-    per_record("bare", 0);
+    per_record("bare", IRC_FEATURE_NONE);
     per_record("trans", IRC_FEATURE_TRANSLATION);
     per_record("trans + rot", IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION);
     per_record("trans + rot + Hessian",

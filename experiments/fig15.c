@@ -94,7 +94,7 @@ int main(int argc, char **argv)
     uint32_t m = argc > 5 ? (uint32_t)atoi(argv[4]) : 32, n = argc > 5 ? (uint32_t)atoi(argv[5]) : 128;
     static irc_record rec[3][GRID][GRID];
     static const char *names[3] = {"linear", "Krivanek gradients", "visibility gradients"};
-    static const uint32_t feats[3] = {0, IRC_FEATURE_TRANSLATION, IRC_FEATURE_VISIBILITY};
+    static const uint32_t feats[3] = {IRC_FEATURE_NONE, IRC_FEATURE_TRANSLATION, IRC_FEATURE_VISIBILITY};
     scene s;
     renderer rr;
     render_opts o;

@@ -71,15 +71,15 @@ static void read_config(fuzz_in *in, irc_config *cfg, host *h, uint32_t *cap)
     memset(cfg, 0, sizeof *cfg);
     cfg->trace = trace;
     cfg->context = h;
-    cfg->features = fz_u8(in) & 63u;
+    cfg->features = fz_u8(in) & 127u;
     cfg->accuracy = fz_float(in);
     cfg->min_radius = fz_u8(in) & 1 ? fz_float(in) : 0.0f;
     cfg->max_radius = fz_u8(in) & 1 ? fz_float(in) : 0.0f;
     k = fz_u8(in);
     cfg->min_pixels = k & 1 ? fz_float(in) : 0.0f;
     cfg->max_pixels = k & 2 ? fz_float(in) : 0.0f;
-    cfg->no_leak_guard = (uint32_t)(k >> 2) % 3u;
-    cfg->clamp_neighbours = (uint32_t)(k >> 4) & 1u;
+    cfg->leak_guard = (uint32_t)(k >> 2) % 4u;
+    cfg->clamp_neighbours = (uint32_t)(k >> 4) & 3u;
     cfg->strata_theta = strata[s & 7][0];
     cfg->strata_phi = strata[s & 7][1];
     cfg->max_batch = (uint32_t)(fz_u8(in) % 70);

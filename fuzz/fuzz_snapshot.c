@@ -50,7 +50,7 @@ static void config(uint8_t pick, irc_config *cfg)
     cfg->trace = no_trace;
     cfg->port = &irc_port_none;
     cfg->features = feats[pick & 3];
-    cfg->no_leak_guard = (pick & 3) == 0;
+    cfg->leak_guard = (pick & 3) != 0 ? IRC_ON : IRC_OFF;
     cfg->strata_theta = 4;
     cfg->strata_phi = 8;
     if (cfg->features & IRC_FEATURE_SH) {

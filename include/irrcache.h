@@ -40,13 +40,13 @@
  *
  * Quick start (examples/minimal.c is a complete host):
  *
- *   irc_config cfg = {0};
+ *   irc_config cfg = {0};             (zero: the measured defaults)
  *   cfg.trace = my_trace; cfg.context = my_scene;
- *   cfg.features = IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION;
  *   size_t bytes; irc_footprint(&cfg, 100000, &bytes);
  *   cfg.buffer = my_block; cfg.buffer_size = bytes;
  *   irc_cache *c; irc_init(&cfg, 100000, &c);
- *   ... irc_cache_lookup_or_compute(c, p, n, rgb, NULL, my_thread_state); ...
+ *   ... at a camera ray's hit, with the pixel's footprint there:
+ *   irc_cache_lookup_or_compute_px(c, p, n, footprint, rgb, NULL, my_thread_state);
  *   irc_fini(c);
  *
  * All vectors are float[3] in the host's world space.  Units of length are
@@ -304,7 +304,7 @@ enum irc_feature {
                                           coefficients' translational
                                           gradients (SH-gradient paper, Eq.
                                           6-12), from the same rays: implies SH */
-    IRC_FEATURE_HESSIAN = 1u << 5      /* irradiance records: the
+    IRC_FEATURE_HESSIAN = 1u << 5,     /* irradiance records: the
                                           occlusion-aware Hessian of E from
                                           the rays already cast (Schwarzhaupt
                                           et al. 2012), in irc_record.hessian,
@@ -322,6 +322,18 @@ enum irc_feature {
                                           sphere still bounds them.  No extra
                                           rays, 24 scratch bytes a stratum,
                                           8 record bytes (the ellipse) */
+    IRC_FEATURE_NONE = 1u << 6         /* no gradients: bare records with
+                                          Ward's split-sphere radius; only
+                                          alone (features = 0 means the
+                                          default, TRANSLATION | ROTATION) */
+};
+
+/* Settings that are on or off: 0 is the setting's default, which its
+ * field names; IRC_ON and IRC_OFF say which the host wants. */
+enum irc_switch {
+    IRC_DEFAULT = 0,
+    IRC_ON = 1,
+    IRC_OFF = 2
 };
 
 /* What insert does when the record pool is full. */
@@ -339,8 +351,8 @@ typedef struct irc_config {
     uint32_t max_batch;      /* rays per trace call, 1..4096 (default 1, one
                                 ray per call; larger values serve packet
                                 tracers and cost 56 bytes per ray and thread) */
-    uint32_t features;       /* IRC_FEATURE_* bits (default 0: no gradients,
-                                Ward's split-sphere radius only) */
+    uint32_t features;       /* IRC_FEATURE_* bits (default 0: TRANSLATION |
+                                ROTATION; IRC_FEATURE_NONE for bare records) */
     float accuracy;          /* Ward's a: a record counts at p when
                                 |p-p_i|/R_i + sqrt(1-n.n_i) < a; (0, 10]
                                 (default 0.2) */
@@ -353,14 +365,19 @@ typedef struct irc_config {
                                 the default, such a record has the
                                 smallest radius and serves only its own
                                 point: set max_radius for open scenes) */
-    float min_pixels;        /* screen-space bounds (pbrt's and Mitsuba's
-                                min/max pixel spacing): a record computed by
+    float min_pixels;        /* screen-space bounds on a record's reach a R
+                                (pbrt-v2's minimum and maximum pixel
+                                spacing): a record computed by
                                 irc_cache_lookup_or_compute_px with a
-                                footprint f > 0 gets R_i in [min_pixels f,
-                                max_pixels f], then [min_radius,
-                                max_radius]; finite, >= 0, 0 = that side
-                                unbounded, max_pixels >= min_pixels when both
-                                are set (default 0, 0) */
+                                footprint f > 0 gets a R in [min_pixels f,
+                                max_pixels f], then R in [min_radius,
+                                max_radius]; one whose rays all escaped
+                                gets max_pixels f.  Finite; 0 the default
+                                (2.5 and 15: on the Sponza atrium the
+                                cache's time to equal error fell 2.4x),
+                                negative: that side unbounded; max_pixels
+                                >= min_pixels (a default max_pixels is at
+                                least min_pixels) */
     float max_pixels;        /* see min_pixels */
     uint32_t strata_theta;   /* M rows in theta, 1..1024 (default 16) */
     uint32_t strata_phi;     /* N columns in phi, 1..4096 (default 64);
@@ -378,14 +395,21 @@ typedef struct irc_config {
                                 waiting (default 0: wait through the port's
                                 yield) */
     uint32_t evict;          /* an irc_evict (default IRC_EVICT_NONE) */
-    uint32_t clamp_neighbours; /* 1: neighbour clamping (Krivanek et al.
-                                2006) at every insert: the new record's
-                                radius is at most R_j + |x - x_j| over the
-                                records j within it, and those are clamped
-                                back to R + |x - x_j| (default 0: off) */
-    uint32_t no_leak_guard;  /* 1: irradiance records keep no leak guard
-                                (irc_record.leak_guard) and save its 8
-                                bytes; default 0: the guard is on */
+    uint32_t clamp_neighbours; /* an irc_switch: neighbour clamping
+                                (Krivanek et al. 2006) at every insert: the
+                                new record's radius is at most R_j + |x -
+                                x_j| over the records j within it, and
+                                those are clamped back to R + |x - x_j|.
+                                Default: on for irradiance records (on the
+                                Sponza atrium it cut the worst pixel 4x and
+                                the pixels that leak 3x for 1.5x the
+                                records), off for SH records */
+    uint32_t leak_guard;     /* an irc_switch: irradiance records keep a
+                                leak guard (irc_record.leak_guard, 8 bytes)
+                                against light through thin walls between
+                                spaces lit differently.  Default off: on
+                                the Sponza atrium it made 1.7x the records
+                                for the same error */
     uint32_t sh_bands;       /* SH records: L, bands 0..L-1, L*L coefficients
                                 per channel; 1..IRC_SH_MAX_BANDS (default 3) */
     uint32_t sh_channels;    /* SH records: 3 (RGB, default) or 1 (the hit's
@@ -537,10 +561,11 @@ typedef struct irc_record {
                             E/|grad E| per channel (with TRANSLATION and
                             without HESSIAN), the Hessian's radius along
                             axis (with HESSIAN, see there), then clamped to
-                            [min_pixels, max_pixels] x the footprint
+                            [min_pixels, max_pixels] x the footprint / a
                             (irc_cache_lookup_or_compute_px) and to
-                            [min_radius, max_radius]; max_radius, or else
-                            the smallest float, when no ray hit */
+                            [min_radius, max_radius]; when no ray hit,
+                            max_pixels x the footprint / a, else
+                            max_radius, else the smallest float */
     float minor_radius;  /* the reach across axis, in (0, radius]; 0 in a
                             record a host builds means radius (a disk).
                             Only caches with HESSIAN store ellipses;
@@ -583,7 +608,7 @@ typedef struct irc_record {
                             centres, exceeds 1 (a straight wall's inverse
                             distance is a cosine; v = 15 counts as 1/30).
                             Set by compute; a host's record may carry 0
-                            (no guard).  Stored unless cfg.no_leak_guard
+                            (no guard).  Stored when cfg.leak_guard is IRC_ON
                             (8 bytes) */
     uint32_t features;   /* which gradients are valid */
     uint32_t rays;       /* rays cast, and how many were usable: */
@@ -686,12 +711,17 @@ IRC_API int irc_cache_lookup_or_compute(irc_cache *cache, const float p[3],
                                         void *host);
 
 /*
- * irc_cache_lookup_or_compute with a screen-space bound: footprint is the
- * width, in the host's length unit, of one pixel at p (from ray
- * differentials, or distance x pixel angle), and a record computed here
- * gets a radius in [cfg.min_pixels, cfg.max_pixels] x footprint before the
- * world bounds [min_radius, max_radius] (its gradient is then limited to
- * that radius, as always).  footprint 0 is the plain call.  A host that
+ * irc_cache_lookup_or_compute with a screen-space bound: the recommended
+ * call for a renderer's camera-ray hits.  footprint is the width, in the
+ * host's length unit, of one pixel at p: the square root of the area a
+ * pixel covers on the surface (pbrt's sqrt(|dp/dx x dp/dy|) from ray
+ * differentials; for a pinhole camera about distance x pixel angle /
+ * sqrt(|cos|) of the surface to the ray).  A record computed here gets a
+ * reach a R in [cfg.min_pixels, cfg.max_pixels] x footprint (by default
+ * 2.5 to 15 pixels) before the world bounds [min_radius, max_radius] (its
+ * gradient is then limited to that radius, as always); so an open scene
+ * needs no max_radius, and the records a frame makes are bounded by its
+ * pixels.  footprint 0 is the plain call (no pixel bound).  A host that
  * computes with irc_record_compute and inserts itself sets the radius
  * (and minor_radius) of the record the same way before irc_cache_insert.
  * Returns as irc_cache_lookup_or_compute; IRC_ERR_RANGE (nothing done)

@@ -9,6 +9,10 @@
 #define IRC__DEF_PHI 64u
 #define IRC__DEF_BANDS 3u
 #define IRC__DEF_POWER 2.0f
+/* A record's reach a R in pixels at its point, from the _px call's
+ * footprint (pbrt-v2's minimum and maximum pixel spacings). */
+#define IRC__DEF_MIN_PIXELS 2.5f
+#define IRC__DEF_MAX_PIXELS 15.0f
 #define IRC__LOCK_MAX 4096u
 
 int irc__port_ok(const irc_port *p)
@@ -42,6 +46,12 @@ static int irc__features_resolve(irc_config *out)
     const uint32_t irr = IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION |
                          IRC_FEATURE_VISIBILITY | IRC_FEATURE_HESSIAN;
     const uint32_t sh = IRC_FEATURE_SH | IRC_FEATURE_SH_GRADIENT;
+    /* Zero is the default, both gradients (every measured scene paid for
+     * them); bare records are asked for by name, alone. */
+    if (out->features == 0u)
+        out->features = IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION;
+    else if (out->features == IRC_FEATURE_NONE)
+        out->features = 0u;
     if (out->features & ~(irr | sh))
         return IRC_ERR_CONFIG;
     if (irc__features_built(out->features) < 0)
@@ -76,9 +86,18 @@ static int irc__radii_resolve(irc_config *out)
     if (!(out->min_radius >= 0.0f && out->min_radius < IRC__CAP) ||
         !(out->max_radius > out->min_radius && out->max_radius <= IRC__CAP))
         return IRC_ERR_CONFIG;
-    if (!(out->min_pixels >= 0.0f && out->min_pixels < IRC__CAP) ||
-        !(out->max_pixels >= 0.0f && out->max_pixels < IRC__CAP) ||
-        (out->max_pixels > 0.0f && out->max_pixels < out->min_pixels))
+    /* Pixel bounds: 0 the default, negative none (stored as 0); a default
+     * maximum never falls below the host's minimum. */
+    if (!(out->min_pixels > -IRC__CAP && out->min_pixels < IRC__CAP) ||
+        !(out->max_pixels > -IRC__CAP && out->max_pixels < IRC__CAP))
+        return IRC_ERR_CONFIG;
+    if (out->min_pixels == 0.0f) out->min_pixels = IRC__DEF_MIN_PIXELS;
+    if (out->max_pixels == 0.0f)
+        out->max_pixels = out->min_pixels > IRC__DEF_MAX_PIXELS ? out->min_pixels
+                                                                  : IRC__DEF_MAX_PIXELS;
+    if (out->min_pixels < 0.0f) out->min_pixels = 0.0f;
+    if (out->max_pixels < 0.0f) out->max_pixels = 0.0f;
+    if (out->max_pixels > 0.0f && out->max_pixels < out->min_pixels)
         return IRC_ERR_CONFIG;
     return IRC_OK;
 }
@@ -96,9 +115,22 @@ static int irc__sampling_resolve(irc_config *out)
     if (out->max_batch > out->strata_theta * out->strata_phi)
         out->max_batch = out->strata_theta * out->strata_phi;
     if (out->threads == 0) out->threads = 1;
-    if (out->threads > IRC_MAX_THREADS || out->no_wait > 1u || out->clamp_neighbours > 1u ||
-        out->no_leak_guard > 1u)
+    if (out->threads > IRC_MAX_THREADS || out->no_wait > 1u)
         return IRC_ERR_CONFIG;
+    return IRC_OK;
+}
+
+/* The irc_switch fields, resolved to 0 (off) or 1 (on): neighbour
+ * clamping paid for irradiance records on the real scenes and was never
+ * measured for SH ones; the leak guard paid only between rooms. */
+static int irc__switches_resolve(irc_config *out)
+{
+    if (out->clamp_neighbours > IRC_OFF || out->leak_guard > IRC_OFF)
+        return IRC_ERR_CONFIG;
+    if (out->clamp_neighbours == IRC_DEFAULT)
+        out->clamp_neighbours = (out->features & IRC_FEATURE_SH) ? IRC_OFF : IRC_ON;
+    out->clamp_neighbours = out->clamp_neighbours == IRC_ON;
+    out->leak_guard = out->leak_guard == IRC_ON;
     return IRC_OK;
 }
 
@@ -112,7 +144,7 @@ int irc__config_resolve(const irc_config *in, irc_config *out)
     if (!out->trace)
         return IRC_ERR_NULL;
     if ((st = irc__features_resolve(out)) < 0 || (st = irc__radii_resolve(out)) < 0 ||
-        (st = irc__sampling_resolve(out)) < 0)
+        (st = irc__sampling_resolve(out)) < 0 || (st = irc__switches_resolve(out)) < 0)
         return st;
     if (out->accuracy == 0.0f)
         out->accuracy = IRC__DEF_ACCURACY;

@@ -239,10 +239,17 @@ static void irc__radii(const irc_cache *c, const irc__sample *s, const float n[3
 #else
     (void)s; (void)n; (void)t1; (void)t2; (void)far;
 #endif
+    /* The pixel bounds hold the reach a R, as pbrt-v2's spacings hold a
+     * record's extent: records then lie 2.5-15 pixels apart whatever a.  A
+     * record that saw nothing (every ray escaped: open sky) is as wide as
+     * they allow. */
+    fp /= c->cfg.accuracy;
+    if (rad[0] == 0.0f && fp > 0.0f && c->cfg.max_pixels > 0.0f)
+        rad[0] = rad[1] = IRC__CAP;
     for (k = 0; k < 2; k++) {
-        if (rad[k] < (float)c->cfg.min_pixels * fp) rad[k] = (float)c->cfg.min_pixels * fp;
-        if (c->cfg.max_pixels > 0.0f && fp > 0.0f && rad[k] > (float)c->cfg.max_pixels * fp)
-            rad[k] = (float)c->cfg.max_pixels * fp;
+        if (rad[k] < c->cfg.min_pixels * fp) rad[k] = c->cfg.min_pixels * fp;
+        if (c->cfg.max_pixels > 0.0f && fp > 0.0f && rad[k] > c->cfg.max_pixels * fp)
+            rad[k] = c->cfg.max_pixels * fp;
         if (rad[k] < c->cfg.min_radius) rad[k] = c->cfg.min_radius;
         if (rad[k] > c->cfg.max_radius) rad[k] = c->cfg.max_radius;
         if (rad[k] < FLT_MIN) rad[k] = FLT_MIN;

@@ -55,7 +55,7 @@ static void irc__record_layout(const irc_config *cfg, irc__layout *l)
         l->off_a = l->rec_size;
         l->rec_size += (uint32_t)sizeof(irc__aniso);
     }
-    if (!(cfg->features & IRC_FEATURE_SH) && !cfg->no_leak_guard) {
+    if (!(cfg->features & IRC_FEATURE_SH) && cfg->leak_guard) {
         l->off_g = l->rec_size;
         l->rec_size += (uint32_t)sizeof(uint64_t);
     }

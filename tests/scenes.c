@@ -266,7 +266,11 @@ irc_config scene_config(tscene *s, uint32_t features, uint32_t m, uint32_t n)
     memset(&cfg, 0, sizeof cfg);
     cfg.trace = scene_trace;
     cfg.context = s;
-    cfg.features = features;
+    /* 0: bare records, and records keep the radii they are given or
+     * computed with: what the closed forms here are for (the library's own
+     * defaults, both gradients and neighbour clamping, are test_defaults') */
+    cfg.features = features ? features : IRC_FEATURE_NONE;
+    cfg.clamp_neighbours = IRC_OFF;
     cfg.strata_theta = m;
     cfg.strata_phi = n;
     return cfg;

@@ -53,14 +53,19 @@ TEST(test_config_checks)
     CASE(cfg.accuracy = NAN, IRC_ERR_CONFIG);
     CASE(cfg.min_radius = -1.0f, IRC_ERR_CONFIG);
     CASE((cfg.min_radius = 2.0f, cfg.max_radius = 1.0f), IRC_ERR_CONFIG);
-    CASE(cfg.min_pixels = -1.0f, IRC_ERR_CONFIG);
+    CASE(cfg.min_pixels = -1.0f, IRC_OK); /* no lower bound */
+    CASE(cfg.max_pixels = -INFINITY, IRC_ERR_CONFIG);
+    CASE((cfg.min_pixels = 40.0f, cfg.max_pixels = 0.0f), IRC_OK); /* max defaults to 40 */
     CASE(cfg.max_pixels = NAN, IRC_ERR_CONFIG);
     CASE(cfg.min_pixels = INFINITY, IRC_ERR_CONFIG);
     CASE((cfg.min_pixels = 4.0f, cfg.max_pixels = 2.0f), IRC_ERR_CONFIG);
     CASE((cfg.min_pixels = 4.0f, cfg.max_pixels = 0.0f), IRC_OK);
     CASE((cfg.min_pixels = 2.5f, cfg.max_pixels = 15.0f), IRC_OK);
-    CASE(cfg.no_leak_guard = 2, IRC_ERR_CONFIG);
-    CASE(cfg.no_leak_guard = 1, IRC_OK);
+    CASE(cfg.leak_guard = 3, IRC_ERR_CONFIG);
+    CASE(cfg.leak_guard = IRC_ON, IRC_OK);
+    CASE(cfg.leak_guard = IRC_OFF, IRC_OK);
+    CASE(cfg.clamp_neighbours = 3, IRC_ERR_CONFIG);
+    CASE(cfg.clamp_neighbours = IRC_OFF, IRC_OK);
     CASE(cfg.no_wait = 2, IRC_ERR_CONFIG);
     CASE(cfg.no_wait = 1, IRC_OK);
     CASE(cfg.strata_theta = 2000, IRC_ERR_CONFIG);
@@ -95,7 +100,7 @@ TEST(test_config_checks)
 
 /* A cache pays only for what it enables; the compile-time bound holds.
  * Bytes: 32 head, 16 per gradient, 8 for the Hessian's ellipse, 8 for the
- * leak guard unless cfg.no_leak_guard. */
+ * leak guard with cfg.leak_guard. */
 TEST(test_footprints)
 {
     static const uint32_t feats[] = {
@@ -111,7 +116,7 @@ TEST(test_footprints)
         irc_config cfg = scene_config(&sky, feats[i], 8, 16);
         irc_cache *c;
         irc_stats st;
-        cfg.no_leak_guard = (uint32_t)noguard[i];
+        cfg.leak_guard = noguard[i] ? IRC_OFF : IRC_ON;
         c = block_cache(&cfg, 1000, 0);
         CHECK(c && irc_cache_stats(c, &st) == IRC_OK, "stats");
         CHECK(st.record_bytes == want[i], "record bytes %zu, want %zu", st.record_bytes, want[i]);
@@ -141,6 +146,85 @@ TEST(test_footprints)
                           bytes);
                 }
     }
+}
+
+/* What a zeroed config gives: both gradients (64-byte records: no leak
+ * guard), neighbour clamping, and from the _px call reaches a R in [2.5,
+ * 15] pixels; each can be asked away. */
+TEST(test_defaults)
+{
+    tscene s;
+    irc_config cfg;
+    irc_cache *c;
+    irc_stats st;
+    irc_record r, back;
+    const float n[3] = {0, 0, 1}, far[3] = {6, 6, 0}, under[3] = {0.1f, 0, 0};
+    float rgb[3], w;
+    int k;
+    scene_sphere_plane(&s);
+    for (k = 0; k < 2; k++) {
+        memset(&cfg, 0, sizeof cfg);
+        cfg.trace = scene_trace;
+        cfg.context = &s;
+        cfg.strata_theta = 8;
+        cfg.strata_phi = 32;
+        if (k)
+            cfg.features = IRC_FEATURE_NONE;
+        c = block_cache(&cfg, 64, 0);
+        CHECK(c && irc_cache_stats(c, &st) == IRC_OK, "init");
+        if (!c) return;
+        CHECK(st.record_bytes == (k ? 32u : 64u), "record bytes %zu", st.record_bytes);
+        CHECK(irc_record_compute(c, far, n, &r, NULL) == IRC_OK &&
+                  r.features == (k ? 0u : (uint32_t)(IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION)),
+              "features %u", r.features);
+        /* reach 15 pixels of 0.01: R = 15 x 0.01 / 0.2 where every ray
+         * escapes (open sky: the record saw nothing that bounds it) */
+        CHECK(irc_cache_lookup_or_compute_px(c, far, n, 0.01f, rgb, &w, NULL) == IRC_OK &&
+                  irc_cache_record(c, 0, &back) == IRC_OK && fabsf(back.radius - 0.75f) < 1e-5f,
+              "max: radius %g", (double)back.radius);
+        /* reach 2.5 pixels of 1: R = 12.5 under the sphere, where it is
+         * about 1 (alone: a neighbour would clamp it) */
+        CHECK(irc_cache_clear(c) == IRC_OK &&
+                  irc_cache_lookup_or_compute_px(c, under, n, 1.0f, rgb, &w, NULL) == IRC_OK &&
+                  irc_cache_record(c, 0, &back) == IRC_OK && fabsf(back.radius - 12.5f) < 1e-4f,
+              "min: radius %g", (double)back.radius);
+        block_free(&cfg);
+    }
+    CHECK((cfg.features = IRC_FEATURE_NONE | IRC_FEATURE_TRANSLATION,
+           irc_footprint(&cfg, 16, &st.bytes_total)) == IRC_ERR_CONFIG, "NONE with a gradient");
+    /* clamping: a wide record beside a narrow one is held to 1 + 0.5 */
+    for (k = 0; k < 2; k++) {
+        memset(&cfg, 0, sizeof cfg);
+        cfg.trace = scene_trace;
+        cfg.context = &s;
+        cfg.clamp_neighbours = k ? IRC_OFF : IRC_DEFAULT;
+        c = block_cache(&cfg, 8, 0);
+        CHECK(c != NULL, "init");
+        if (!c) return;
+        memset(&r, 0, sizeof r);
+        r.n[2] = 1.0f;
+        r.e[0] = r.e[1] = r.e[2] = 1.0f;
+        r.radius = 1.0f;
+        CHECK(irc_cache_insert(c, &r) == IRC_OK, "insert");
+        r.p[0] = 0.5f;
+        r.radius = 10.0f;
+        CHECK(irc_cache_insert(c, &r) == IRC_OK && irc_cache_record(c, 1, &back) == IRC_OK &&
+                  back.radius == (k ? 10.0f : 1.5f),
+              "%s: radius %g", k ? "off" : "default", (double)back.radius);
+        block_free(&cfg);
+    }
+    /* no pixel bounds: the floor's own radius under the sphere */
+    memset(&cfg, 0, sizeof cfg);
+    cfg.trace = scene_trace;
+    cfg.context = &s;
+    cfg.strata_theta = 8;
+    cfg.strata_phi = 32;
+    cfg.min_pixels = -1.0f;
+    c = block_cache(&cfg, 8, 0);
+    CHECK(c && irc_cache_lookup_or_compute_px(c, under, n, 1.0f, rgb, &w, NULL) == IRC_OK &&
+              irc_cache_record(c, 0, &back) == IRC_OK && back.radius < 2.0f,
+          "no bound: radius %g", c ? (double)back.radius : 0.0);
+    block_free(&cfg);
 }
 
 /* Too small a block: IRC_ERR_NOMEM and not a byte written; any alignment

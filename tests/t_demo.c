@@ -245,7 +245,7 @@ TEST(test_leak_scene)
                 o.strata_m = 16;
                 o.strata_n = 64;
                 o.max_records = 100000;
-                o.no_leak_guard = g;
+                o.leak_guard = g ? IRC_OFF : IRC_ON;
                 if (leak_render(&s, &o, img) < 0)
                     break;
                 for (i = 0; i < n; i++)

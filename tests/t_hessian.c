@@ -251,6 +251,7 @@ static irc_cache *hand_cache(tscene *s, irc_config *cfg, uint32_t features, irc_
     scene_init(s);
     *cfg = scene_config(s, features, 4, 4);
     cfg->accuracy = 0.5f;
+    cfg->leak_guard = 1; /* kept for the guard's test; the others' records carry none */
     c = block_cache(cfg, 8, 0);
     memset(r, 0, sizeof *r);
     r->n[2] = 1.0f;
@@ -412,7 +413,8 @@ TEST(test_leak_guard_by_hand)
 }
 
 /* The screen-space bound: with a footprint f, computed records have both
- * radii in [min_pixels f, max_pixels f] (here [10 f, 20 f] for f = 0.05
+ * reaches a R in [min_pixels f, max_pixels f], so radii in [5 f / 0.5,
+ * 10 f / 0.5] (here [10 f, 20 f] for f = 0.05
  * and 0.2: the floor's own radii, 1.2 under the sphere and more away from
  * it, meet both bounds), a lifted record's gradient stays within reach, footprint 0
  * is the plain call, and a bad footprint is refused with the cache as it
@@ -430,8 +432,9 @@ TEST(test_screen_bound)
     scene_sphere_plane(&s);
     cfg = scene_config(&s, IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION | IRC_FEATURE_HESSIAN,
                        8, 32);
-    cfg.min_pixels = 10.0f;
-    cfg.max_pixels = 20.0f;
+    cfg.accuracy = 0.5f;
+    cfg.min_pixels = 5.0f;
+    cfg.max_pixels = 10.0f;
     c = block_cache(&cfg, 4096, 0);
     CHECK(c != NULL, "init");
     if (!c) return;

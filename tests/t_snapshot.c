@@ -315,7 +315,7 @@ TEST(test_merge_order_free)
         scene_sphere_plane(&s);
         c3 = scene_config(&s, IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION, 8, 32);
         c3.max_radius = 4.0f;
-        m = block_cache(&c3, (uint32_t)((tb[0] - 52) / 72 + 3), 0);
+        m = block_cache(&c3, (uint32_t)((tb[0] - 52) / 64 + 3), 0); /* 64-byte records */
         CHECK(m && irc_merge(m, 3u, t[0], tb[0]) == IRC_OK, "first merge");
         CHECK(m && irc_merge(m, 3u, t[1], tb[1]) == IRC_ERR_FULL, "overflow refused");
         memcpy(bad, t[1], tb[1]);
@@ -377,7 +377,6 @@ TEST(test_snapshot_by_hand)
     scene_init(&s);
     cfg = scene_config(&s, 0, 4, 4);
     cfg.accuracy = 0.25f;
-    cfg.no_leak_guard = 1;
     c = block_cache(&cfg, 4, 0);
     CHECK(c != NULL, "init");
     if (!c) return;
