@@ -55,6 +55,8 @@ extern const char *const method_names[NMETHODS]; /* the table's */
 
 /* The table of one scene's runs (README "Speed against error"). */
 void table(ctx *c, const bscene *b, FILE *md);
+/* Each cache method at the defaults against brute force at equal error. */
+void defaults_table(const ctx *c, const bscene *b, FILE *md);
 /* One data file per method for gnuplot, and its lines in plot.gp. */
 void data_files(const ctx *c, const bscene *b, FILE *gp);
 

@@ -14,12 +14,21 @@ const char *const method_names[NMETHODS] = {
     "cache, visibility gradients", "cache, trans + rot, Hessian radii",
     "cache, SH records L = 3 + gradients"};
 
-/* Time at which a method first reaches relative RMSE `target`: along its
- * lower envelope (runs in order of time, each kept only if more accurate
- * than every faster one), interpolated log-log between the runs either
- * side; -1 if no run does.  When the fastest run already does, its time
- * (an upper bound) with *bound = 1. */
-static double time_to(const ctx *c, const char *method, double target, int *bound)
+/* The error a run is judged by: relative RMSE, or the 99th percentile of
+ * the per-pixel relative error. */
+enum { BY_RMSE, BY_P99 };
+
+static double err_of(const run *r, int by)
+{
+    return by == BY_P99 ? r->p99 : r->rmse;
+}
+
+/* Time at which a method first reaches error `target` (err_of `by`):
+ * along its lower envelope (runs in order of time, each kept only if more
+ * accurate than every faster one), interpolated log-log between the runs
+ * either side; -1 if no run does.  When the fastest run already does, its
+ * time (an upper bound) with *bound = 1. */
+static double time_by(const ctx *c, const char *method, double target, int by, int *bound)
 {
     int idx[MAX_RUNS], n = 0, i, j, k = 0;
     for (i = 0; i < c->nruns; i++)
@@ -32,23 +41,52 @@ static double time_to(const ctx *c, const char *method, double target, int *boun
             idx[j - 1] = t;
         }
     for (i = 0; i < n; i++) /* the envelope, in place */
-        if (k == 0 || c->runs[idx[i]].rmse < c->runs[idx[k - 1]].rmse)
+        if (k == 0 || err_of(&c->runs[idx[i]], by) < err_of(&c->runs[idx[k - 1]], by))
             idx[k++] = idx[i];
     *bound = 0;
     if (k == 0)
         return -1.0;
-    if (c->runs[idx[0]].rmse <= target) {
+    if (err_of(&c->runs[idx[0]], by) <= target) {
         *bound = 1;
         return c->runs[idx[0]].st.wall;
     }
     for (i = 1; i < k; i++) {
         const run *a = &c->runs[idx[i - 1]], *b = &c->runs[idx[i]];
-        if (b->rmse <= target) {
-            double u = (log(target) - log(a->rmse)) / (log(b->rmse) - log(a->rmse));
+        if (err_of(b, by) <= target) {
+            double u = (log(target) - log(err_of(a, by))) / (log(err_of(b, by)) - log(err_of(a, by)));
             return exp(log(a->st.wall) + u * (log(b->st.wall) - log(a->st.wall)));
         }
     }
     return -1.0;
+}
+
+static double time_to(const ctx *c, const char *method, double target, int *bound)
+{
+    return time_by(c, method, target, BY_RMSE, bound);
+}
+
+/* Brute force's leaking pixels at relative RMSE `rmse`: interpolated
+ * linearly in log RMSE between the brute-force runs either side (-1
+ * outside them). */
+static double brute_leaks_at(const ctx *c, double rmse)
+{
+    const run *lo = NULL, *hi = NULL;
+    int i;
+    for (i = 0; i < c->nruns; i++) {
+        const run *r = &c->runs[i];
+        if (strcmp(r->method, "brute"))
+            continue;
+        if (r->rmse >= rmse && (!lo || r->rmse < lo->rmse))
+            lo = r;
+        if (r->rmse <= rmse && (!hi || r->rmse > hi->rmse))
+            hi = r;
+    }
+    if (!lo || !hi)
+        return -1.0;
+    if (lo == hi)
+        return lo->leaks;
+    return lo->leaks + (hi->leaks - lo->leaks) * (log(lo->rmse) - log(rmse)) /
+                           (log(lo->rmse) - log(hi->rmse));
 }
 
 /* A method's relative RMSE at `records` records, interpolated log-log
@@ -146,6 +184,48 @@ void table(ctx *c, const bscene *b, FILE *md)
                 fprintf(md, " (none / trans+rot = %.2f, trans+rot / visibility = %.2f)", e0 / e1,
                         e1 / e2);
             fprintf(md, "; -1: the record count is outside that method's sweep.\n");
+        }
+}
+
+/* Each cache method at a = 0.2, 16x64 (the library's defaults for
+ * trans+rot) against brute force at the same error: by relative RMSE and
+ * by p99, the worst 1% of pixels' share of the squared error, the pixels
+ * that leak (and brute force's at the same RMSE), the bias. */
+void defaults_table(const ctx *c, const bscene *b, FILE *md)
+{
+    int m, i, bt, bp;
+    fprintf(md, "\n**%s at a = 0.2, 16x64** (the defaults for trans + rot; brute force's time "
+                "interpolated to the same error; leaks: pixels above the reference by more than "
+                "25%% of its mean)\n\n"
+                "| method | rel. RMSE | speedup at equal RMSE | p99 | speedup at equal p99 | "
+                "worst 1%% of pixels: share of squared error | leaks (brute force at equal RMSE) | "
+                "bias | records |\n|---|---|---|---|---|---|---|---|---|\n",
+            b->name);
+    for (m = 1; m < NMETHODS; m++)
+        for (i = 0; i < c->nruns; i++) {
+            const run *r = &c->runs[i];
+            double tr, tp, bl;
+            if (strcmp(r->method, methods[m]) || fabs(r->param - 0.2) > 1e-6 || r->m != 16)
+                continue;
+            tr = time_by(c, "brute", r->rmse, BY_RMSE, &bt);
+            tp = time_by(c, "brute", r->p99, BY_P99, &bp);
+            bl = brute_leaks_at(c, r->rmse);
+            fprintf(md, "| %s | %.4f |", method_names[m], r->rmse);
+            if (tr > 0.0)
+                fprintf(md, " %s%.1fx |", bt ? "<= " : "", tr / r->st.wall);
+            else
+                fprintf(md, " beyond brute force's runs |");
+            fprintf(md, " %.3f |", r->p99);
+            if (tp > 0.0)
+                fprintf(md, " %s%.1fx |", bp ? "<= " : "", tp / r->st.wall);
+            else
+                fprintf(md, " beyond brute force's runs |");
+            fprintf(md, " %.0f%% | %d (", 100.0 * r->worst1, r->leaks);
+            if (bl >= 0.0)
+                fprintf(md, "%.0f) |", bl);
+            else
+                fprintf(md, "-) |");
+            fprintf(md, " %+.2f%% | %llu |\n", 100.0 * r->bias, (unsigned long long)r->st.records);
         }
 }
 
