@@ -10,7 +10,7 @@
 
 const char *const methods[NMETHODS] = {"brute", "none", "trans+rot", "vis", "hess", "sh"};
 const char *const method_names[NMETHODS] = {
-    "brute force", "cache, no gradients", "cache, translational + rotational",
+    "brute force", "cache, no gradients", "cache, translational + rotational (the defaults)",
     "cache, visibility gradients", "cache, trans + rot, Hessian radii",
     "cache, SH records L = 3 + gradients"};
 
