@@ -320,10 +320,12 @@ $(BUILD)/minimal: examples/minimal.c $(LIBA)
 	$(CC) -std=c99 $(WARN) -Iinclude $(OPT) examples/minimal.c $(LIBA) -o $@ -lm $(THREAD_LIBS)
 $(BUILD)/threads: examples/threads.c $(LIBA)
 	$(CC) -std=c99 $(WARN) -D_POSIX_C_SOURCE=200809L -Iinclude $(OPT) examples/threads.c $(LIBA) -o $@ -lm -lpthread
+$(BUILD)/passes: examples/passes.c $(LIBA)
+	$(CC) -std=c99 $(WARN) -D_POSIX_C_SOURCE=200809L -Iinclude $(OPT) examples/passes.c $(LIBA) -o $@ -lm -lpthread
 $(BUILD)/minimal_cpp: examples/minimal.cpp $(LIBA)
 	$(CXX) -std=c++11 -Wall -Wextra -Werror -pedantic -Iinclude $(OPT) examples/minimal.cpp $(LIBA) \
 	       -o $@ -lm $(THREAD_LIBS)
-examples: $(BUILD)/minimal $(BUILD)/threads $(BUILD)/minimal_cpp
+examples: $(BUILD)/minimal $(BUILD)/threads $(BUILD)/passes $(BUILD)/minimal_cpp
 
 bench-core: $(BUILD)/bench_core
 	$(BUILD)/bench_core

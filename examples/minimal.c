@@ -46,7 +46,6 @@ int main(void)
                        IRC_VERSION_STRING), 1;
     cfg.trace = trace;
     cfg.max_batch = 64;
-    cfg.features = IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION;
     cfg.max_radius = 4.0f;  /* rays that escape count as infinitely far */
     if ((st = irc_footprint(&cfg, 1000, &bytes)) < 0)
         return fprintf(stderr, "%s\n", irc_strerror(st)), 1;

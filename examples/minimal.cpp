@@ -36,7 +36,6 @@ int main()
         return 0;
     };
     cfg.max_batch = 64;
-    cfg.features = IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION;
     cfg.max_radius = 4.0f;
     size_t bytes = 0;
     int st = irc_footprint(&cfg, 1000, &bytes);

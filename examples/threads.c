@@ -88,7 +88,6 @@ int main(void)
     cfg.max_batch = 32;
     cfg.threads = SLOTS;           /* fewer slots than workers: misses wait */
     cfg.max_radius = 0.5f;
-    cfg.features = IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION;
     if ((st = irc_footprint(&cfg, 4096, &bytes)) < 0)
         return fprintf(stderr, "%s\n", irc_strerror(st)), 1;
     cfg.buffer = malloc(bytes);
