@@ -407,3 +407,8 @@ clean:
 	rm -rf build build-*
 
 .PHONY: embree-example all lib cross embedded-test embedded-host size examples test coverage demo real-scenes fig15 adaptive glossy sh-experiments sh-animation fuzz replay bench-core bench-lookups bench-records bench bench-fill farm-demo install uninstall clean
+
+# Which records answer the worst pixels of a Sponza render, and why
+# (README "On real geometry"); needs make bench's cached references.
+$(BUILD)/outliers: experiments/outliers.c $(DEMO_LIB_SRC) demo/*.h $(LIBA)
+	$(CC) $(DEMO_CFLAGS) experiments/outliers.c $(DEMO_LIB_SRC) $(LIBA) -o $@ -lm -lpthread

@@ -220,7 +220,8 @@ static int render(ctx *c, const render_opts *o, float *img, render_stats *st)
 /* BENCH_SET="name=value,...": settings laid over every cache run, for
  * experiments (minpx, maxpx: the pixel bounds, -1 none; guard: 0 or 1;
  * maxr: max_radius, -1 the demo's view rule, 0 the library's; clamp: 0 or
- * 1; nofp: 1 records ignore the footprint; free: 1 free fill; sm, sn: strata). */
+ * 1; nofp: 1 records ignore the footprint; free: 1 free fill; sm, sn: strata; ss:
+ * super-samples). */
 static void experiment_opts(render_opts *o)
 {
     const char *l = getenv("BENCH_SET");
@@ -237,6 +238,7 @@ static void experiment_opts(render_opts *o)
         else if (!strcmp(name, "clamp")) o->clamp_neighbours = v != 0.0 ? IRC_ON : IRC_OFF;
         else if (!strcmp(name, "nofp")) o->no_footprint = v != 0.0;
         else if (!strcmp(name, "free")) o->free_fill = v != 0.0;
+        else if (!strcmp(name, "ss")) o->supersamples = (uint32_t)v;
         else if (!strcmp(name, "sm")) o->strata_m = (uint32_t)v;
         else if (!strcmp(name, "sn")) o->strata_n = (uint32_t)v;
         else fprintf(stderr, "BENCH_SET: unknown %s\n", name);

@@ -28,6 +28,7 @@ static const char usage[] =
     "  --min-radius R          cache minimum radius (scene units, default 0)\n"
     "  --leak-guard            records keep a leak guard (irc_config.leak_guard)\n"
     "  --no-clamp              no neighbour clamping (irc_config.clamp_neighbours)\n"
+    "  --supersamples S        S more rays a record where strata differ (irc_config.supersamples)\n"
     "  --pixels MIN,MAX        a record's reach in pixels (default 2.5,15; -1: no\n"
     "                          bound on that side)\n"
     "  --no-footprint          records ignore the pixel (the plain lookup-or-compute)\n"
@@ -143,6 +144,7 @@ static int parse_args(int argc, char **argv, cli *c)
         else if (!strcmp(a, "--indirect")) c->o.show = SHOW_INDIRECT;
         else if (!strcmp(a, "--leak-guard")) c->o.leak_guard = IRC_ON;
         else if (!strcmp(a, "--no-clamp")) c->o.clamp_neighbours = IRC_OFF;
+        else if (!strcmp(a, "--supersamples")) { NEED(parse_uint(n, 0, IRC_MAX_STRATA, &v)); c->o.supersamples = (uint32_t)v; }
         else if (!strcmp(a, "--no-footprint")) c->o.no_footprint = 1;
         else if (!strcmp(a, "--pixels")) NEED(sscanf(n, "%f,%f", &c->o.min_pixels, &c->o.max_pixels) == 2);
         else if (!strcmp(a, "--free-fill")) c->o.free_fill = 1;

@@ -163,6 +163,7 @@ int renderer_init(renderer *r, const scene *s, const render_opts *o, char *err, 
         cfg.accuracy = o->accuracy;
         cfg.strata_theta = o->strata_m;
         cfg.strata_phi = o->strata_n;
+        cfg.supersamples = o->supersamples;
         cfg.min_radius = o->min_radius;
         cfg.min_pixels = o->min_pixels;
         cfg.max_pixels = o->max_pixels;

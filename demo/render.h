@@ -26,6 +26,7 @@ typedef struct render_opts {
     uint32_t sh_bands;    /* cache with SH: L (0: the library's default) */
     float accuracy;       /* cache: a */
     uint32_t strata_m, strata_n;
+    uint32_t supersamples; /* cache: irc_config.supersamples */
     uint32_t max_records;
     float min_radius, max_radius; /* max < 0: 0.1 x the diagonal of what
                                      the camera sees; 0: the library's */

@@ -298,6 +298,7 @@ void irc__frame(const float n[3], float t1[3], float t2[3]);
 int irc__cast(irc__call *k, irc_ray *rays, irc_hit *hits, uint32_t count);
 int irc__sample_hemisphere(irc__call *k, const float n[3], const float t1[3],
                            const float t2[3], uint32_t first, uint32_t *used);
+int irc__supersample(irc__call *k, const float n[3], const float t1[3], const float t2[3]);
 
 /* sh.c */
 void irc__sh_eval(int bands, const float s[3], float *y, float (*grad)[3]);

@@ -114,6 +114,9 @@ static int irc__sampling_resolve(irc_config *out)
         return IRC_ERR_CONFIG;
     if (out->max_batch > out->strata_theta * out->strata_phi)
         out->max_batch = out->strata_theta * out->strata_phi;
+    if (out->supersamples > out->strata_theta * out->strata_phi ||
+        (out->supersamples && (out->features & (IRC_FEATURE_VISIBILITY | IRC_FEATURE_SH))))
+        return IRC_ERR_CONFIG;
     if (out->threads == 0) out->threads = 1;
     if (out->threads > IRC_MAX_THREADS || out->no_wait > 1u)
         return IRC_ERR_CONFIG;

@@ -322,8 +322,12 @@ static IRC__NOINLINE void irc__record_build(const irc_cache *c, const irc__sampl
 int irc__hemisphere(irc__call *k, float t1[3], float t2[3])
 {
     uint32_t used = 0;
+    int st;
     irc__frame(k->q.n, t1, t2);
-    return irc__sample_hemisphere(k, k->q.n, t1, t2, 0, &used);
+    st = irc__sample_hemisphere(k, k->q.n, t1, t2, 0, &used);
+    if (st == IRC_OK && k->c->cfg.supersamples)
+        st = irc__supersample(k, k->q.n, t1, t2);
+    return st;
 }
 
 int irc__irr_compute(irc__call *k, void *rec)

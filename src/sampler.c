@@ -270,3 +270,131 @@ int irc__sample_hemisphere(irc__call *k, const float n[3], const float t1[3],
     *used = good;
     return good * 2u < total || good == 0 ? IRC_ERR_NOSAMPLES : IRC_OK;
 }
+
+/* How much stratum s's radiance differs from its neighbours' (the next
+ * row and the next column, phi wrapping): the larger difference, in the
+ * sum of the channels.  0 for a failed sample. */
+static float irc__contrast(const irc__sample *s, uint32_t m, uint32_t nphi, uint32_t i)
+{
+    const uint32_t j = i / nphi, k = i % nphi;
+    const uint32_t nb[4] = {j ? i - nphi : i, j + 1 < m ? i + nphi : i,
+                            k ? i - 1 : i + nphi - 1, k + 1 < nphi ? i + 1 : i + 1 - nphi};
+    const float l = s[i].l[0] + s[i].l[1] + s[i].l[2];
+    float most = 0.0f;
+    int q;
+    if (s[i].d != s[i].d)
+        return 0.0f;
+    for (q = 0; q < 4; q++) {
+        const irc__sample *b = &s[nb[q]];
+        float dl = l - (b->l[0] + b->l[1] + b->l[2]);
+        if (b->d == b->d && (dl < 0.0f ? -dl : dl) > most)
+            most = dl < 0.0f ? -dl : dl;
+    }
+    return most;
+}
+
+#define IRC__SS_BINS 64u
+
+/* The contrast above which (with the first `*room` strata of the bin at
+ * it, in row order) cfg.supersamples strata lie: a histogram of the
+ * contrasts over [0, the largest], so no per-stratum memory is needed. */
+static uint32_t irc__ss_threshold(const irc__sample *s, uint32_t m, uint32_t nphi,
+                                  uint32_t want, float *top, uint32_t *room)
+{
+    uint32_t hist[IRC__SS_BINS], i, b, above = 0;
+    float most = 0.0f;
+    for (i = 0; i < m * nphi; i++) {
+        float ct = irc__contrast(s, m, nphi, i);
+        most = ct > most ? ct : most;
+    }
+    *top = most;
+    IRC_MEMSET(hist, 0, sizeof hist);
+    for (i = 0; i < m * nphi && most > 0.0f; i++) {
+        float ct = irc__contrast(s, m, nphi, i);
+        if (ct > 0.0f) {
+            b = (uint32_t)(ct / most * (float)(IRC__SS_BINS - 1));
+            hist[b < IRC__SS_BINS ? b : IRC__SS_BINS - 1]++;
+        }
+    }
+    for (b = IRC__SS_BINS; b-- > 0;) {
+        if (above + hist[b] >= want) {
+            *room = want - above;
+            return b;
+        }
+        above += hist[b];
+    }
+    *room = hist[0];
+    return 0;
+}
+
+/* Merges the batch's extra samples into their strata. */
+static int irc__ss_merge(irc__sample *s, const uint32_t *at, const irc_hit *hits, uint32_t cnt)
+{
+    uint32_t q;
+    int st;
+    for (q = 0; q < cnt; q++) {
+        irc__sample x, *o = &s[at[q]];
+        if ((st = irc__accept_hit(&hits[q], &x)) < 0)
+            return st;
+        if (st == 0)
+            continue; /* failed: the stratum keeps its one sample */
+        o->l[0] = 0.5f * (o->l[0] + x.l[0]);
+        o->l[1] = 0.5f * (o->l[1] + x.l[1]);
+        o->l[2] = 0.5f * (o->l[2] + x.l[2]);
+        o->d = x.d < o->d ? x.d : o->d;
+    }
+    return IRC_OK;
+}
+
+/* One more jittered ray (another random draw) into each of the
+ * cfg.supersamples strata of highest contrast; a usable one makes its
+ * stratum's radiance the mean of the two and its distance the nearer.
+ * The strata are chosen first, all from the first samples (marked by
+ * their distance's sign, the one bit a sample has spare), then sampled.
+ * Returns IRC_OK or a negative code (the callback's own). */
+int irc__supersample(irc__call *k, const float n[3], const float t1[3], const float t2[3])
+{
+    const irc_cache *c = k->c;
+    irc__sample *s = (irc__sample *)(void *)k->slot;
+    const uint32_t m = c->cfg.strata_theta, nphi = c->cfg.strata_phi;
+    const uint32_t total = m * nphi, batch = c->cfg.max_batch < 64u ? c->cfg.max_batch : 64u;
+    irc_ray *rays = irc__slot_rays(c, k->slot);
+    irc_hit *hits = (irc_hit *)(void *)(rays + c->cfg.max_batch);
+    uint32_t at[64], i, cnt = 0, room, bin;
+    float most, nf[3] = {n[0], n[1], n[2]};
+    irc__rng rng = irc__rng_for(k->q.p, nf, c->cfg.seed);
+    irc__dirs g;
+    int st;
+    bin = irc__ss_threshold(s, m, nphi, c->cfg.supersamples, &most, &room);
+    if (!(most > 0.0f))
+        return IRC_OK;
+    for (i = 0; i < total; i++) {
+        float ct = irc__contrast(s, m, nphi, i);
+        uint32_t b = (uint32_t)(ct / most * (float)(IRC__SS_BINS - 1));
+        b = b < IRC__SS_BINS ? b : IRC__SS_BINS - 1;
+        if (!(ct > 0.0f) || b < bin || (b == bin && room == 0))
+            continue;
+        room -= b == bin;
+        s[i].d = -s[i].d; /* chosen */
+    }
+    rng.key = irc__mix(rng.key ^ 0x73757065727321ull); /* the second draw's */
+    irc__dirs_init(c, n, t1, t2, &rng, &g);
+    for (i = 0; i < total; i++) {
+        if (!(s[i].d < 0.0f))
+            continue;
+        s[i].d = -s[i].d;
+        at[cnt] = i;
+        rays[cnt].org[0] = k->q.p[0];
+        rays[cnt].org[1] = k->q.p[1];
+        rays[cnt].org[2] = k->q.p[2];
+        irc__direction(&g, i / nphi, i % nphi, rays[cnt].dir);
+        if (++cnt < batch)
+            continue;
+        if ((st = irc__cast(k, rays, hits, cnt)) < 0 || (st = irc__ss_merge(s, at, hits, cnt)) < 0)
+            return st;
+        cnt = 0;
+    }
+    if (cnt && ((st = irc__cast(k, rays, hits, cnt)) < 0 || (st = irc__ss_merge(s, at, hits, cnt)) < 0))
+        return st;
+    return IRC_OK;
+}

@@ -2,7 +2,7 @@
 #include "test.h"
 
 #define TESTS(X)                                                     \
-    X(test_uniform_sky) X(test_sphere_over_plane) X(test_flat_blocker) X(test_box_closed_form)                    \
+    X(test_uniform_sky) X(test_sphere_over_plane) X(test_supersample) X(test_flat_blocker) X(test_box_closed_form)                    \
     X(test_rotational_gradient_sky) X(test_radius_rules) X(test_strata_directions) \
     X(test_pack_roundtrip) X(test_weighted_mean) X(test_behind_relative)  \
     X(test_extrapolation) X(test_lookup_gradient_one) X(test_lookup_gradient_sphere) X(test_lookup_gradient_status) X(test_lookup_or_compute) X(test_full_no_evict) \
