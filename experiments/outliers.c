@@ -12,7 +12,7 @@
  *   far:      the point is outside the record's reach a R (a neighbour's
  *             weight past its radius: should not happen);
  * and how far the record's own value is from the reference at the point.
- *   outliers SCENE REF1.exr REF2.exr [a] [--clamp 0|1]
+ *   outliers SCENE REF1.exr REF2.exr [a] [--clamp 0|1] [--lattice S]
  * Prints counts over the worst pixels and over all lattice pixels, and the
  * twenty worst with their records.
  */
@@ -26,8 +26,9 @@
 #include "image.h"
 #include "render.h"
 
-#define STRIDE 8
-#define OFFSET 5 /* make bench's lattice for the real scenes */
+/* make bench's lattice: every STRIDE-th pixel from OFFSET (8 and 5 for
+ * the real scenes, 4 and 3 for the shipped ones: --lattice 4) */
+static int STRIDE = 8, OFFSET = 5;
 #define PI 3.14159265358979323846
 
 typedef struct why {
@@ -57,6 +58,9 @@ static void look(renderer *r, const cam_frame *cf, int x, int y, float a, double
     surface_at(r->s, cf->eye, d, &bh, &sf);
     cache_point(&sf, p);
     fp = camera_footprint(cf, c, d, bh.t, sf.ng);
+    if (verbose)
+        printf("    at (%.4g, %.4g, %.4g), normal (%.3f, %.3f, %.3f), footprint %.3g\n", p[0], p[1],
+               p[2], sf.nsm[0], sf.nsm[1], sf.nsm[2], fp);
     irc_cache_neighbours(r->cache, p, sf.nsm, ids, 64, &n);
     for (i = 0; i < n && i < 64; i++) {
         irc_record rec;
@@ -124,8 +128,11 @@ int main(int argc, char **argv)
     o.seed = 7;
     o.threads = 2;
     o.max_records = 400000;
-    if (argc > 6 && !strcmp(argv[5], "--clamp"))
-        o.clamp_neighbours = atoi(argv[6]) ? IRC_ON : IRC_OFF;
+    for (i = 5; i + 1 < argc; i += 2)
+        if (!strcmp(argv[i], "--clamp"))
+            o.clamp_neighbours = atoi(argv[i + 1]) ? IRC_ON : IRC_OFF;
+        else if (!strcmp(argv[i], "--lattice"))
+            STRIDE = atoi(argv[i + 1]), OFFSET = STRIDE / 2 + 1;
     n = w1 * h1;
     img = calloc((size_t)n * 3, sizeof(float));
     errs = malloc(sizeof(double) * 2 * (size_t)n);

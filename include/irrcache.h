@@ -78,7 +78,7 @@ extern "C" {
  * different major version, or a different minor one while the major is 0,
  * is another ABI. */
 #define IRC_VERSION_MAJOR 0
-#define IRC_VERSION_MINOR 2
+#define IRC_VERSION_MINOR 3
 #define IRC_VERSION_PATCH 0
 #define IRC_VERSION_NUMBER \
     (IRC_VERSION_MAJOR * 10000 + IRC_VERSION_MINOR * 100 + IRC_VERSION_PATCH)
@@ -484,13 +484,18 @@ typedef struct irc_cache irc_cache; /* lives inside cfg.buffer; opaque */
  * IRC_ERR_CONFIG.  Thread safe.  Returns IRC_OK and writes *bytes, or a
  * negative error code on failure.
  *
- * Sizing max_records: a fill at accuracy a makes roughly area / (pi (a
- * R)^2) records per surface, R the records' typical radius; the README's
- * figures give record counts of real scenes (the Cornell box at a = 0.2,
- * 256 x 256 pixels: about 6,000).  When the pool fills, inserts fail
- * (IRC_ERR_FULL), lookup_or_compute returns IRC_NOT_STORED and recomputes
- * every later miss, and irc_stats.not_stored counts those: size the pool
- * so that stays 0, or turn on IRC_EVICT_CLOCK.
+ * Sizing max_records: a lookup-or-compute call stores at most one record,
+ * so a frame that makes one such call a pixel never needs more records
+ * than pixels (the hard bound).  With the _px call at the defaults the
+ * records lie 2.5 pixels apart at least: make bench measured 0.02-0.12
+ * records a pixel at a = 0.2 and at most 0.19 at a = 0.1 on every scene it
+ * renders (the Sponza atrium; the Cornell box 0.02), so max_records =
+ * pixels / 4 holds there with room to spare.  When the pool fills,
+ * inserts fail (IRC_ERR_FULL), lookup_or_compute returns IRC_NOT_STORED
+ * and recomputes every later miss, irc_stats.not_stored counts those, and
+ * inside a fill pass which records were kept depends on timing (a pass
+ * never evicts): size the pool so that stays 0, or turn on
+ * IRC_EVICT_CLOCK.
  */
 IRC_API int irc_footprint(const irc_config *cfg, uint32_t max_records, size_t *bytes);
 

