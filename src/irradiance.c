@@ -144,8 +144,8 @@ static void irc__totals_of(const irc_cache *c, const irc__sample *s, irc__totals
  * away then answered lookups under the blocker).  The distance to what the
  * record saw is the scale at which what it saw changes.  A record that hit
  * nothing has no scale: it takes the host's max_radius if the host set
- * one, else the smallest radius (it then serves lookups at its own point
- * only); open scenes want a max_radius. */
+ * one, else the _px call's largest reach (irc__radii), else the smallest
+ * radius (it then serves lookups at its own point only). */
 static float irc__split_sphere(const irc_cache *c, const irc__totals *t, float *far)
 {
     *far = t->far;
@@ -237,14 +237,14 @@ static void irc__radii(const irc_cache *c, const irc__sample *s, const float n[3
             rad[1] = IRC_ANISOTROPY * rad[0];
     }
 #else
-    (void)s; (void)n; (void)t1; (void)t2; (void)far;
+    (void)s; (void)n; (void)t1; (void)t2;
 #endif
     /* The pixel bounds hold the reach a R, as pbrt-v2's spacings hold a
      * record's extent: records then lie 2.5-15 pixels apart whatever a.  A
-     * record that saw nothing (every ray escaped: open sky) is as wide as
-     * they allow. */
+     * record that saw nothing (every ray escaped: open sky; far is then 0
+     * unless max_radius stood in) is as wide as they allow. */
     fp /= c->cfg.accuracy;
-    if (rad[0] == 0.0f && fp > 0.0f && c->cfg.max_pixels > 0.0f)
+    if (far == 0.0f && fp > 0.0f && c->cfg.max_pixels > 0.0f)
         rad[0] = rad[1] = IRC__CAP;
     for (k = 0; k < 2; k++) {
         if (rad[k] < c->cfg.min_pixels * fp) rad[k] = c->cfg.min_pixels * fp;

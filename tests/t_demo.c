@@ -117,6 +117,27 @@ TEST(test_bvh_shipped_scenes)
     bvh_vs_brute("demo/scenes/cornell-glossy.scene");
 }
 
+/* A floor z = 0 (two triangles 2000 wide, albedo 0.5) under a black ball
+ * of radius 1 centred at (0, 0, 2): the tests' closed-form scene. */
+static void ball_over_plane(scene *s, material mats[2], triangle tris[2], sphere *sp)
+{
+    static const float q[4][3] = {{-1e3f, -1e3f, 0}, {1e3f, -1e3f, 0}, {1e3f, 1e3f, 0}, {-1e3f, 1e3f, 0}};
+    static const int corner[2][3] = {{0, 1, 2}, {0, 2, 3}};
+    int t, k;
+    memset(mats, 0, 2 * sizeof *mats);
+    memset(tris, 0, 2 * sizeof *tris);
+    memset(s, 0, sizeof *s);
+    memset(sp, 0, sizeof *sp);
+    mats[0].kd[0] = mats[0].kd[1] = mats[0].kd[2] = 0.5f;
+    for (t = 0; t < 2; t++)
+        for (k = 0; k < 3; k++)
+            memcpy(tris[t].v[k], q[corner[t][k]], sizeof tris[t].v[k]);
+    sp->c[2] = 2.0f;
+    sp->r = 1.0f;
+    sp->mat = 1; /* black */
+    s->tris = tris; s->ntris = 2; s->spheres = sp; s->nspheres = 1; s->mats = mats; s->nmats = 2;
+}
+
 /* The demo's brute-force irradiance (--reference N) on the core tests'
  * sphere-over-plane case: a black sphere of radius 1 at (0, 0, 2) over the
  * plane z = 0 under a uniform sky 1, E = pi (1 - r^2 cos(theta)/d^2).
@@ -136,21 +157,8 @@ TEST(test_reference_sphere_plane)
     char err[256];
     float e[15];
     int i;
-    memset(mats, 0, sizeof mats);
-    memset(tris, 0, sizeof tris);
-    memset(&s, 0, sizeof s);
     memset(&o, 0, sizeof o);
-    mats[0].kd[0] = mats[0].kd[1] = mats[0].kd[2] = 0.5f; /* plane */
-    {
-        static const float q[4][3] = {{-1e3f, -1e3f, 0}, {1e3f, -1e3f, 0}, {1e3f, 1e3f, 0}, {-1e3f, 1e3f, 0}};
-        memcpy(tris[0].v[0], q[0], 12); memcpy(tris[0].v[1], q[1], 12); memcpy(tris[0].v[2], q[2], 12);
-        memcpy(tris[1].v[0], q[0], 12); memcpy(tris[1].v[1], q[2], 12); memcpy(tris[1].v[2], q[3], 12);
-    }
-    sp.c[0] = sp.c[1] = 0.0f;
-    sp.c[2] = 2.0f;
-    sp.r = 1.0f;
-    sp.mat = 1;                                            /* black */
-    s.tris = tris; s.ntris = 2; s.spheres = &sp; s.nspheres = 1; s.mats = mats; s.nmats = 2;
+    ball_over_plane(&s, mats, tris, &sp);
     s.env.kind = ENV_CONSTANT;
     s.env.base[0] = s.env.base[1] = s.env.base[2] = 1.0f;
     s.cam.width = s.cam.height = 1;
@@ -475,20 +483,7 @@ TEST(test_sun)
     lights l;
     const float want = 0.5f / (float)TPI * 2.0f * 0.8f, down[3] = {0, 0, -1};
     int i, k;
-    memset(mats, 0, sizeof mats);
-    memset(tris, 0, sizeof tris);
-    memset(&s, 0, sizeof s);
-    mats[0].kd[0] = mats[0].kd[1] = mats[0].kd[2] = 0.5f;
-    {
-        static const float q[4][3] = {{-1e3f, -1e3f, 0}, {1e3f, -1e3f, 0}, {1e3f, 1e3f, 0}, {-1e3f, 1e3f, 0}};
-        memcpy(tris[0].v[0], q[0], 12); memcpy(tris[0].v[1], q[1], 12); memcpy(tris[0].v[2], q[2], 12);
-        memcpy(tris[1].v[0], q[0], 12); memcpy(tris[1].v[1], q[2], 12); memcpy(tris[1].v[2], q[3], 12);
-    }
-    sp.c[0] = sp.c[1] = 0.0f;
-    sp.c[2] = 2.0f;
-    sp.r = 1.0f;
-    sp.mat = 1;
-    s.tris = tris; s.ntris = 2; s.spheres = &sp; s.nspheres = 1; s.mats = mats; s.nmats = 2;
+    ball_over_plane(&s, mats, tris, &sp);
     s.sun.on = 1;
     s.sun.dir[0] = 0.6f;
     s.sun.dir[2] = 0.8f;

@@ -224,9 +224,19 @@ TEST(test_supersample)
             se[k] += (r.e[0] - want) * (r.e[0] - want);
             rays[k] += r.rays;
             most = r.rays - 256u > most ? r.rays - 256u : most;
-            if (k && i % 50 == 0)
+            if (k && i % 50 == 0) {
+                /* the same record again, and with the rays in batches of 64 */
+                irc_config c64 = cfg;
+                irc_cache *b;
                 CHECK(irc_record_compute(c, p, n, &again, NULL) == IRC_OK &&
                           memcmp(&r, &again, sizeof r) == 0, "record %d computed twice differs", i);
+                c64.buffer = NULL;
+                c64.max_batch = 64;
+                b = block_cache(&c64, 16, 0);
+                CHECK(b && irc_record_compute(b, p, n, &again, NULL) == IRC_OK &&
+                          memcmp(&r, &again, sizeof r) == 0, "record %d differs in batches", i);
+                block_free(&c64);
+            }
             sphere_plane_grad(&s, q, g);
             gl = sqrt(g[0] * g[0] + g[1] * g[1]);
             dl = sqrt((r.grad_t[0][0] - g[0]) * (r.grad_t[0][0] - g[0]) +
