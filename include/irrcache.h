@@ -383,19 +383,19 @@ typedef struct irc_config {
     uint32_t strata_phi;     /* N columns in phi, 1..4096 (default 64);
                                 M * N <= IRC_MAX_STRATA */
     uint32_t supersamples;   /* irradiance records: after the M x N rays,
-                                this many more, two a stratum, into the
-                                strata whose radiance differs most from a
-                                neighbour's (Radiance's ambient
-                                super-samples, -as); such a stratum's
-                                radiance is then the two fresh samples'
-                                mean (the one that chose it left out) and
-                                its distance the nearest, and the
-                                gradients read those.  0..M N (default 0:
-                                none; on the Sponza atrium the image came
-                                out 3.7% dark with it, unexplained, while
-                                records on a closed form stay unbiased);
-                                not with VISIBILITY (its silhouettes are
-                                the first rays') */
+                                this many more, one a stratum, into the
+                                strata around which the radiance changes
+                                most (the spread of the four neighbours'
+                                samples: Radiance's ambient super-samples,
+                                -as); such a stratum's radiance is then the
+                                mean of its two samples and its distance
+                                the nearer, and the gradients read those.
+                                Unbiased: a stratum's own sample never
+                                chooses it.  0..M N (default 0: none; on
+                                the Sponza atrium 12 x 40 strata + 32 cut
+                                the error 0.0510 -> 0.0478 for 6% more
+                                rays); not with VISIBILITY (its
+                                silhouettes are the first rays') */
     uint32_t threads;        /* scratch slots: how many record computations
                                 may run at once, 1..64 (default 1).  Each
                                 costs irc_stats.bytes_scratch / threads.  A

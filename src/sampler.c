@@ -271,26 +271,32 @@ int irc__sample_hemisphere(irc__call *k, const float n[3], const float t1[3],
     return good * 2u < total || good == 0 ? IRC_ERR_NOSAMPLES : IRC_OK;
 }
 
-/* How much stratum s's radiance differs from its neighbours' (the next
- * row and the next column, phi wrapping): the larger difference, in the
- * sum of the channels.  0 for a failed sample. */
+/* How much the radiance changes around stratum i: the spread (largest
+ * minus smallest, in the sum of the channels) of its four neighbours'
+ * samples (the next and previous row and column, phi wrapping), its own
+ * left out.  So whether a stratum is chosen never depends on its own
+ * sample, which then stays an unbiased part of its mean (a choice by the
+ * stratum's own difference from its neighbours kept the dark first
+ * samples of strata half in a sunlit patch and replaced the bright ones:
+ * -1.8% on the Sponza atrium).  0 with fewer than two usable neighbours. */
 static float irc__contrast(const irc__sample *s, uint32_t m, uint32_t nphi, uint32_t i)
 {
     const uint32_t j = i / nphi, k = i % nphi;
     const uint32_t nb[4] = {j ? i - nphi : i, j + 1 < m ? i + nphi : i,
                             k ? i - 1 : i + nphi - 1, k + 1 < nphi ? i + 1 : i + 1 - nphi};
-    const float l = s[i].l[0] + s[i].l[1] + s[i].l[2];
-    float most = 0.0f;
-    int q;
-    if (s[i].d != s[i].d)
-        return 0.0f;
+    float lo = 0.0f, hi = 0.0f;
+    int q, n = 0;
     for (q = 0; q < 4; q++) {
         const irc__sample *b = &s[nb[q]];
-        float dl = l - (b->l[0] + b->l[1] + b->l[2]);
-        if (b->d == b->d && (dl < 0.0f ? -dl : dl) > most)
-            most = dl < 0.0f ? -dl : dl;
+        float l;
+        if (nb[q] == i || b->d != b->d)
+            continue;
+        l = b->l[0] + b->l[1] + b->l[2];
+        lo = n == 0 || l < lo ? l : lo;
+        hi = n == 0 || l > hi ? l : hi;
+        n++;
     }
-    return most;
+    return n >= 2 ? hi - lo : 0.0f;
 }
 
 #define IRC__SS_BINS 64u
@@ -311,7 +317,7 @@ static uint32_t irc__ss_threshold(const irc__sample *s, uint32_t m, uint32_t nph
     IRC_MEMSET(hist, 0, sizeof hist);
     for (i = 0; i < m * nphi && most > 0.0f; i++) {
         float ct = irc__contrast(s, m, nphi, i);
-        if (ct > 0.0f) {
+        if (ct > 0.0f && s[i].d == s[i].d) {
             b = (uint32_t)(ct / most * (float)(IRC__SS_BINS - 1));
             hist[b < IRC__SS_BINS ? b : IRC__SS_BINS - 1]++;
         }
@@ -327,99 +333,75 @@ static uint32_t irc__ss_threshold(const irc__sample *s, uint32_t m, uint32_t nph
     return 0;
 }
 
-/* Replaces each stratum of the batch by the mean of its two fresh
- * samples (rays 2q and 2q + 1): the first sample chose the stratum, so it
- * is left out of the mean, which stays unbiased (a mean with it leaned
- * toward the values that got strata chosen: -1.8% on the Sponza atrium);
- * its distance the nearest of the three.  With one fresh sample usable,
- * that one; with none, the first stays. */
+/* Merges the batch's extra samples into their strata: the mean of the two
+ * (the first did not choose its stratum, so the mean is unbiased), the
+ * distance the nearer. */
 static int irc__ss_merge(irc__sample *s, const uint32_t *at, const irc_hit *hits, uint32_t cnt)
 {
     uint32_t q;
-    int st, ok[2], h;
+    int st;
     for (q = 0; q < cnt; q++) {
-        irc__sample x[2], *o = &s[at[q]];
-        for (h = 0; h < 2; h++)
-            if ((st = ok[h] = irc__accept_hit(&hits[2 * q + h], &x[h])) < 0)
-                return st;
-        if (!ok[0] && !ok[1])
-            continue;
-        if (!ok[0] || !ok[1])
-            x[0] = x[ok[1]], x[1] = x[0];
-        o->l[0] = 0.5f * (x[0].l[0] + x[1].l[0]);
-        o->l[1] = 0.5f * (x[0].l[1] + x[1].l[1]);
-        o->l[2] = 0.5f * (x[0].l[2] + x[1].l[2]);
-        o->d = x[0].d < o->d ? x[0].d : o->d;
-        o->d = x[1].d < o->d ? x[1].d : o->d;
+        irc__sample x, *o = &s[at[q]];
+        if ((st = irc__accept_hit(&hits[q], &x)) < 0)
+            return st;
+        if (st == 0)
+            continue; /* failed: the stratum keeps its one sample */
+        o->l[0] = 0.5f * (o->l[0] + x.l[0]);
+        o->l[1] = 0.5f * (o->l[1] + x.l[1]);
+        o->l[2] = 0.5f * (o->l[2] + x.l[2]);
+        o->d = x.d < o->d ? x.d : o->d;
     }
     return IRC_OK;
 }
 
-/* Casts the pending pairs (two calls of one ray when the host takes
- * one at a time) and merges them. */
-static int irc__ss_flush(irc__call *k, irc__sample *s, const uint32_t *at, irc_ray *rays,
-                         irc_hit *hits, uint32_t cnt, uint32_t batch)
-{
-    int st;
-    if (batch)
-        st = irc__cast(k, rays, hits, 2u * cnt);
-    else if ((st = irc__cast(k, rays, hits, 1u)) == IRC_OK)
-        st = irc__cast(k, rays + 1, hits + 1, 1u);
-    return st < 0 ? st : irc__ss_merge(s, at, hits, cnt);
-}
-
-/* Two more jittered rays (other random draws) into each of the
- * cfg.supersamples / 2 strata of highest contrast, which then take their
- * mean (irc__ss_merge).  The strata are chosen first, all from the first
- * samples (marked by their distance's sign, the one bit a sample has
- * spare), then sampled.  Returns IRC_OK or a negative code (the callback's
- * own). */
+/* One more jittered ray (another random draw) into each of the
+ * cfg.supersamples strata whose neighbours differ most.  The strata are
+ * chosen first, all from the first samples (marked by their distance's
+ * sign, the one bit a sample has spare), then sampled in batches.
+ * Returns IRC_OK or a negative code (the callback's own). */
 int irc__supersample(irc__call *k, const float n[3], const float t1[3], const float t2[3])
 {
     const irc_cache *c = k->c;
     irc__sample *s = (irc__sample *)(void *)k->slot;
     const uint32_t m = c->cfg.strata_theta, nphi = c->cfg.strata_phi;
-    const uint32_t total = m * nphi, batch = c->cfg.max_batch < 64u ? c->cfg.max_batch / 2u : 32u;
-    irc_ray pair[2], *rays = batch ? irc__slot_rays(c, k->slot) : pair;
-    irc_hit two[2], *hits = batch ? (irc_hit *)(void *)(rays + c->cfg.max_batch) : two;
-    uint32_t at[32], i, cnt = 0, room, bin, h;
+    const uint32_t total = m * nphi, batch = c->cfg.max_batch < 64u ? c->cfg.max_batch : 64u;
+    irc_ray *rays = irc__slot_rays(c, k->slot);
+    irc_hit *hits = (irc_hit *)(void *)(rays + c->cfg.max_batch);
+    uint32_t at[64], i, cnt = 0, room, bin;
     float most, nf[3] = {n[0], n[1], n[2]};
     irc__rng rng = irc__rng_for(k->q.p, nf, c->cfg.seed);
-    irc__dirs g[2];
+    irc__dirs g;
     int st;
-    bin = irc__ss_threshold(s, m, nphi, c->cfg.supersamples / 2u, &most, &room);
-    if (!(most > 0.0f) || c->cfg.supersamples < 2u)
+    bin = irc__ss_threshold(s, m, nphi, c->cfg.supersamples, &most, &room);
+    if (!(most > 0.0f))
         return IRC_OK;
     for (i = 0; i < total; i++) {
         float ct = irc__contrast(s, m, nphi, i);
         uint32_t b = (uint32_t)(ct / most * (float)(IRC__SS_BINS - 1));
         b = b < IRC__SS_BINS ? b : IRC__SS_BINS - 1;
-        if (!(ct > 0.0f) || b < bin || (b == bin && room == 0))
+        if (!(ct > 0.0f) || s[i].d != s[i].d || b < bin || (b == bin && room == 0))
             continue;
         room -= b == bin;
         s[i].d = -s[i].d; /* chosen */
     }
-    for (h = 0; h < 2; h++) {
-        rng.key = irc__mix(rng.key ^ 0x73757065727321ull); /* the fresh draws' */
-        irc__dirs_init(c, n, t1, t2, &rng, &g[h]);
-    }
+    rng.key = irc__mix(rng.key ^ 0x73757065727321ull); /* the second draw's */
+    irc__dirs_init(c, n, t1, t2, &rng, &g);
     for (i = 0; i < total; i++) {
         if (!(s[i].d < 0.0f))
             continue;
         s[i].d = -s[i].d;
         at[cnt] = i;
-        for (h = 0; h < 2; h++) {
-            irc_ray *r = &rays[2 * cnt + h];
-            r->org[0] = k->q.p[0];
-            r->org[1] = k->q.p[1];
-            r->org[2] = k->q.p[2];
-            irc__direction(&g[h], i / nphi, i % nphi, r->dir);
-        }
-        if (++cnt < (batch ? batch : 1u))
+        rays[cnt].org[0] = k->q.p[0];
+        rays[cnt].org[1] = k->q.p[1];
+        rays[cnt].org[2] = k->q.p[2];
+        irc__direction(&g, i / nphi, i % nphi, rays[cnt].dir);
+        if (++cnt < batch)
             continue;
-        if ((st = irc__ss_flush(k, s, at, rays, hits, cnt, batch)) < 0)
+        if ((st = irc__cast(k, rays, hits, cnt)) < 0 || (st = irc__ss_merge(s, at, hits, cnt)) < 0)
             return st;
         cnt = 0;
     }
-    return cnt ? irc__ss_flush(k, s, at, rays, hits, cnt, batch) : IRC_OK;
+    if (cnt && ((st = irc__cast(k, rays, hits, cnt)) < 0 || (st = irc__ss_merge(s, at, hits, cnt)) < 0))
+        return st;
+    return IRC_OK;
 }

@@ -196,7 +196,7 @@ TEST(test_sphere_over_plane)
  * ball's silhouette (the only strata whose radiance differs from a
  * neighbour's), at most 64 a record and never more than the strata with
  * contrast; the mean squared error of E against the closed form falls
- * there (a stratum cut by the silhouette gets two fresh samples), and the
+ * there (a stratum beside the silhouette gets a second sample), and the
  * translational gradients' error against the closed form is no larger
  * than without (summed over 20 points where the gradient is large).  A
  * record is still a pure function of its query; a budget past M N, or with
