@@ -221,7 +221,8 @@ static int render(ctx *c, const render_opts *o, float *img, render_stats *st)
  * experiments (minpx, maxpx: the pixel bounds, -1 none; guard: 0 or 1;
  * maxr: max_radius, -1 the demo's view rule, 0 the library's; clamp: 0 or
  * 1; nofp: 1 records ignore the footprint; free: 1 free fill; sm, sn: strata; ss:
- * super-samples). */
+ * super-samples; vis: 1 a lookup answered by a record out of sight makes a
+ * record instead). */
 static void experiment_opts(render_opts *o)
 {
     const char *l = getenv("BENCH_SET");
@@ -239,6 +240,7 @@ static void experiment_opts(render_opts *o)
         else if (!strcmp(name, "nofp")) o->no_footprint = v != 0.0;
         else if (!strcmp(name, "free")) o->free_fill = v != 0.0;
         else if (!strcmp(name, "ss")) o->supersamples = (uint32_t)v;
+        else if (!strcmp(name, "vis")) o->check_visibility = v != 0.0;
         else if (!strcmp(name, "sm")) o->strata_m = (uint32_t)v;
         else if (!strcmp(name, "sn")) o->strata_n = (uint32_t)v;
         else fprintf(stderr, "BENCH_SET: unknown %s\n", name);

@@ -243,6 +243,34 @@ static void reference_e(const renderer *r, const float p[3], const float n[3], u
         e[c] = (float)(PI * sum[c] / total);
 }
 
+/* --check-visibility, an experiment: whether a record the lookup at (p, n)
+ * used lies out of p's sight (the segment between them crosses geometry),
+ * as V-Ray's "check sample visibility" asks; one ray a record. */
+static int hidden_record(const renderer *r, const float p[3], const float n[3], tstate *ts)
+{
+    uint32_t ids[32], cnt = 0, i;
+    if (irc_cache_neighbours(r->cache, p, n, ids, 32, &cnt) != IRC_OK)
+        return 0;
+    for (i = 0; i < cnt && i < 32; i++) {
+        irc_record rec;
+        float d[3], len;
+        int k;
+        if (irc_cache_record(r->cache, ids[i], &rec) != IRC_OK)
+            continue;
+        for (k = 0; k < 3; k++)
+            d[k] = rec.p[k] - p[k];
+        len = sqrtf(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+        if (len <= 2.0f * ray_offset(p))
+            continue;
+        for (k = 0; k < 3; k++)
+            d[k] /= len;
+        ts->rays++;
+        if (bvh_occluded(&r->b, p, d, ray_offset(p), len - ray_offset(rec.p)))
+            return 1;
+    }
+    return 0;
+}
+
 /* Indirect irradiance at a surface, from the cache or by brute force;
  * sh gets the SH record it came from (sh->bands 0: none).  fp: the
  * pixel's footprint there (0: no pixel), which bounds new records' reach
@@ -268,8 +296,17 @@ static int irradiance(renderer *r, const float p[3], const float n[3], float fp,
                 ts->dropped++;
             }
         } else {
+            float w = 0.0f;
+            irc_record rec;
             st = irc_cache_lookup_or_compute_px(r->cache, p, n, r->o.no_footprint ? 0.0f : fp,
-                                                e, NULL, ts);
+                                                e, &w, ts);
+            /* a record out of sight answered: this point gets its own */
+            if (st == IRC_OK && w > 0.0f && r->o.check_visibility &&
+                hidden_record(r, p, n, ts) && (st = irc_record_compute(r->cache, p, n, &rec, ts)) >= 0) {
+                memcpy(e, rec.e, sizeof rec.e);
+                st = irc_cache_insert(r->cache, &rec);
+                st = st == IRC_ERR_FULL ? IRC_OK : st;
+            }
         }
         ts->cache_s += (render_clock() - t0) - (ts->trace_s - tr0);
         return st < 0 ? st : 0;
