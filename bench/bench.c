@@ -365,6 +365,20 @@ static int wanted(const char *var, const char *name)
     return 0;
 }
 
+/* BENCH_SCENES=sponza names both Sponza views: a scene's name up to its
+ * first '-'. */
+static int wanted_family(const char *name)
+{
+    char fam[32];
+    const char *dash = strchr(name, '-');
+    size_t n = dash ? (size_t)(dash - name) : 0;
+    if (!n || n >= sizeof fam || !getenv("BENCH_SCENES") || !*getenv("BENCH_SCENES"))
+        return 0;
+    memcpy(fam, name, n);
+    fam[n] = '\0';
+    return wanted("BENCH_SCENES", fam);
+}
+
 /* Equal record count (Cornell box, as Schwarzhaupt et al. compare radius
  * rules): each radius rule's a is searched until the fill makes about
  * `target` records (records go as 1/a^2), then the RMSE at exactly
@@ -583,7 +597,7 @@ int main(int argc, char **argv)
     for (k = 0; k < sizeof scenes / sizeof scenes[0]; k++) {
         const bscene *b = &scenes[k];
         char err[512];
-        if (!wanted("BENCH_SCENES", b->name))
+        if (!wanted("BENCH_SCENES", b->name) && !wanted_family(b->name))
             continue;
         if (scene_load(b->path, &c.s, err, sizeof err) < 0) {
             fprintf(stderr, "%s\n", err);

@@ -145,7 +145,8 @@ suite suite ./build/irc_tests
 # The benchmarks build, and the profiling driver runs (figures come from
 # make bench-core, make bench-lookups and make bench-records, not from
 # here).
-check build-bench $MAKE -s BUILD=build build/bench_core build/bench_lookups build/bench_records
+check build-bench $MAKE -s BUILD=build build/bench_core build/bench_lookups build/bench_records \
+    build/bench_run build/outliers
 check bench-lookups ./build/bench_lookups scanline 1000 2000 count
 check bench-records ./build/bench_records shgrad 3
 
