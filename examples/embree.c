@@ -171,10 +171,12 @@ static void pixel(world *w, host *hs, int x, int y)
     if (w->rays) {
         e[0] = brute(w, hs, p, n, (unsigned)(y * w->w + x) * 2654435761u);
     } else {
-        /* the footprint: sqrt of the area the pixel covers there */
+        /* the footprint: sqrt of the area the pixel covers there (a
+         * grazing surface counted as 1/20 of a facing one at most) */
+        float cs = fabsf(dot(d, n));
         df = dot(d, w->f);
         if (irc_cache_lookup_or_compute_px(w->cache, p, n,
-                                           t * 2.0f * w->ty / w->h * df * sqrtf(df / fabsf(dot(d, n))),
+                                           t * 2.0f * w->ty / w->h * df * sqrtf(df / (cs > 0.05f ? cs : 0.05f)),
                                            e, NULL, hs) < 0)
             w->failed = 1;
     }
