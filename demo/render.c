@@ -243,9 +243,23 @@ static void reference_e(const renderer *r, const float p[3], const float n[3], u
         e[c] = (float)(PI * sum[c] / total);
 }
 
+int render_hidden(const renderer *r, const float p[3], const float q[3])
+{
+    float d[3], len;
+    int k;
+    for (k = 0; k < 3; k++)
+        d[k] = q[k] - p[k];
+    len = sqrtf(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    if (len <= 2.0f * ray_offset(p))
+        return 0;
+    for (k = 0; k < 3; k++)
+        d[k] /= len;
+    return bvh_occluded(&r->b, p, d, ray_offset(p), len - ray_offset(q));
+}
+
 /* --check-visibility, an experiment: whether a record the lookup at (p, n)
- * used lies out of p's sight (the segment between them crosses geometry),
- * as V-Ray's "check sample visibility" asks; one ray a record. */
+ * used lies out of p's sight, as V-Ray's "check sample visibility" asks;
+ * one ray a record. */
 static int hidden_record(const renderer *r, const float p[3], const float n[3], tstate *ts)
 {
     uint32_t ids[32], cnt = 0, i;
@@ -253,19 +267,10 @@ static int hidden_record(const renderer *r, const float p[3], const float n[3], 
         return 0;
     for (i = 0; i < cnt && i < 32; i++) {
         irc_record rec;
-        float d[3], len;
-        int k;
         if (irc_cache_record(r->cache, ids[i], &rec) != IRC_OK)
             continue;
-        for (k = 0; k < 3; k++)
-            d[k] = rec.p[k] - p[k];
-        len = sqrtf(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-        if (len <= 2.0f * ray_offset(p))
-            continue;
-        for (k = 0; k < 3; k++)
-            d[k] /= len;
         ts->rays++;
-        if (bvh_occluded(&r->b, p, d, ray_offset(p), len - ray_offset(rec.p)))
+        if (render_hidden(r, p, rec.p))
             return 1;
     }
     return 0;

@@ -113,6 +113,10 @@ int render_points(renderer *r, const float *pn, int n, float *rgb, render_stats 
  * experiments that place records themselves).  MODE_CACHE only. */
 int render_record(renderer *r, const float p[3], const float n[3], irc_record *out);
 
+/* Whether the segment from p to q crosses geometry (each end lifted off
+ * its surface by ray_offset; ends closer than that are in sight). */
+int render_hidden(const renderer *r, const float p[3], const float q[3]);
+
 /* False colour of the cache's records over the camera's image: each pixel
  * coloured by the record of largest weight there (hue from its id, so
  * neighbouring records differ), black where none counts; record centres

@@ -64,15 +64,12 @@ static void look(renderer *r, const cam_frame *cf, int x, int y, float a, double
     irc_cache_neighbours(r->cache, p, sf.nsm, ids, 64, &n);
     for (i = 0; i < n && i < 64; i++) {
         irc_record rec;
-        float s[3], len, off;
-        int k, h = 0, b = 0, f = 0;
+        float len, off;
+        int h, b, f;
         if (irc_cache_record(r->cache, ids[i], &rec) != IRC_OK)
             continue;
         len = dist3(p, rec.p);
-        for (k = 0; k < 3; k++)
-            s[k] = len > 0.0f ? (rec.p[k] - p[k]) / len : 0.0f;
-        if (len > 2.0f * ray_offset(p))
-            h = bvh_occluded(&r->b, p, s, ray_offset(p), len - ray_offset(rec.p));
+        h = render_hidden(r, p, rec.p);
         off = (p[0] - rec.p[0]) * rec.n[0] + (p[1] - rec.p[1]) * rec.n[1] +
               (p[2] - rec.p[2]) * rec.n[2];
         b = off < -0.01f * a * rec.radius;

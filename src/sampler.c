@@ -301,6 +301,13 @@ static float irc__contrast(const irc__sample *s, uint32_t m, uint32_t nphi, uint
 
 #define IRC__SS_BINS 64u
 
+/* The histogram bin of contrast ct, of the largest `most`. */
+static uint32_t irc__ss_bin(float ct, float most)
+{
+    const uint32_t b = (uint32_t)(ct / most * (float)(IRC__SS_BINS - 1));
+    return b < IRC__SS_BINS ? b : IRC__SS_BINS - 1;
+}
+
 /* The contrast above which (with the first `*room` strata of the bin at
  * it, in row order) cfg.supersamples strata lie: a histogram of the
  * contrasts over [0, the largest], so no per-stratum memory is needed. */
@@ -317,10 +324,8 @@ static uint32_t irc__ss_threshold(const irc__sample *s, uint32_t m, uint32_t nph
     IRC_MEMSET(hist, 0, sizeof hist);
     for (i = 0; i < m * nphi && most > 0.0f; i++) {
         float ct = irc__contrast(s, m, nphi, i);
-        if (ct > 0.0f && s[i].d == s[i].d) {
-            b = (uint32_t)(ct / most * (float)(IRC__SS_BINS - 1));
-            hist[b < IRC__SS_BINS ? b : IRC__SS_BINS - 1]++;
-        }
+        if (ct > 0.0f && s[i].d == s[i].d)
+            hist[irc__ss_bin(ct, most)]++;
     }
     for (b = IRC__SS_BINS; b-- > 0;) {
         if (above + hist[b] >= want) {
@@ -376,9 +381,8 @@ int irc__supersample(irc__call *k, const float n[3], const float t1[3], const fl
     if (!(most > 0.0f))
         return IRC_OK;
     for (i = 0; i < total; i++) {
-        float ct = irc__contrast(s, m, nphi, i);
-        uint32_t b = (uint32_t)(ct / most * (float)(IRC__SS_BINS - 1));
-        b = b < IRC__SS_BINS ? b : IRC__SS_BINS - 1;
+        const float ct = irc__contrast(s, m, nphi, i);
+        const uint32_t b = ct > 0.0f ? irc__ss_bin(ct, most) : 0u;
         if (!(ct > 0.0f) || s[i].d != s[i].d || b < bin || (b == bin && room == 0))
             continue;
         room -= b == bin;

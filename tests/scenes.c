@@ -276,6 +276,14 @@ irc_config scene_config(tscene *s, uint32_t features, uint32_t m, uint32_t n)
     return cfg;
 }
 
+void disk_record(irc_record *r, float e, float rad)
+{
+    memset(r, 0, sizeof *r);
+    r->n[2] = 1.0f;
+    r->e[0] = r->e[1] = r->e[2] = e;
+    r->radius = rad;
+}
+
 irc_cache *block_cache(irc_config *cfg, uint32_t records, size_t guard)
 {
     size_t bytes;

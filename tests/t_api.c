@@ -201,10 +201,7 @@ TEST(test_defaults)
         c = block_cache(&cfg, 8, 0);
         CHECK(c != NULL, "init");
         if (!c) return;
-        memset(&r, 0, sizeof r);
-        r.n[2] = 1.0f;
-        r.e[0] = r.e[1] = r.e[2] = 1.0f;
-        r.radius = 1.0f;
+        disk_record(&r, 1.0f, 1.0f);
         CHECK(irc_cache_insert(c, &r) == IRC_OK, "insert");
         r.p[0] = 0.5f;
         r.radius = 10.0f;

@@ -253,10 +253,7 @@ static irc_cache *hand_cache(tscene *s, irc_config *cfg, uint32_t features, irc_
     cfg->accuracy = 0.5f;
     cfg->leak_guard = 1; /* kept for the guard's test; the others' records carry none */
     c = block_cache(cfg, 8, 0);
-    memset(r, 0, sizeof *r);
-    r->n[2] = 1.0f;
-    r->e[0] = r->e[1] = r->e[2] = e;
-    r->radius = rad;
+    disk_record(r, e, rad);
     return c;
 }
 

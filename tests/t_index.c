@@ -216,10 +216,7 @@ TEST(test_index_clamped)
     c = block_cache(&cfg, 20000, 0);
     CHECK(c != NULL, "init");
     if (!c) return;
-    memset(&r, 0, sizeof r);
-    r.n[2] = 1.0f;
-    r.e[0] = r.e[1] = r.e[2] = 1.0f;
-    r.radius = 1.0f; /* A at the origin */
+    disk_record(&r, 1.0f, 1.0f); /* A at the origin */
     CHECK(irc_cache_insert(c, &r) == IRC_OK, "A");
     r.p[0] = 0.5f;
     r.radius = 5.0f; /* B: at most R_A + 0.5 */
