@@ -240,7 +240,7 @@ static void experiment_opts(render_opts *o)
         else if (!strcmp(name, "nofp")) o->no_footprint = v != 0.0;
         else if (!strcmp(name, "free")) o->free_fill = v != 0.0;
         else if (!strcmp(name, "ss")) o->supersamples = (uint32_t)v;
-        else if (!strcmp(name, "vis")) o->check_visibility = v != 0.0;
+        else if (!strcmp(name, "vis")) o->check_visibility = v != 0.0 ? IRC_ON : IRC_OFF;
         else if (!strcmp(name, "sm")) o->strata_m = (uint32_t)v;
         else if (!strcmp(name, "sn")) o->strata_n = (uint32_t)v;
         else fprintf(stderr, "BENCH_SET: unknown %s\n", name);

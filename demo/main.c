@@ -32,8 +32,8 @@ static const char usage[] =
     "  --pixels MIN,MAX        a record's reach in pixels (default 2.5,15; -1: no\n"
     "                          bound on that side)\n"
     "  --no-footprint          records ignore the pixel (the plain lookup-or-compute)\n"
-    "  --check-visibility      an experiment: a lookup that a record out of the point's\n"
-    "                          sight answered makes a record there instead\n"
+    "  --no-check-visibility   lookups use records out of the point's sight too\n"
+    "                          (irc_config.check_visibility off)\n"
     "  --max-radius R          cache maximum radius (default 0: none; -1: 0.1 x the\n"
     "                          diagonal of what the camera sees)\n"
     "  --threads T             render threads (default: the machine's cores)\n"
@@ -148,7 +148,7 @@ static int parse_args(int argc, char **argv, cli *c)
         else if (!strcmp(a, "--no-clamp")) c->o.clamp_neighbours = IRC_OFF;
         else if (!strcmp(a, "--supersamples")) { NEED(parse_uint(n, 0, IRC_MAX_STRATA, &v)); c->o.supersamples = (uint32_t)v; }
         else if (!strcmp(a, "--no-footprint")) c->o.no_footprint = 1;
-        else if (!strcmp(a, "--check-visibility")) c->o.check_visibility = 1;
+        else if (!strcmp(a, "--no-check-visibility")) c->o.check_visibility = IRC_OFF;
         else if (!strcmp(a, "--pixels")) NEED(sscanf(n, "%f,%f", &c->o.min_pixels, &c->o.max_pixels) == 2);
         else if (!strcmp(a, "--free-fill")) c->o.free_fill = 1;
         else if (!strcmp(a, "--tiles")) { NEED(parse_uint(n, 1, 65536, &v)); c->o.tiles = (int)v; }

@@ -61,9 +61,10 @@ static void secondary(const renderer *r, const surface *sf, int prim, const floa
     }
 }
 
-/* Casts count rays; what the cache's callback and the reference share. */
+/* Casts count rays; what the cache's callback and the reference share.
+ * shade 0: the hits' distances only (the cache's confirming rays). */
 static void cast(const renderer *r, const irc_ray *rays, irc_hit *hits, uint32_t count,
-                 tstate *ts)
+                 int shade, tstate *ts)
 {
     double t0 = render_clock();
     uint32_t i;
@@ -75,6 +76,9 @@ static void cast(const renderer *r, const irc_ray *rays, irc_hit *hits, uint32_t
         if (!bvh_intersect(&r->b, o, d, ray_offset(o), FLT_MAX, &bh)) {
             h->status = IRC_RAY_ESCAPED;
             env_radiance(&r->s->env, d, h->radiance);
+        } else if (!shade) {
+            h->status = IRC_RAY_HIT;
+            h->dist = bh.t;
         } else {
             surface sf;
             surface_at(r->s, o, d, &bh, &sf);
@@ -91,7 +95,7 @@ static int host_trace(const irc_trace_args *a)
 {
     const renderer *r = (const renderer *)a->context;
     /* The thread's counters come as the call's host pointer. */
-    cast(r, a->rays, a->hits, a->count, (tstate *)a->host);
+    cast(r, a->rays, a->hits, a->count, !a->visibility_only, (tstate *)a->host);
     return 0;
 }
 
@@ -168,6 +172,7 @@ int renderer_init(renderer *r, const scene *s, const render_opts *o, char *err, 
         cfg.min_pixels = o->min_pixels;
         cfg.max_pixels = o->max_pixels;
         cfg.leak_guard = (uint32_t)o->leak_guard;
+        cfg.check_visibility = (uint32_t)o->check_visibility;
         cfg.clamp_neighbours = (uint32_t)o->clamp_neighbours;
         cfg.max_radius = o->max_radius;
         if (o->max_radius < 0.0f)
@@ -232,7 +237,7 @@ static void reference_e(const renderer *r, const float p[3], const float n[3], u
         }
         if (++nb == 64 || i == total - 1) {
             int j;
-            cast(r, rays, hits, (uint32_t)nb, ts);
+            cast(r, rays, hits, (uint32_t)nb, 1, ts);
             for (j = 0; j < nb; j++)
                 for (c = 0; c < 3; c++)
                     sum[c] += hits[j].radiance[c];
@@ -255,25 +260,6 @@ int render_hidden(const renderer *r, const float p[3], const float q[3])
     for (k = 0; k < 3; k++)
         d[k] /= len;
     return bvh_occluded(&r->b, p, d, ray_offset(p), len - ray_offset(q));
-}
-
-/* --check-visibility, an experiment: whether a record the lookup at (p, n)
- * used lies out of p's sight, as V-Ray's "check sample visibility" asks;
- * one ray a record. */
-static int hidden_record(const renderer *r, const float p[3], const float n[3], tstate *ts)
-{
-    uint32_t ids[32], cnt = 0, i;
-    if (irc_cache_neighbours(r->cache, p, n, ids, 32, &cnt) != IRC_OK)
-        return 0;
-    for (i = 0; i < cnt && i < 32; i++) {
-        irc_record rec;
-        if (irc_cache_record(r->cache, ids[i], &rec) != IRC_OK)
-            continue;
-        ts->rays++;
-        if (render_hidden(r, p, rec.p))
-            return 1;
-    }
-    return 0;
 }
 
 /* Indirect irradiance at a surface, from the cache or by brute force;
@@ -301,17 +287,8 @@ static int irradiance(renderer *r, const float p[3], const float n[3], float fp,
                 ts->dropped++;
             }
         } else {
-            float w = 0.0f;
-            irc_record rec;
             st = irc_cache_lookup_or_compute_px(r->cache, p, n, r->o.no_footprint ? 0.0f : fp,
-                                                e, &w, ts);
-            /* a record out of sight answered: this point gets its own */
-            if (st == IRC_OK && w > 0.0f && r->o.check_visibility &&
-                hidden_record(r, p, n, ts) && (st = irc_record_compute(r->cache, p, n, &rec, ts)) >= 0) {
-                memcpy(e, rec.e, sizeof rec.e);
-                st = irc_cache_insert(r->cache, &rec);
-                st = st == IRC_ERR_FULL ? IRC_OK : st;
-            }
+                                                e, NULL, ts);
         }
         ts->cache_s += (render_clock() - t0) - (ts->trace_s - tr0);
         return st < 0 ? st : 0;
@@ -349,7 +326,7 @@ static void glossy_indirect(const renderer *r, const surface *sf, const float p[
         if (wt[nb][0] + wt[nb][1] + wt[nb][2] > 0.0f)
             nb++; /* below the surface: counted, not cast */
         if (nb > 0 && (nb == 64 || i == n - 1)) {
-            cast(r, rays, hits, (uint32_t)nb, ts);
+            cast(r, rays, hits, (uint32_t)nb, 1, ts);
             for (j = 0; j < nb; j++)
                 for (c = 0; c < 3; c++)
                     sum[c] += (double)wt[j][c] * hits[j].radiance[c];

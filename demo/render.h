@@ -36,9 +36,8 @@ typedef struct render_opts {
     int clamp_neighbours; /* cache: irc_config.clamp_neighbours (an irc_switch) */
     int no_footprint;     /* cache: records ignore the pixel's footprint
                              (the plain lookup-or-compute call) */
-    int check_visibility; /* cache, an experiment: a lookup that a record
-                             out of the point's sight answered makes a
-                             record at the point instead (render.c) */
+    int check_visibility; /* cache: irc_config.check_visibility (an
+                             irc_switch) */
     int threads;
     int show;             /* SHOW_FULL or SHOW_INDIRECT (kd/pi E only) */
     int light_samples;    /* at the camera ray's hit */

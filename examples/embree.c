@@ -117,6 +117,8 @@ static int trace(const irc_trace_args *a)
         int k;
         h->status = t > 0.0f ? IRC_RAY_HIT : IRC_RAY_ESCAPED;
         h->dist = t;
+        if (a->visibility_only) /* a confirming ray: the distance is all */
+            continue;
         for (k = 0; k < 3; k++)
             q[k] = a->rays[i].org[k] + t * a->rays[i].dir[k];
         h->radiance[0] = t > 0.0f ? sunlit(w, hs, q, h->normal, kd)

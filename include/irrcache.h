@@ -213,12 +213,20 @@ typedef struct irc_trace_args {
     void *host;             /* the per-call pointer the host passed to the
                                call that is computing (NULL if it passed
                                none): its thread's sampler, ray packet, ... */
-    float p[3];             /* the record's position (= every ray's org) */
+    float p[3];             /* the record's position (= every ray's org); for
+                               confirming rays, the query's */
     float n[3];             /* the record's unit normal; 0, 0, 0 for a
-                               free-point SH record */
+                               free-point SH record; for confirming rays,
+                               the query's */
     const irc_ray *rays;    /* count rays to cast (read only) */
     irc_hit *hits;          /* count results to write, same order */
     uint32_t count;         /* 1 <= count <= cfg.max_batch */
+    uint32_t visibility_only; /* 1: confirming rays (cfg.check_visibility),
+                               each from the query toward a record, which
+                               may point a little below the plane of n.
+                               Only status and dist are read: the host may
+                               skip shading and leave normal and radiance
+                               unset */
 } irc_trace_args;
 
 /*
@@ -426,6 +434,23 @@ typedef struct irc_config {
                                 spaces lit differently.  Default off: on
                                 the Sponza atrium it made 1.6x the records
                                 for the same error */
+    uint32_t check_visibility; /* an irc_switch: confirming rays (V-Ray's
+                                "check sample visibility").  The
+                                lookup_or_compute calls cast one ray from
+                                the query toward each record they would
+                                use (up to 32; the trace callback sees
+                                visibility_only = 1) and leave out those
+                                whose ray hits something before 0.9 of the
+                                way: records outside a crevice, behind a
+                                column or above a soffit stop lighting it;
+                                when none is left the call computes a
+                                record there.  Plain lookups do not check.
+                                Default: on for irradiance records (Sponza
+                                arcade, a = 0.2: the worst pixel 8.2 ->
+                                1.65 times the mean, leaks 40 -> 22, 2.4x
+                                -> 2.8x brute force; atrium 4.7x -> 5.3x;
+                                the Cornell box, where nothing hides,
+                                6.1x -> 5.1x), off for SH records */
     uint32_t sh_bands;       /* SH records: L, bands 0..L-1, L*L coefficients
                                 per channel; 1..IRC_SH_MAX_BANDS (default 3) */
     uint32_t sh_channels;    /* SH records: 3 (RGB, default) or 1 (the hit's
@@ -721,11 +746,15 @@ IRC_API int irc_cache_lookup_gradient(irc_cache *cache, const float p[3], const 
  * Lookup; on a miss, compute a record at (p, n) (host reaches the callback),
  * insert it, and return its irradiance with *weight = 0 (a weight of 0 is
  * how the caller tells a fresh record from an interpolated value; the new
- * record's id is not reported: irc_cache_neighbours finds it).  A miss that
- * had to wait for a scratch slot looks up again first, since another thread
- * may have stored a record there meanwhile.  Returns IRC_OK, IRC_NOT_STORED
- * (value valid, pool full and eviction off), or a negative error code on
- * failure.
+ * record's id is not reported: irc_cache_neighbours finds it).  With
+ * cfg.check_visibility (the default for irradiance records) the lookup
+ * first confirms its records with one ray each through the callback
+ * (host reaches it, visibility_only = 1) and leaves out those out of
+ * sight; a callback failure there returns as a record's would, with
+ * nothing changed.  A miss that had to wait for a scratch slot looks up
+ * again first, since another thread may have stored a record there
+ * meanwhile.  Returns IRC_OK, IRC_NOT_STORED (value valid, pool full and
+ * eviction off), or a negative error code on failure.
  */
 IRC_API int irc_cache_lookup_or_compute(irc_cache *cache, const float p[3],
                                         const float n[3], float rgb[3], float *weight,

@@ -116,6 +116,9 @@ typedef struct irc__query {
     float p[3];
     float n[3];
     int free;
+    const uint32_t *hidden; /* records the lookup leaves out (cfg.
+                               check_visibility): n_hidden ids, ascending */
+    uint32_t n_hidden;
 } irc__query;
 
 /* A lookup's running sums live in the frame of the kind's find (4 floats
@@ -133,6 +136,7 @@ typedef struct irc__call {
     irc__query q;
     uint32_t rays;
     float footprint;  /* a pixel's width at the query, 0 = none */
+    uint32_t sight;   /* 1 while casting confirming rays (sight.c) */
 } irc__call;
 
 /* A record kind: what the store needs to check, pack, weigh and
@@ -296,6 +300,14 @@ irc__rng irc__rng_for(const float p[3], const float n[3], uint64_t seed);
 int irc__accept_hit(const irc_hit *h, irc__sample *s);
 void irc__frame(const float n[3], float t1[3], float t2[3]);
 int irc__cast(irc__call *k, irc_ray *rays, irc_hit *hits, uint32_t count);
+
+/* store.c: the ids (and positions, pos not NULL) of up to cap records a
+ * lookup at q would use; *found gets how many there are in all. */
+int irc__collect(irc_cache *c, const irc__query *q, uint32_t *ids, float (*pos)[3],
+                 uint32_t cap, uint32_t *found);
+/* sight.c: the kind's find at k->q, leaving out the records out of the
+ * query's sight when cfg.check_visibility asks (k->c, k->host set). */
+int irc__find_in_sight(irc__call *k, void *out, float *weight);
 int irc__sample_hemisphere(irc__call *k, const float n[3], const float t1[3],
                            const float t2[3], uint32_t first, uint32_t *used);
 int irc__supersample(irc__call *k, const float n[3], const float t1[3], const float t2[3]);

@@ -128,12 +128,16 @@ static int irc__sampling_resolve(irc_config *out)
  * measured for SH ones; the leak guard paid only between rooms. */
 static int irc__switches_resolve(irc_config *out)
 {
-    if (out->clamp_neighbours > IRC_OFF || out->leak_guard > IRC_OFF)
+    if (out->clamp_neighbours > IRC_OFF || out->leak_guard > IRC_OFF ||
+        out->check_visibility > IRC_OFF)
         return IRC_ERR_CONFIG;
     if (out->clamp_neighbours == IRC_DEFAULT)
         out->clamp_neighbours = (out->features & IRC_FEATURE_SH) ? IRC_OFF : IRC_ON;
     out->clamp_neighbours = out->clamp_neighbours == IRC_ON;
     out->leak_guard = out->leak_guard == IRC_ON;
+    if (out->check_visibility == IRC_DEFAULT)
+        out->check_visibility = (out->features & IRC_FEATURE_SH) ? IRC_OFF : IRC_ON;
+    out->check_visibility = out->check_visibility == IRC_ON;
     return IRC_OK;
 }
 

@@ -39,6 +39,8 @@ static int irc__query_make(const irc_cache *c, const float p[3], const float n[3
     }
     for (k = 0; k < 3; k++)
         q->p[k] = p[k];
+    q->hidden = NULL;
+    q->n_hidden = 0;
     return IRC_OK;
 }
 
@@ -121,6 +123,7 @@ static int irc__run_in(irc_cache *c, irc__call *k, uint32_t t, void *host,
     k->slot = irc__slot(c, t);
     k->host = host;
     k->rays = 0;
+    k->sight = 0;
     return fn(k, out);
 }
 
@@ -304,7 +307,21 @@ typedef struct irc__walk {
     void *acc;
     float w;
     uint32_t *ids, cap, found;
+    float (*pos)[3];         /* with ids: the records' positions */
 } irc__walk;
+
+static int irc__is_hidden(const irc__query *q, uint32_t id)
+{
+    uint32_t lo = 0, hi = q->n_hidden;
+    while (lo < hi) {
+        uint32_t mid = lo + (hi - lo) / 2;
+        if (q->hidden[mid] < id)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return lo < q->n_hidden && q->hidden[lo] == id;
+}
 
 static void irc__visit(void *ud, uint32_t id)
 {
@@ -313,15 +330,19 @@ static void irc__visit(void *ud, uint32_t id)
     const irc__rec *r = irc__rec_at(c, id);
     float w;
     float ni[3];
-    if (!irc__within_reach(c, r, v->q->p) || !v->ops->weigh(c, r, v->q, &w, ni))
+    if (!irc__within_reach(c, r, v->q->p) || (v->q->n_hidden && irc__is_hidden(v->q, id)) ||
+        !v->ops->weigh(c, r, v->q, &w, ni))
         return;
     v->w += w;
     if (v->acc) {
         v->ops->accumulate(c, r, v->q, w, ni, v->acc);
         irc__mark_used(v->c, id);
     } else {
-        if (v->found < v->cap)
+        if (v->found < v->cap) {
             v->ids[v->found] = id;
+            if (v->pos)
+                IRC_MEMCPY(v->pos[v->found], r->p, sizeof r->p);
+        }
         v->found++;
     }
 }
@@ -414,12 +435,16 @@ int irc__lookup_or_compute(irc_cache *c, const irc__kind *want, float footprint,
     if (footprint < 0.0f)
         return IRC_ERR_RANGE;
     k.footprint = footprint;
-    if ((st = c->kind->find(c, &k.q, out, weight)) != IRC_MISS)
+    k.c = c;
+    k.host = host;
+    k.rays = 0;
+    k.sight = 0;
+    if ((st = irc__find_in_sight(&k, out, weight)) != IRC_MISS)
         return irc__count_lookup(c, st);
     if ((st = irc__slot_claim(c, &t, &waited)) < 0)
         return st;
     /* While this thread waited, another may have stored a record here. */
-    if (waited && (st = c->kind->find(c, &k.q, out, weight)) != IRC_MISS) {
+    if (waited && (st = irc__find_in_sight(&k, out, weight)) != IRC_MISS) {
         irc__slot_release(c, t);
         return irc__count_lookup(c, st);
     }
@@ -452,26 +477,34 @@ int irc__record_get(irc_cache *c, const irc__kind *want, uint32_t id, void *out)
     return st;
 }
 
+int irc__collect(irc_cache *c, const irc__query *q, uint32_t *ids, float (*pos)[3],
+                 uint32_t cap, uint32_t *found)
+{
+    irc__walk v;
+    int st;
+    IRC_MEMSET(&v, 0, sizeof v);
+    v.c = c;
+    v.ops = c->kind;
+    v.q = q;
+    v.ids = ids;
+    v.cap = cap;
+    v.pos = pos;
+    if ((st = irc__walk_index(c, &v)) < 0)
+        return st;
+    *found = v.found;
+    return IRC_OK;
+}
+
 int irc_cache_neighbours(irc_cache *c, const float p[3], const float n[3],
                          uint32_t *ids, uint32_t cap, uint32_t *count)
 {
     irc__query q;
-    irc__walk v;
     int st;
     if ((st = irc__enter(c, NULL)) < 0 || (st = irc__query_make(c, p, n, &q)) < 0)
         return st;
     if (!count || (!ids && cap))
         return IRC_ERR_NULL;
-    IRC_MEMSET(&v, 0, sizeof v);
-    v.c = c;
-    v.ops = c->kind;
-    v.q = &q;
-    v.ids = ids;
-    v.cap = cap;
-    if ((st = irc__walk_index(c, &v)) < 0)
-        return st;
-    *count = v.found;
-    return IRC_OK;
+    return irc__collect(c, &q, ids, NULL, cap, count);
 }
 
 int irc__write_lock_idle(irc_cache *c)

@@ -268,9 +268,11 @@ irc_config scene_config(tscene *s, uint32_t features, uint32_t m, uint32_t n)
     cfg.context = s;
     /* 0: bare records, and records keep the radii they are given or
      * computed with: what the closed forms here are for (the library's own
-     * defaults, both gradients and neighbour clamping, are test_defaults') */
+     * defaults, both gradients, neighbour clamping and confirming rays, are
+     * test_defaults' and t_sight's) */
     cfg.features = features ? features : IRC_FEATURE_NONE;
     cfg.clamp_neighbours = IRC_OFF;
+    cfg.check_visibility = IRC_OFF;
     cfg.strata_theta = m;
     cfg.strata_phi = n;
     return cfg;

@@ -64,6 +64,8 @@ TEST(test_config_checks)
     CASE(cfg.leak_guard = 3, IRC_ERR_CONFIG);
     CASE(cfg.leak_guard = IRC_ON, IRC_OK);
     CASE(cfg.leak_guard = IRC_OFF, IRC_OK);
+    CASE(cfg.check_visibility = 3, IRC_ERR_CONFIG);
+    CASE(cfg.check_visibility = IRC_ON, IRC_OK);
     CASE(cfg.clamp_neighbours = 3, IRC_ERR_CONFIG);
     CASE(cfg.clamp_neighbours = IRC_OFF, IRC_OK);
     CASE(cfg.no_wait = 2, IRC_ERR_CONFIG);

@@ -243,7 +243,7 @@ TEST(test_leak_scene)
     o.max_radius = -1.0f;
     if (leak_render(&s, &o, ref) == 0)
         for (k = 0; k < 3; k++)
-            for (g = 0; g < 2; g++) {
+            for (g = 0; g < 3; g++) {
                 int dark = 0, lit = 0;
                 double worst = 0.0;
                 o.mode = MODE_CACHE;
@@ -253,7 +253,10 @@ TEST(test_leak_scene)
                 o.strata_m = 16;
                 o.strata_n = 64;
                 o.max_records = 100000;
+                /* the guard on, off, then off with confirming rays (the
+                 * default), which see the walls on their own */
                 o.leak_guard = g ? IRC_OFF : IRC_ON;
+                o.check_visibility = g == 2 ? IRC_DEFAULT : IRC_OFF;
                 if (leak_render(&s, &o, img) < 0)
                     break;
                 for (i = 0; i < n; i++)
@@ -264,10 +267,10 @@ TEST(test_leak_scene)
                         worst = v > worst ? v : worst;
                     }
                 printf("  a %.1f, min_radius %.1f, features %u, %s: %d of %d dark-room pixels lit, brightest "
-                       "%.4f\n", cases[k].a, cases[k].min_r, cases[k].f, g ? "no guard" : "guard", lit, dark,
-                       worst);
+                       "%.4f\n", cases[k].a, cases[k].min_r, cases[k].f,
+                       g == 2 ? "no guard, confirming rays" : g ? "no guard" : "guard", lit, dark, worst);
                 CHECK(dark > n / 4, "the dark room covers %d pixels", dark);
-                if (g)
+                if (g == 1)
                     CHECK(lit > 0, "without the guard the scene should leak");
                 else
                     CHECK(lit == 0, "%d dark pixels lit through the wall", lit);
