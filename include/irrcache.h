@@ -372,7 +372,9 @@ typedef struct irc_config {
                                 of a record whose rays all escaped (with
                                 the default, such a record has the
                                 smallest radius and serves only its own
-                                point: set max_radius for open scenes) */
+                                point, where a lookup answers from it;
+                                set max_radius for open scenes, or use
+                                the _px call) */
     float min_pixels;        /* screen-space bounds on a record's reach a R
                                 (pbrt-v2's minimum and maximum pixel
                                 spacing): a record computed by

@@ -508,7 +508,10 @@ static inline int irc__within_reach(const irc_cache *c, const irc__rec *r, const
 {
     float dx = (float)p[0] - r->p[0], dy = (float)p[1] - r->p[1],
            dz = (float)p[2] - r->p[2], ra = (float)c->cfg.accuracy * r->r;
-    return dx * dx + dy * dy + dz * dz < ra * ra;
+    float d2 = dx * dx + dy * dy + dz * dz;
+    /* d2 == 0: a record serves its own point even when (a R)^2 underflows
+     * (an open-sky record's R is FLT_MIN) */
+    return d2 < ra * ra || d2 == 0.0f;
 }
 
 #endif

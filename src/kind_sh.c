@@ -131,7 +131,7 @@ static int irc__sh_weigh(const irc_cache *c, const irc__rec *r, const irc__query
     if (r->n != IRC__FREE)
         return 0;
     d = IRC_SQRTF(dx * dx + dy * dy + dz * dz);
-    if (!(d < ra))
+    if (!(d < ra || d == 0.0f)) /* its own point always (irc__within_reach) */
         return 0;
     *w = d * IRC__SH_W_MAX > r->r ? IRC_POWF(r->r / d, c->cfg.sh_power) : IRC__SH_W_MAX;
     if (*w > IRC__SH_W_MAX)

@@ -62,8 +62,8 @@ int irc__weigh(const irc_cache *c, const irc__rec *r, const float p[3],
     const float a = c->cfg.accuracy, rad = r->r;
     float dx = p[0] - r->p[0], dy = p[1] - r->p[1], dz = p[2] - r->p[2];
     float d2 = dx * dx + dy * dy + dz * dz, nn, e;
-    if (d2 >= a * a * rad * rad || r->n == IRC__FREE)
-        return 0;
+    if (!(d2 < a * a * rad * rad || d2 == 0.0f) || r->n == IRC__FREE)
+        return 0; /* its own point always (irc__within_reach) */
     irc__oct_decode(r->n, ni);
     nn = n[0] * ni[0] + n[1] * ni[1] + n[2] * ni[2];
     if (nn <= 0.0f)
@@ -83,7 +83,7 @@ int irc__weigh(const irc_cache *c, const irc__rec *r, const float p[3],
             irc__oct_decode(an->axis, u);
             du = dx * u[0] + dy * u[1] + dz * u[2];
             d2 = du * du + (d2 - du * du) / ((float)an->q * an->q);
-            if (d2 >= a * a * rad * rad)
+            if (!(d2 < a * a * rad * rad || d2 == 0.0f))
                 return 0;
         }
     }

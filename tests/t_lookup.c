@@ -371,3 +371,44 @@ TEST(test_evict_clock)
     CHECK(st.records == 4 && st.evictions == 1001, "evictions %llu", (unsigned long long)st.evictions);
     block_free(&cfg);
 }
+
+/* Under an open sky every ray escapes: with the default radii such a
+ * record gets the smallest radius (FLT_MIN) and must still serve its own
+ * point, so repeated calls there make one record, not one each; in every
+ * configuration of the record (bare, gradients, ellipses, defaults). */
+TEST(test_open_sky_own_point)
+{
+    static const uint32_t feats[4] = {IRC_FEATURE_NONE, 0,
+                                      IRC_FEATURE_TRANSLATION | IRC_FEATURE_HESSIAN,
+                                      IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION};
+    static const float pts[3][3] = {{0, 0, 0}, {3.25f, -1.5f, 0.75f}, {1e4f, 2e4f, -3e4f}};
+    const float n[3] = {0.0f, 0.6f, 0.8f};
+    tscene s;
+    int f, i, k;
+    scene_init(&s);
+    s.sky_a[0] = s.sky_a[1] = s.sky_a[2] = 1.0f;
+    for (f = 0; f < 4; f++) {
+        irc_config cfg = scene_config(&s, feats[f], 4, 16);
+        irc_cache *c;
+        irc_stats st;
+        if (f == 3) {
+            cfg.clamp_neighbours = IRC_DEFAULT;
+            cfg.check_visibility = IRC_DEFAULT;
+        }
+        c = block_cache(&cfg, 64, 0);
+        CHECK(c != NULL, "init %d", f);
+        if (!c) continue;
+        for (i = 0; i < 3; i++)
+            for (k = 0; k < 10; k++) {
+                float rgb[3], w = -1.0f;
+                CHECK(irc_cache_lookup_or_compute(c, pts[i], n, rgb, &w, NULL) == IRC_OK &&
+                          (k == 0 ? w == 0.0f : w > 0.0f) && fabsf(rgb[0] - 3.14159265f) < 1e-3f,
+                      "features %u, point %d, call %d: w %g, E %g", feats[f], i, k, (double)w,
+                      (double)rgb[0]);
+            }
+        CHECK(irc_cache_stats(c, &st) == IRC_OK && st.records == 3 && st.computes == 3,
+              "features %u: %llu records, %llu computes", feats[f],
+              (unsigned long long)st.records, (unsigned long long)st.computes);
+        block_free(&cfg);
+    }
+}
