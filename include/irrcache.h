@@ -257,6 +257,17 @@ typedef int (*irc_trace_fn)(const irc_trace_args *args);
  *     fail.
  *   - yield: let other threads run while this one waits for a scratch slot;
  *     NULL if the port cannot wait (single-threaded).
+ *   - owner / owner_alive (both or neither; NULL: none): a scratch slot
+ *     records the token of the process that claimed it, and a call that
+ *     finds every slot taken (at once with no_wait, else every 256 waits)
+ *     takes over a slot whose process is gone: a process killed inside a
+ *     record computation does not hang the others (irc_join).  A process
+ *     killed while it holds the write lock (inside an insert, a pass's end,
+ *     a merge: microseconds, no callback runs then) is not recovered: the
+ *     posix lock stays taken, and the block must be attached anew
+ *     (irc_attach makes a fresh lock) once every process has let go.
+ *     irc_port_posix has them (getpid, kill(pid, 0)); a reused process id
+ *     looks alive.
  * The atomics act on naturally aligned 64-bit words inside the block.
  */
 typedef struct irc_port {
@@ -275,6 +286,11 @@ typedef struct irc_port {
     uint64_t (*fetch_or)(uint64_t *obj, uint64_t v);       /* relaxed */
     int (*cas)(uint64_t *obj, uint64_t expected, uint64_t desired); /* acq_rel;
                                                          1 if swapped */
+    uint64_t (*owner)(void);              /* optional: a nonzero token of the
+                                             calling process (its id) */
+    int (*owner_alive)(uint64_t token);   /* optional: 0 if the process
+                                             whose owner() gave token is
+                                             gone, else 1 */
 } irc_port;
 
 /* The ports.  A build compiles the one chosen by `make PORT=posix|c11|none`

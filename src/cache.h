@@ -17,7 +17,7 @@
 
 /* What a block must agree on to be re-attached (irc_attach): the layout's
  * version, pointer and size_t widths, byte order. */
-#define IRC__LAYOUT_VERSION 9u
+#define IRC__LAYOUT_VERSION 10u
 #define IRC__ABI                                                           \
     (IRC__LAYOUT_VERSION | (uint32_t)sizeof(void *) << 8 |                 \
      (uint32_t)sizeof(size_t) << 16 | (uint32_t)sizeof(double) << 24)
@@ -218,7 +218,6 @@ struct irc_cache {
     double root_c[3];        /* the root cube: centre exact in double */
     double root_h;           /* half its edge, a power of two */
     /* Atomic. */
-    uint64_t slots_busy;     /* bit t: scratch slot t in use */
     uint64_t pending;        /* records deferred by the open pass (some may
                                 not have found a slot) */
 };
@@ -256,9 +255,16 @@ static inline const void *irc__gtab(const irc_cache *c)
 {
     return irc__part(c, c->o_gtab);
 }
+/* A scratch slot: a head of IRC__ALIGN bytes whose first word is its
+ * owner (0: free; else the claiming process's port token, store.c), then
+ * slot_bytes - IRC__ALIGN bytes of working area, which irc__slot gives. */
+static inline uint64_t *irc__slot_owner(const irc_cache *c, uint32_t t)
+{
+    return (uint64_t *)(void *)irc__part(c, c->o_scratch + (size_t)t * c->slot_bytes);
+}
 static inline unsigned char *irc__slot(const irc_cache *c, uint32_t t)
 {
-    return irc__part(c, c->o_scratch + (size_t)t * c->slot_bytes);
+    return irc__part(c, c->o_scratch + (size_t)t * c->slot_bytes + IRC__ALIGN);
 }
 /* The record a lookup-or-compute builds in slot t (an irc_record or an
  * irc_sh, by the cache's kind). */

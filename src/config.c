@@ -19,7 +19,8 @@ int irc__port_ok(const irc_port *p)
 {
     return p->lock_init && p->lock_destroy && p->read_lock && p->read_unlock &&
            p->write_lock && p->write_unlock && p->load && p->store &&
-           p->fetch_add && p->fetch_or && p->cas && p->lock_size <= IRC__LOCK_MAX;
+           p->fetch_add && p->fetch_or && p->cas && p->lock_size <= IRC__LOCK_MAX &&
+           !p->owner == !p->owner_alive;
 }
 
 /* IRC_ERR_UNSUPPORTED for features this build leaves out (util.h:

@@ -106,6 +106,7 @@ static void irc__layout_of(const irc_config *cfg, uint32_t capacity, irc__layout
     l->slot_bytes = irc__slot_layout(cfg, l);
     l->slot_rec = l->slot_bytes;
     l->slot_bytes += irc__up(cfg->features & IRC_FEATURE_SH ? sizeof(irc_sh) : sizeof(irc_record));
+    l->slot_bytes += IRC__ALIGN; /* the owner's head (cache.h irc__slot_owner) */
     l->node_cap = irc__node_cap(capacity);
     l->lock_bytes = irc__up(cfg->port->lock_size ? cfg->port->lock_size : 1);
     l->lock = at;
@@ -275,6 +276,7 @@ int irc_attach(const irc_config *cfg, irc_cache **out)
     irc_cache head, *c;
     const irc_port *port;
     size_t was, pad;
+    uint32_t t;
     int st;
     if (!cfg || !out || !cfg->buffer || !cfg->trace)
         return IRC_ERR_NULL;
@@ -293,7 +295,8 @@ int irc_attach(const irc_config *cfg, irc_cache **out)
     /* The copied lock object is the old address's: made anew.  Nothing
      * holds it, and no slot is busy, in a block at rest. */
     IRC_MEMSET(irc__lock(c), 0, c->lock_bytes);
-    c->home->slots_busy = 0;
+    for (t = 0; t < c->cfg.threads; t++)
+        *irc__slot_owner(c, t) = 0;
     /* A lock that cannot be made leaves the block moved but whole:
      * irc_attach may be called again. */
     if (port->lock_init(irc__lock(c)) < 0)

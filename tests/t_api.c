@@ -2,6 +2,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "cache.h" /* internals on purpose: a busy slot, no_wait */
 #include "scenes.h"
@@ -345,13 +346,13 @@ TEST(test_bad_input_unchanged)
     {
         /* internals on purpose: the slot taken and the cache told not to
          * wait, which is the only way a compute reports busy */
-        uint64_t was = c->slots_busy;
-        c->slots_busy = 1;
+        uint64_t *own = irc__slot_owner(c, 0), was = *own;
+        *own = (uint64_t)getpid(); /* alive: nothing to take over */
         c->cfg.no_wait = 1;
         memcpy(copy, cfg.buffer, cfg.buffer_size);
         SAME(irc_record_compute(c, good_p, good_n, &rec, NULL), IRC_ERR_BUSY);
         SAME(irc_cache_lookup_or_compute(c, good_n, good_n, rgb, &w, NULL), IRC_ERR_BUSY);
-        c->slots_busy = was;
+        *own = was;
         c->cfg.no_wait = 0;
     }
 #undef SAME

@@ -4,6 +4,7 @@
  * fresh computation at its query, from both processes. */
 #include <fcntl.h>
 #include <math.h>
+#include <signal.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/mman.h>
@@ -214,4 +215,104 @@ TEST(test_join_refused)
               irc_cache_clear(c) == IRC_OK,
           "a view's fini leaves the creator's lock");
     block_free(&cfg);
+}
+
+/* A process killed inside a record computation keeps a scratch slot; with
+ * one slot, every other process's next miss would wait for it forever.
+ * The port's owner check hands the slot over.  A joined child kills
+ * itself (SIGKILL, from its trace callback) at several points of its
+ * first records; a second child, the survivor, then fills the lattice on
+ * the creator's handle within 10 s, and every record it finds is whole. */
+typedef struct suicidal {
+    tscene s;
+    unsigned long calls, die_at;
+} suicidal;
+
+static int suicidal_trace(const irc_trace_args *a)
+{
+    irc_trace_args b = *a;
+    suicidal *k = (suicidal *)a->context;
+    if (++k->calls == k->die_at)
+        kill(getpid(), SIGKILL);
+    b.context = &k->s;
+    return scene_trace(&b);
+}
+
+/* Waits up to 10 s for pid; kills it after that.  1 if it exited with 0. */
+static int finished(pid_t pid)
+{
+    int status = -1, i;
+    for (i = 0; i < 10000; i++) {
+        if (waitpid(pid, &status, WNOHANG) == pid)
+            return WIFEXITED(status) && WEXITSTATUS(status) == 0;
+        nap();
+    }
+    kill(pid, SIGKILL);
+    waitpid(pid, &status, 0);
+    return 0;
+}
+
+TEST(test_share_killed)
+{
+    static const unsigned long die_at[6] = {1, 128, 256, 257, 400, 700};
+    suicidal host;
+    irc_config cfg;
+    irc_cache *c;
+    char path[] = "/tmp/irc_killed_XXXXXX";
+    size_t bytes = 0, mapped;
+    void *map;
+    int t, fd = mkstemp(path);
+    scene_sphere_plane(&host.s);
+    host.calls = host.die_at = 0;
+    cfg = scene_config(&host.s, IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION, 8, 32);
+    cfg.trace = suicidal_trace;
+    cfg.context = &host;
+    cfg.max_radius = 1.0f;
+    cfg.threads = 1;
+    CHECK(fd >= 0 && irc_footprint(&cfg, 4096, &bytes) == IRC_OK, "footprint");
+    mapped = (bytes + 4095) / 4096 * 4096;
+    CHECK(fd >= 0 && ftruncate(fd, (off_t)mapped) == 0, "temporary file");
+    map = fd < 0 ? MAP_FAILED : mmap(NULL, mapped, PROT_READ | PROT_WRITE, MAP_SHARED, fd, 0);
+    CHECK(map != MAP_FAILED, "mmap");
+    if (fd >= 0) {
+        close(fd);
+        unlink(path);
+    }
+    if (map == MAP_FAILED)
+        return;
+    for (t = 0; t < 6; t++) {
+        pid_t victim, survivor;
+        int status = -1;
+        cfg.buffer = map;
+        cfg.buffer_size = bytes;
+        if (irc_init(&cfg, 4096, &c) != IRC_OK) {
+            CHECK(0, "init");
+            break;
+        }
+        victim = fork();
+        if (victim == 0) {
+            static double view[IRC_VIEW_BYTES / sizeof(double)];
+            irc_cache *v;
+            host.die_at = die_at[t];
+            if (irc_join(&cfg, view, sizeof view, &v) != IRC_OK)
+                _exit(100);
+            fill_half(v, 1);
+            _exit(101); /* it should have died */
+        }
+        waitpid(victim, &status, 0);
+        CHECK(WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL, "trial %d: the victim %s", t,
+              WIFEXITED(status) ? "exited" : "did not die by SIGKILL");
+        survivor = fork();
+        if (survivor == 0) {
+            irc_stats st;
+            int bad = fill_half(c, 0) + fill_half(c, 1) + verify_all(c);
+            bad += irc_cache_stats(c, &st) != IRC_OK || st.records < 100;
+            _exit(bad > 99 ? 99 : bad);
+        }
+        CHECK(survivor > 0 && finished(survivor),
+              "trial %d (victim killed at ray %lu): the survivor hung or found bad records", t,
+              die_at[t]);
+        irc_fini(c);
+    }
+    munmap(map, mapped);
 }

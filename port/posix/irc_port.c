@@ -2,8 +2,12 @@
  * port/posix/irc_port.c -- POSIX threads: a pthread rwlock in the cache's
  * block, and the GCC/Clang __atomic builtins on the block's 64-bit words.
  */
+#include <errno.h>
 #include <pthread.h>
 #include <sched.h>
+#include <signal.h>
+#include <sys/types.h>
+#include <unistd.h>
 
 #include "irrcache.h"
 
@@ -41,7 +45,15 @@ static int posix_cas(uint64_t *o, uint64_t e, uint64_t d)
     return __atomic_compare_exchange_n(o, &e, d, 0, __ATOMIC_ACQ_REL, __ATOMIC_ACQUIRE);
 }
 
+/* A scratch slot's owner: the process id; kill(pid, 0) tells whether it
+ * still runs (EPERM: it does, as another user's). */
+static uint64_t posix_owner(void) { return (uint64_t)getpid(); }
+static int posix_owner_alive(uint64_t tok)
+{
+    return kill((pid_t)tok, 0) == 0 || errno != ESRCH;
+}
+
 const irc_port irc_port_posix = {
     "posix", sizeof(pthread_rwlock_t), posix_lock_init, posix_lock_destroy,
     posix_read_lock, posix_unlock, posix_write_lock, posix_unlock, posix_yield,
-    posix_load, posix_store, posix_add, posix_or, posix_cas};
+    posix_load, posix_store, posix_add, posix_or, posix_cas, posix_owner, posix_owner_alive};
