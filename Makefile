@@ -39,7 +39,7 @@ PIC = $(if $(filter none,$(PORT)),,-fPIC)
 SRC = src/status.c src/version.c src/check.c src/config.c src/layout.c src/store.c src/kind_irr.c src/gradient.c \
       src/kind_sh.c src/sampler.c src/irradiance.c src/octa.c src/weight.c src/index.c src/compact.c \
       src/visibility.c src/hessian.c src/sh.c src/shgrad.c src/snapshot.c src/merge.c \
-      src/pass.c src/sight.c
+      src/pass.c src/sight.c src/verify.c
 # The chosen port, and the single-threaded one (it needs nothing).
 PORT_SRC = $(sort port/$(PORT)/irc_port.c port/none/irc_port.c) port/irc_port_default.c
 OBJ = $(SRC:%.c=$(BUILD)/%.o)
@@ -92,7 +92,7 @@ $(LIBSO): $(LIBSO_REAL)
 
 # ---------------------------------------------------------------- tests
 TEST_SRC = tests/main.c tests/harness.c tests/scenes.c tests/t_record.c tests/t_lookup.c \
-           tests/t_index.c tests/t_api.c tests/t_threads.c tests/t_visibility.c tests/t_sight.c tests/t_sh.c \
+           tests/t_index.c tests/t_api.c tests/t_threads.c tests/t_visibility.c tests/t_sight.c tests/t_attach.c tests/t_sh.c \
            tests/t_shrec.c tests/t_hard.c tests/t_store.c tests/t_embed.c tests/t_hessian.c \
            tests/t_snapshot.c tests/t_pass.c tests/t_share.c
 # The tests exercise every threaded port; the library holds one of them.
@@ -274,15 +274,16 @@ $(BUILD)/t_exr: tests/t_exr.c tests/harness.c tests/test.h $(IMAGE_SRC) demo/ima
 # seconds, then merges what it found worth keeping into fuzz/corpus/NAME.
 # make test replays the committed corpora without libFuzzer.
 FUZZ_SECONDS ?= 60
-FUZZ_TARGETS = api callback scene snapshot
+FUZZ_TARGETS = api attach callback scene snapshot
 FUZZ_SAN = -O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=all
 # Sources each harness needs besides the library: the scene harness drives
 # the demo's parsers.
 FUZZ_EXTRA_api =
+FUZZ_EXTRA_attach =
 FUZZ_EXTRA_callback =
 FUZZ_EXTRA_snapshot =
 FUZZ_EXTRA_scene = demo/loader.c demo/obj.c demo/bvh.c
-FUZZ_CORPORA = fuzz/corpus/api fuzz/corpus/callback fuzz/corpus/scene fuzz/corpus/snapshot
+FUZZ_CORPORA = fuzz/corpus/api fuzz/corpus/attach fuzz/corpus/callback fuzz/corpus/scene fuzz/corpus/snapshot
 
 $(BUILD)/replay_%: fuzz/fuzz_%.c fuzz/replay.c fuzz/fuzz_input.h demo/*.h $(LIBA)
 	$(CC) -std=c99 $(WARN) -Iinclude -Ifuzz -Idemo $(OPT) $(CFLAGS) fuzz/fuzz_$*.c fuzz/replay.c \

@@ -152,7 +152,9 @@ typedef enum irc_status {
                                  out of [0, 1e4] */
     IRC_ERR_TRUNCATED = -13,  /* a snapshot shorter than its header says */
     IRC_ERR_CORRUPT = -14,    /* a snapshot whose magic, checksums, length or
-                                 decoded values are wrong */
+                                 decoded values are wrong; irc_attach and
+                                 irc_join: a block whose header, records or
+                                 index no cache could have made */
     IRC_ERR_VERSION = -15,    /* a snapshot of another format version */
     IRC_ERR_MISMATCH = -16,   /* a snapshot of another record kind, feature
                                  set, record size, SH bands or channels,
@@ -568,8 +570,14 @@ IRC_API int irc_init(const irc_config *cfg, uint32_t max_records, irc_cache **ca
  * is initialised afresh: no other thread or process may use the cache
  * during the call.  The block must come from the same build of the library
  * on the same ABI (pointer and size_t widths, byte order): for anything
- * else use snapshots.  Returns IRC_OK and writes *cache; IRC_ERR_CONFIG when
- * the block holds no cache or one of another ABI or layout version;
+ * else use snapshots.  Nothing in the block is trusted: before any use,
+ * the header must be one irc_init could have written for its stored
+ * config and capacity, every record's values sane, every index link in
+ * range and the index a tree whose lists hold each record at most once
+ * (time linear in the block).  What no check can judge is made anew: the
+ * strata's table and the scratch slots.  Returns IRC_OK and writes
+ * *cache; IRC_ERR_CONFIG when the block holds no cache or one of another
+ * ABI or layout version; IRC_ERR_CORRUPT when it fails a check;
  * IRC_ERR_NOMEM when buffer_size is smaller than the cache; or a negative
  * error code (the block is then unchanged).
  */
@@ -590,11 +598,13 @@ IRC_API int irc_attach(const irc_config *cfg, irc_cache **cache);
  * does); the port must be the creator's (the posix port's lock is
  * process-shared; port/none shares nothing safely).  irc_fini of a view
  * releases the view only; the creator's irc_fini, after every view's,
- * destroys the lock.  A process that dies holding the lock leaves the
- * others waiting: share among processes that end cleanly.  Returns
- * IRC_OK and writes *cache; IRC_ERR_CONFIG when the block holds no cache
- * of this build, sits at another offset, or the port differs;
- * IRC_ERR_NOMEM when view_size is too small or buffer_size smaller than
+ * destroys the lock.  A process killed inside a record computation
+ * gives its scratch slot back (irc_port owner); one killed while it holds
+ * the write lock leaves the others waiting (irc_port).  The block is
+ * checked as irc_attach checks it, its records and index under the read
+ * lock.  Returns IRC_OK and writes *cache; IRC_ERR_CONFIG when the block
+ * holds no cache of this build, sits at another offset, or the port
+ * differs; IRC_ERR_CORRUPT when it fails a check; IRC_ERR_NOMEM when view_size is too small or buffer_size smaller than
  * the cache; or a negative error code.  The block is never written.
  */
 #define IRC_VIEW_BYTES 1024u

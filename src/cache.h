@@ -311,6 +311,9 @@ int irc__cast(irc__call *k, irc_ray *rays, irc_hit *hits, uint32_t count);
  * lookup at q would use; *found gets how many there are in all. */
 int irc__collect(irc_cache *c, const irc__query *q, uint32_t *ids, float (*pos)[3],
                  uint32_t cap, uint32_t *found);
+/* verify.c: whether the records and index of c's block are ones a cache
+ * could have made, every link in bounds and every walk finite. */
+int irc__block_sane(const irc_cache *c);
 /* sight.c: the kind's find at k->q, leaving out the records out of the
  * query's sight when cfg.check_visibility asks (k->c, k->host set). */
 int irc__find_in_sight(irc__call *k, void *out, float *weight);

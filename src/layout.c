@@ -271,6 +271,76 @@ static int irc__find(const irc_config *cfg, size_t *at, irc_cache *head)
     return IRC_OK;
 }
 
+/* Whether a block's header is one irc_init could have written: its
+ * stored config resolves to itself, and every size and offset equals what
+ * that config and capacity give; the mutable fields are in range.  The
+ * switches are stored resolved (0 or 1) and read back as IRC_OFF / IRC_ON. */
+static int irc__finite_d(double x)
+{
+    return x == x && x - x == 0.0;
+}
+
+static int irc__switch_back(uint32_t v, uint32_t *out)
+{
+    *out = v == 1u ? IRC_ON : IRC_OFF;
+    return v <= 1u;
+}
+
+static int irc__parts_same(const irc_cache *a, const irc_cache *b)
+{
+    return a->rec_size == b->rec_size && a->off_t == b->off_t && a->off_r == b->off_r &&
+           a->off_a == b->off_a && a->off_g == b->off_g && a->off_sh == b->off_sh &&
+           a->off_shg == b->off_shg && a->slot_samples == b->slot_samples &&
+           a->node_cap == b->node_cap && a->lock_bytes == b->lock_bytes &&
+           a->slot_bytes == b->slot_bytes && a->slot_rec == b->slot_rec &&
+           a->total_bytes == b->total_bytes && a->o_lock == b->o_lock &&
+           a->o_scratch == b->o_scratch && a->o_records == b->o_records && a->o_ix == b->o_ix &&
+           a->o_nodes == b->o_nodes && a->o_ctr == b->o_ctr && a->o_used == b->o_used &&
+           a->o_gtab == b->o_gtab;
+}
+
+static int irc__header_sane(const irc_config *cfg, const irc_cache *h)
+{
+    irc_port lockless;
+    irc_config in = h->cfg, r;
+    irc_cache e;
+    irc__layout l;
+    const int sh = (h->cfg.features & IRC_FEATURE_SH) != 0;
+    if (h->capacity == 0 || h->capacity > IRC_MAX_RECORDS || h->lock_bytes > 4096u ||
+        h->lock_bytes % IRC__ALIGN || h->kind_id != (sh ? IRC__KIND_SH : IRC__KIND_IRR) ||
+        !irc__switch_back(h->cfg.clamp_neighbours, &in.clamp_neighbours) ||
+        !irc__switch_back(h->cfg.leak_guard, &in.leak_guard) ||
+        !irc__switch_back(h->cfg.check_visibility, &in.check_visibility))
+        return 0;
+    if (in.features == 0) /* bare records, stored resolved */
+        in.features = IRC_FEATURE_NONE;
+    /* the layout with a port whose lock is the room the block has */
+    lockless = irc_port_none;
+    lockless.lock_size = h->lock_bytes;
+    in.trace = cfg->trace;
+    in.port = &lockless;
+    if (irc__config_resolve(&in, &r) < 0 || r.features != h->cfg.features ||
+        r.strata_theta != h->cfg.strata_theta || r.strata_phi != h->cfg.strata_phi ||
+        r.threads != h->cfg.threads || r.max_batch != h->cfg.max_batch ||
+        r.sh_bands != h->cfg.sh_bands || r.sh_channels != h->cfg.sh_channels ||
+        r.evict != h->cfg.evict || r.accuracy != h->cfg.accuracy)
+        return 0;
+    irc__layout_of(&r, h->capacity, &l);
+    IRC_MEMSET(&e, 0, sizeof e);
+    e.cfg = r;
+    irc__set_parts(&e, &l);
+    if (!irc__parts_same(&e, h) || h->strata != r.strata_theta * r.strata_phi ||
+        h->keep_geom != ((r.features & (IRC_FEATURE_VISIBILITY | IRC_FEATURE_SH |
+                                        IRC_FEATURE_HESSIAN)) != 0) ||
+        h->sh_n != (sh ? r.sh_bands * r.sh_bands : 0u) || h->sh_ch != (sh ? r.sh_channels : 0u))
+        return 0;
+    return h->count <= h->capacity && h->nodes_used >= 1u && h->nodes_used <= h->node_cap &&
+           h->hand < h->capacity && h->depth <= IRC__LEVELS && h->root_set <= 1u &&
+           h->pass_open <= 1u && h->pass_base <= h->capacity && h->pending <= h->capacity &&
+           irc__finite_d(h->root_c[0]) && irc__finite_d(h->root_c[1]) &&
+           irc__finite_d(h->root_c[2]) && h->root_h >= 0.0 && h->root_h <= 1e39;
+}
+
 int irc_attach(const irc_config *cfg, irc_cache **out)
 {
     irc_cache head, *c;
@@ -285,6 +355,12 @@ int irc_attach(const irc_config *cfg, irc_cache **out)
         return st;
     if (!irc__port_ok(port) || port->lock_size > head.lock_bytes)
         return IRC_ERR_CONFIG;
+    if (!irc__header_sane(cfg, &head))
+        return IRC_ERR_CORRUPT;
+    /* checked where it lies, before anything moves */
+    head.home = (irc_cache *)(void *)((unsigned char *)cfg->buffer + was);
+    if (!irc__block_sane(&head))
+        return IRC_ERR_CORRUPT;
     pad = irc__pad(cfg->buffer);
     c = (irc_cache *)(void *)((unsigned char *)cfg->buffer + pad);
     if (pad != was)
@@ -292,6 +368,10 @@ int irc_attach(const irc_config *cfg, irc_cache **out)
     *(unsigned char *)cfg->buffer = (unsigned char)pad;
     irc__attach_pointers(c, cfg, port);
     irc__port_name(port, c->port_name);
+    /* What a lookup reads but no check can judge is made anew: the
+     * strata's table from the config, and empty scratch. */
+    irc__gtab_fill(c, irc__part(c, c->o_gtab));
+    IRC_MEMSET(irc__part(c, c->o_scratch), 0, (size_t)c->cfg.threads * c->slot_bytes);
     /* The copied lock object is the old address's: made anew.  Nothing
      * holds it, and no slot is busy, in a block at rest. */
     IRC_MEMSET(irc__lock(c), 0, c->lock_bytes);
@@ -339,10 +419,19 @@ int irc_join(const irc_config *cfg, void *view, size_t view_size, irc_cache **ou
     if (at != irc__pad(cfg->buffer) || !irc__port_ok(port) ||
         port->lock_size > head.lock_bytes || !irc__same_name(name, head.port_name))
         return IRC_ERR_CONFIG;
+    if (!irc__header_sane(cfg, &head))
+        return IRC_ERR_CORRUPT;
     home = (irc_cache *)(void *)((unsigned char *)cfg->buffer + at);
     IRC_MEMCPY(v, home, sizeof *v);
     irc__attach_pointers(v, cfg, port);
     v->home = home;
+    /* a live block: its records and index are read under the lock */
+    if (port->read_lock(irc__lock(v)) < 0)
+        return IRC_ERR_PORT;
+    st = irc__block_sane(v);
+    port->read_unlock(irc__lock(v));
+    if (!st)
+        return IRC_ERR_CORRUPT;
     *out = v;
     return IRC_OK;
 }

@@ -7,10 +7,10 @@ set -e
 MAKE=${MAKE:-make}
 B=build-cov
 rm -rf $B
-$MAKE -s BUILD=$B OPT="-O0 -g --coverage" $B/irc_tests $B/replay_api $B/replay_callback $B/replay_scene $B/replay_snapshot
+$MAKE -s BUILD=$B OPT="-O0 -g --coverage" $B/irc_tests $B/replay_api $B/replay_attach $B/replay_callback $B/replay_scene $B/replay_snapshot
 IRC_TEST_QUICK=1 ./$B/irc_tests >/dev/null
-for t in api callback scene snapshot; do
-    ./$B/replay_$t fuzz/corpus/api fuzz/corpus/callback fuzz/corpus/scene fuzz/corpus/snapshot >/dev/null
+for t in api attach callback scene snapshot; do
+    ./$B/replay_$t fuzz/corpus/api fuzz/corpus/attach fuzz/corpus/callback fuzz/corpus/scene fuzz/corpus/snapshot >/dev/null
 done
 cd $B/src
 printf '%-16s %8s %8s\n' file lines branches

@@ -207,11 +207,12 @@ done
 # The fuzz corpora, replayed without libFuzzer (make fuzz grows them):
 # every corpus through every harness.
 check build-asan-replay $MAKE -s CC="$SAN_CC" BUILD=build-asan OPT="$SAN" \
-    build-asan/replay_api build-asan/replay_callback build-asan/replay_scene \
-    build-asan/replay_snapshot
-for t in api callback scene snapshot; do
+    build-asan/replay_api build-asan/replay_attach build-asan/replay_callback \
+    build-asan/replay_scene build-asan/replay_snapshot
+for t in api attach callback scene snapshot; do
     suite "fuzz-replay-$t" ASAN_OPTIONS=detect_leaks=1 ./build-asan/replay_$t \
-        fuzz/corpus/api fuzz/corpus/callback fuzz/corpus/scene fuzz/corpus/snapshot
+        fuzz/corpus/api fuzz/corpus/attach fuzz/corpus/callback fuzz/corpus/scene \
+        fuzz/corpus/snapshot
 done
 
 echo "== stage 4: threads under TSan"
