@@ -1,10 +1,16 @@
 /* t_demo.c -- the demo tracer: BVH against brute force, brute-force
  * irradiance against the closed form.  Run from the project's root. */
 #include <math.h>
+#include <signal.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
 
 #include "bvh.h"
+#include "cachefile.h"
 #include "glossy.h"
 #include "imgrad.h"
 #include "render.h"
@@ -510,7 +516,67 @@ TEST(test_sun)
     lights_free(&l);
 }
 
-#define TESTS(X) X(test_sun) X(test_bvh_soup) X(test_bvh_shipped_scenes) X(test_reference_sphere_plane) X(test_leak_scene) X(test_deterministic_fill) \
+/* cache_save (--save-cache) killed at random points while it writes, over
+ * and over, two caches of 40 and 80 records to one path: what is left
+ * always reads back whole as one of the two. */
+TEST(test_cache_save_killed)
+{
+    char path[] = "/tmp/irc_save_XXXXXX", err[256];
+    tscene s;
+    irc_config ca, cb, cr;
+    irc_cache *a, *b, *r;
+    int fd = mkstemp(path), t, k;
+    unsigned long long seed = 99;
+    scene_sphere_plane(&s);
+    ca = scene_config(&s, IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION, 4, 16);
+    cb = ca;
+    cr = ca;
+    a = block_cache(&ca, 128, 0);
+    b = block_cache(&cb, 128, 0);
+    r = block_cache(&cr, 128, 0);
+    CHECK(fd >= 0 && a && b && r, "setup");
+    if (fd < 0 || !a || !b || !r)
+        return;
+    close(fd);
+    for (k = 0; k < 80; k++) {
+        irc_record rec;
+        const float p[3] = {0.1f * (float)k - 4.0f, 0.05f * (float)k, 0.0f}, n[3] = {0, 0, 1};
+        CHECK(irc_record_compute(a, p, n, &rec, NULL) == IRC_OK &&
+                  (k >= 40 || irc_cache_insert(a, &rec) == IRC_OK) &&
+                  irc_cache_insert(b, &rec) == IRC_OK,
+              "record %d", k);
+    }
+    for (t = 0; t < 20; t++) {
+        struct timespec nap = {0, 0};
+        irc_stats st;
+        pid_t pid;
+        int status;
+        CHECK(cache_save(a, 7, path, err, sizeof err) == 0, "%s", err);
+        pid = fork();
+        if (pid == 0) {
+            for (k = 0;; k++)
+                cache_save(k & 1 ? a : b, 7, path, err, sizeof err);
+        }
+        nap.tv_nsec = (long)(xrand(&seed) * 4e6) + 100000;
+        nanosleep(&nap, NULL);
+        kill(pid, SIGKILL);
+        waitpid(pid, &status, 0);
+        { /* the killed writer's temporary file, if it left one */
+            char tmp[64];
+            snprintf(tmp, sizeof tmp, "%s.tmp.%ld", path, (long)pid);
+            remove(tmp);
+        }
+        CHECK(irc_cache_clear(r) == IRC_OK && cache_merge(r, 7, path, err, sizeof err) == 0 &&
+                  irc_cache_stats(r, &st) == IRC_OK && (st.records == 40 || st.records == 80),
+              "trial %d: %s, %llu records", t, err, (unsigned long long)st.records);
+    }
+    remove(path);
+    block_free(&ca);
+    block_free(&cb);
+    block_free(&cr);
+}
+
+#define TESTS(X) X(test_cache_save_killed) X(test_sun) X(test_bvh_soup) X(test_bvh_shipped_scenes) X(test_reference_sphere_plane) X(test_leak_scene) X(test_deterministic_fill) \
     X(test_image_gradient) X(test_glossy_lobe)
 TESTS(TEST_DECL)
 
