@@ -10,6 +10,7 @@
 #   make embedded-test  that library's host run under QEMU (mps2-an386)
 #   make size       code, data and stack per object and entry point
 #   make fuzz       libFuzzer harnesses for FUZZ_SECONDS each (clang)
+#   make fuzz-long  each harness to FUZZ_RUNS (10 M) or FUZZ_LONG_SECONDS (1 h)
 #   make install    DESTDIR= PREFIX=/usr/local LIBDIR= INCLUDEDIR= (README
 #                   "Install"); make uninstall removes what it put there
 
@@ -301,10 +302,17 @@ fuzz:
 	    clang -std=c99 $(FUZZ_SAN) -fsanitize=fuzzer -Iinclude -Ifuzz -Idemo fuzz/fuzz_$$t.c \
 	        $$extra build-fuzz/libirrcache.a -o build-fuzz/fuzz_$$t -lm -lpthread && \
 	    mkdir -p build-fuzz/new-$$t fuzz/corpus/$$t && \
-	    build-fuzz/fuzz_$$t -max_total_time=$(FUZZ_SECONDS) -print_final_stats=1 \
+	    build-fuzz/fuzz_$$t -max_total_time=$(FUZZ_SECONDS) $(FUZZ_FLAGS) -print_final_stats=1 \
 	        build-fuzz/new-$$t fuzz/corpus/$$t && \
 	    build-fuzz/fuzz_$$t -merge=1 fuzz/corpus/$$t build-fuzz/new-$$t || exit 1; \
 	done
+
+# make fuzz-long: each harness until FUZZ_RUNS executions (default 10 M)
+# or FUZZ_LONG_SECONDS (default an hour), whichever comes first.
+FUZZ_RUNS ?= 10000000
+FUZZ_LONG_SECONDS ?= 3600
+fuzz-long:
+	$(MAKE) fuzz FUZZ_SECONDS=$(FUZZ_LONG_SECONDS) FUZZ_FLAGS=-runs=$(FUZZ_RUNS)
 
 # ---------------------------------------------------------------- bench
 $(BUILD)/bench_core: bench/bench_core.c bench/bench_util.h tests/scenes.c tests/scenes.h $(DEMO_LIB_SRC) demo/*.h $(LIBA)
@@ -407,7 +415,7 @@ uninstall:
 clean:
 	rm -rf build build-*
 
-.PHONY: embree-example all lib cross embedded-test embedded-host size examples test coverage demo real-scenes fig15 adaptive glossy sh-experiments sh-animation fuzz replay bench-core bench-lookups bench-records bench bench-fill farm-demo install uninstall clean
+.PHONY: embree-example all lib cross embedded-test embedded-host size examples test coverage demo real-scenes fig15 adaptive glossy sh-experiments sh-animation fuzz fuzz-long replay bench-core bench-lookups bench-records bench bench-fill farm-demo install uninstall clean
 
 # Which records answer the worst pixels of a Sponza render, and why
 # (README "On real geometry"); needs make bench's cached references.
