@@ -23,7 +23,7 @@
     X(test_hessian_closed_forms) X(test_eigen2) X(test_hessian_radius) X(test_gradient_within_reach) X(test_ellipse_records) X(test_screen_bound) X(test_leak_guard_by_hand) \
     X(test_snapshot_round_trip) X(test_snapshot_round_trip_sh) X(test_snapshot_rejects) X(test_snapshot_by_hand) X(test_merge_order_free) \
     X(test_pass_order_free) X(test_pass_frozen) X(test_pass_full) X(test_pass_state) X(test_pass_lock_free) \
-    X(test_share_processes) X(test_share_killed) X(test_join_refused) \
+    X(test_share_processes) X(test_share_killed) X(test_share_killed_in_lock) X(test_join_refused) \
     X(test_safe_defaults) X(test_index_clamped) X(test_index_compact)
 
 TESTS(TEST_DECL)
