@@ -311,6 +311,10 @@ int irc__cast(irc__call *k, irc_ray *rays, irc_hit *hits, uint32_t count);
  * lookup at q would use; *found gets how many there are in all. */
 int irc__collect(irc_cache *c, const irc__query *q, uint32_t *ids, float (*pos)[3],
                  uint32_t cap, uint32_t *found);
+/* slots.c: claim a scratch slot (waiting unless cfg.no_wait; IRC_OK or
+ * IRC_ERR_BUSY; *waited set when it waited), and give it back zeroed. */
+int irc__slot_claim(irc_cache *c, uint32_t *t, int *waited);
+void irc__slot_release(irc_cache *c, uint32_t t);
 /* verify.c: whether the records and index of c's block are ones a cache
  * could have made, every link in bounds and every walk finite. */
 int irc__block_sane(const irc_cache *c);

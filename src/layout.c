@@ -271,10 +271,6 @@ static int irc__find(const irc_config *cfg, size_t *at, irc_cache *head)
     return IRC_OK;
 }
 
-/* Whether a block's header is one irc_init could have written: its
- * stored config resolves to itself, and every size and offset equals what
- * that config and capacity give; the mutable fields are in range.  The
- * switches are stored resolved (0 or 1) and read back as IRC_OFF / IRC_ON. */
 static int irc__finite_d(double x)
 {
     return x == x && x - x == 0.0;
@@ -299,6 +295,10 @@ static int irc__parts_same(const irc_cache *a, const irc_cache *b)
            a->o_gtab == b->o_gtab;
 }
 
+/* Whether a block's header is one irc_init could have written: its
+ * stored config resolves to itself, and every size and offset equals what
+ * that config and capacity give; the mutable fields are in range.  The
+ * switches are stored resolved (0 or 1) and read back as IRC_OFF / IRC_ON. */
 static int irc__header_sane(const irc_config *cfg, const irc_cache *h)
 {
     irc_port lockless;
