@@ -604,8 +604,9 @@ IRC_API int irc_attach(const irc_config *cfg, irc_cache **cache);
  * checked as irc_attach checks it, its records and index under the read
  * lock.  Returns IRC_OK and writes *cache; IRC_ERR_CONFIG when the block
  * holds no cache of this build, sits at another offset, or the port
- * differs; IRC_ERR_CORRUPT when it fails a check; IRC_ERR_NOMEM when view_size is too small or buffer_size smaller than
- * the cache; or a negative error code.  The block is never written.
+ * differs; IRC_ERR_CORRUPT when it fails a check; IRC_ERR_NOMEM when
+ * view_size is too small or buffer_size smaller than the cache; or a
+ * negative error code.  The block is never written.
  */
 #define IRC_VIEW_BYTES 1024u
 IRC_API int irc_join(const irc_config *cfg, void *view, size_t view_size, irc_cache **cache);
