@@ -314,6 +314,10 @@ static int irc__header_sane(const irc_config *cfg, const irc_cache *h)
         return 0;
     if (in.features == 0) /* bare records, stored resolved */
         in.features = IRC_FEATURE_NONE;
+    if (in.min_pixels == 0.0f) /* no pixel bound, stored as 0 */
+        in.min_pixels = -1.0f;
+    if (in.max_pixels == 0.0f)
+        in.max_pixels = -1.0f;
     /* the layout with a port whose lock is the room the block has */
     lockless = irc_port_none;
     lockless.lock_size = h->lock_bytes;
@@ -341,12 +345,36 @@ static int irc__header_sane(const irc_config *cfg, const irc_cache *h)
            irc__finite_d(h->root_c[2]) && h->root_h >= 0.0 && h->root_h <= 1e39;
 }
 
+/* Moves the cache from offset was to pad (its 64-byte boundary here) and
+ * checks its records and index there, where they are aligned; a block
+ * that fails is moved back, with the < 64 bytes beside it that the move
+ * overwrote, so a refusal leaves every byte as it was. */
+static int irc__move_checked(const irc_config *cfg, irc_cache *head, size_t was, size_t pad)
+{
+    unsigned char *b = (unsigned char *)cfg->buffer, keep[IRC__ALIGN];
+    const size_t total = head->total_bytes;
+    size_t lo = 0, span = 0;
+    if (pad != was) {
+        lo = pad < was ? pad : was + total;
+        span = pad < was ? was - pad : pad - was;
+        IRC_MEMCPY(keep, b + lo, span);
+        IRC_MEMMOVE(b + pad, b + was, total);
+    }
+    head->home = (irc_cache *)(void *)(b + pad);
+    if (irc__block_sane(head))
+        return IRC_OK;
+    if (pad != was) {
+        IRC_MEMMOVE(b + was, b + pad, total);
+        IRC_MEMCPY(b + lo, keep, span);
+    }
+    return IRC_ERR_CORRUPT;
+}
+
 int irc_attach(const irc_config *cfg, irc_cache **out)
 {
     irc_cache head, *c;
     const irc_port *port;
     size_t was, pad;
-    uint32_t t;
     int st;
     if (!cfg || !out || !cfg->buffer || !cfg->trace)
         return IRC_ERR_NULL;
@@ -357,26 +385,21 @@ int irc_attach(const irc_config *cfg, irc_cache **out)
         return IRC_ERR_CONFIG;
     if (!irc__header_sane(cfg, &head))
         return IRC_ERR_CORRUPT;
-    /* checked where it lies, before anything moves */
-    head.home = (irc_cache *)(void *)((unsigned char *)cfg->buffer + was);
-    if (!irc__block_sane(&head))
-        return IRC_ERR_CORRUPT;
     pad = irc__pad(cfg->buffer);
+    if ((st = irc__move_checked(cfg, &head, was, pad)) < 0)
+        return st;
     c = (irc_cache *)(void *)((unsigned char *)cfg->buffer + pad);
-    if (pad != was)
-        IRC_MEMMOVE(c, (unsigned char *)cfg->buffer + was, head.total_bytes);
     *(unsigned char *)cfg->buffer = (unsigned char)pad;
     irc__attach_pointers(c, cfg, port);
     irc__port_name(port, c->port_name);
     /* What a lookup reads but no check can judge is made anew: the
-     * strata's table from the config, and empty scratch. */
+     * strata's table from the config, and the scratch slots, empty and
+     * owned by none. */
     irc__gtab_fill(c, irc__part(c, c->o_gtab));
     IRC_MEMSET(irc__part(c, c->o_scratch), 0, (size_t)c->cfg.threads * c->slot_bytes);
     /* The copied lock object is the old address's: made anew.  Nothing
-     * holds it, and no slot is busy, in a block at rest. */
+     * holds it in a block at rest. */
     IRC_MEMSET(irc__lock(c), 0, c->lock_bytes);
-    for (t = 0; t < c->cfg.threads; t++)
-        *irc__slot_owner(c, t) = 0;
     /* A lock that cannot be made leaves the block moved but whole:
      * irc_attach may be called again. */
     if (port->lock_init(irc__lock(c)) < 0)
