@@ -256,7 +256,7 @@ static inline const void *irc__gtab(const irc_cache *c)
     return irc__part(c, c->o_gtab);
 }
 /* A scratch slot: a head of IRC__ALIGN bytes whose first word is its
- * owner (0: free; else the claiming process's port token, store.c), then
+ * owner (0: free; else the claiming process's port token, slots.c), then
  * slot_bytes - IRC__ALIGN bytes of working area, which irc__slot gives. */
 static inline uint64_t *irc__slot_owner(const irc_cache *c, uint32_t t)
 {
@@ -318,6 +318,10 @@ void irc__slot_release(irc_cache *c, uint32_t t);
 /* verify.c: whether the records and index of c's block are ones a cache
  * could have made, every link in bounds and every walk finite. */
 int irc__block_sane(const irc_cache *c);
+/* verify.c: a record's head as a cache could have made it (finite p and
+ * E, E >= 0, R > 0, a free point only in an SH cache); the snapshot
+ * reader checks decoded heads with it too. */
+int irc__rec_head_sane(const irc_cache *c, const irc__rec *r);
 /* sight.c: the kind's find at k->q, leaving out the records out of the
  * query's sight when cfg.check_visibility asks (k->c, k->host set). */
 int irc__find_in_sight(irc__call *k, void *out, float *weight);

@@ -238,9 +238,7 @@ static int irc__record_sane(const irc_cache *c, const unsigned char *le)
     uint32_t i;
     IRC_ASSERT(got == sizeof h.b);
     (void)got;
-    if (!irc__finite3(r->p) || !irc__finite3(r->e) || !irc__finite(r->r) || !(r->r > 0.0f) ||
-        r->e[0] < 0.0f || r->e[1] < 0.0f || r->e[2] < 0.0f ||
-        (r->n == IRC__FREE && c->kind_id != IRC__KIND_SH))
+    if (!irc__rec_head_sane(c, r))
         return 0;
     if (c->off_a) {
         const float q = irc__le_float(le + c->off_a + offsetof(irc__aniso, q));

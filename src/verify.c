@@ -8,14 +8,19 @@
  */
 #include "cache.h"
 
+int irc__rec_head_sane(const irc_cache *c, const irc__rec *r)
+{
+    return irc__finite3(r->p) && irc__finite3(r->e) && irc__finite(r->r) && r->r > 0.0f &&
+           r->e[0] >= 0.0f && r->e[1] >= 0.0f && r->e[2] >= 0.0f &&
+           (r->n != IRC__FREE || c->kind_id == IRC__KIND_SH);
+}
+
 static int irc__rec_sane(const irc_cache *c, uint32_t id)
 {
     const irc__rec *r = irc__rec_at(c, id);
     const unsigned char *b = (const unsigned char *)r;
     uint32_t i;
-    if (!irc__finite3(r->p) || !irc__finite3(r->e) || !irc__finite(r->r) || !(r->r > 0.0f) ||
-        r->e[0] < 0.0f || r->e[1] < 0.0f || r->e[2] < 0.0f ||
-        (r->n == IRC__FREE && c->kind_id != IRC__KIND_SH))
+    if (!irc__rec_head_sane(c, r))
         return 0;
     if (c->off_a) {
         irc__aniso a;
