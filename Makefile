@@ -40,7 +40,7 @@ PIC = $(if $(filter none,$(PORT)),,-fPIC)
 SRC = src/status.c src/version.c src/check.c src/config.c src/layout.c src/store.c src/kind_irr.c src/gradient.c \
       src/kind_sh.c src/sampler.c src/irradiance.c src/octa.c src/weight.c src/index.c src/compact.c \
       src/visibility.c src/hessian.c src/sh.c src/shgrad.c src/snapshot.c src/merge.c \
-      src/pass.c src/sight.c src/slots.c src/verify.c
+      src/pass.c src/sight.c src/slots.c src/verify.c src/repair.c
 # The chosen port, and the single-threaded one (it needs nothing).
 PORT_SRC = $(sort port/$(PORT)/irc_port.c port/none/irc_port.c) port/irc_port_default.c
 OBJ = $(SRC:%.c=$(BUILD)/%.o)
@@ -95,7 +95,7 @@ $(LIBSO): $(LIBSO_REAL)
 TEST_SRC = tests/main.c tests/harness.c tests/scenes.c tests/t_record.c tests/t_lookup.c \
            tests/t_index.c tests/t_api.c tests/t_threads.c tests/t_visibility.c tests/t_sight.c tests/t_attach.c tests/t_sh.c \
            tests/t_shrec.c tests/t_hard.c tests/t_store.c tests/t_embed.c tests/t_hessian.c \
-           tests/t_snapshot.c tests/t_pass.c tests/t_share.c
+           tests/t_snapshot.c tests/t_pass.c tests/t_share.c tests/t_kill.c
 # The tests exercise every threaded port; the library holds one of them.
 TEST_PORTS = $(filter-out $(PORT),posix c11)
 TEST_PORT_OBJ = $(TEST_PORTS:%=$(BUILD)/tests/port_%.o)
@@ -110,7 +110,7 @@ $(BUILD)/tests/port_c11.o: port/c11/irc_port.c include/irrcache.h
 	@mkdir -p $(dir $@)
 	$(CC) $(subst -std=c99,-std=c11,$(CFLAGS_LIB)) -c $< -o $@
 
-$(BUILD)/irc_tests: $(TEST_SRC) tests/test.h tests/scenes.h $(LIBA) $(TEST_PORT_OBJ)
+$(BUILD)/irc_tests: $(TEST_SRC) tests/test.h tests/scenes.h tests/share.h $(LIBA) $(TEST_PORT_OBJ)
 	$(CC) $(TEST_CFLAGS) $(OPT) $(CFLAGS) $(TEST_SRC) $(TEST_PORT_OBJ) $(LIBA) -o $@ -lm -lpthread
 
 test:

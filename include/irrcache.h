@@ -253,8 +253,13 @@ typedef int (*irc_trace_fn)(const irc_trace_args *args);
  *   - lock_destroy: release what lock_init took (irc_fini).
  *   - read_lock / write_lock: block until the lock is held shared /
  *     exclusive; 0, or negative if it cannot be taken (the call returns
- *     IRC_ERR_PORT and has changed nothing).  The library never takes a
- *     lock it already holds and never upgrades one.
+ *     IRC_ERR_PORT and has changed nothing).  Or 1 when the write lock's
+ *     holder is a process that died holding it: write_lock then holds the
+ *     lock, and the library repairs the block before it goes on (drops the
+ *     record being written, rebuilds the index from the records); read_lock
+ *     returns 1 without the lock, and the library takes the write lock to
+ *     repair.  A port that cannot tell returns 0 or negative only.  The
+ *     library never takes a lock it already holds and never upgrades one.
  *   - read_unlock / write_unlock: release a lock this thread holds; cannot
  *     fail.
  *   - yield: let other threads run while this one waits for a scratch slot;
@@ -263,13 +268,14 @@ typedef int (*irc_trace_fn)(const irc_trace_args *args);
  *     records the token of the process that claimed it, and a call that
  *     finds every slot taken (at once with no_wait, else every 256 waits)
  *     takes over a slot whose process is gone: a process killed inside a
- *     record computation does not hang the others (irc_join).  A process
- *     killed while it holds the write lock (inside an insert, a pass's end,
- *     a merge: microseconds, no callback runs then) is not recovered: the
- *     posix lock stays taken, and the block must be attached anew
- *     (irc_attach makes a fresh lock) once every process has let go.
- *     irc_port_posix has them (getpid, kill(pid, 0)); a reused process id
- *     looks alive.
+ *     record computation does not hang the others (irc_join).
+ *     irc_port_posix has them (getpid, kill(pid, 0)), and its lock asks
+ *     them too: a process killed holding the read lock (in a lookup) is
+ *     counted out, one killed holding the write lock (in an insert, a
+ *     pass's end, a merge) is taken over with 1 as above.  Processes of one
+ *     pid namespace; a reused process id looks alive.  irc_port_c11 has
+ *     neither: a death inside its lock hangs the others until the block is
+ *     attached anew (irc_attach makes a fresh lock and repairs).
  * The atomics act on naturally aligned 64-bit words inside the block.
  */
 typedef struct irc_port {
@@ -297,7 +303,7 @@ typedef struct irc_port {
 
 /* The ports.  A build compiles the one chosen by `make PORT=posix|c11|none`
  * (default posix) and irc_port_none; only those two are defined. */
-IRC_API extern const irc_port irc_port_posix;  /* pthread rwlock + GCC/Clang atomics */
+IRC_API extern const irc_port irc_port_posix;  /* a lock that outlives its holders + GCC/Clang atomics */
 IRC_API extern const irc_port irc_port_c11;    /* C11 <stdatomic.h>, spinning rwlock */
 IRC_API extern const irc_port irc_port_none;   /* single-threaded: no locks at all */
 IRC_API extern const irc_port *const irc_port_default; /* the chosen one: what
@@ -575,7 +581,11 @@ IRC_API int irc_init(const irc_config *cfg, uint32_t max_records, irc_cache **ca
  * config and capacity, every record's values sane, every index link in
  * range and the index a tree whose lists hold each record at most once
  * (time linear in the block).  What no check can judge is made anew: the
- * strata's table and the scratch slots.  Returns IRC_OK and writes
+ * strata's table and the scratch slots.  A block whose writer was killed
+ * inside the write lock (a process sharing it, irc_join) is repaired
+ * first, as the port's read_lock and write_lock returning 1 describe:
+ * the record being written is dropped and the index rebuilt.  Returns
+ * IRC_OK and writes
  * *cache; IRC_ERR_CONFIG when the block holds no cache or one of another
  * ABI or layout version; IRC_ERR_CORRUPT when it fails a check;
  * IRC_ERR_NOMEM when buffer_size is smaller than the cache; or a negative

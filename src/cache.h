@@ -17,7 +17,7 @@
 
 /* What a block must agree on to be re-attached (irc_attach): the layout's
  * version, pointer and size_t widths, byte order. */
-#define IRC__LAYOUT_VERSION 10u
+#define IRC__LAYOUT_VERSION 11u
 #define IRC__ABI                                                           \
     (IRC__LAYOUT_VERSION | (uint32_t)sizeof(void *) << 8 |                 \
      (uint32_t)sizeof(size_t) << 16 | (uint32_t)sizeof(double) << 24)
@@ -220,6 +220,10 @@ struct irc_cache {
     /* Atomic. */
     uint64_t pending;        /* records deferred by the open pass (some may
                                 not have found a slot) */
+    uint64_t packed;         /* of those, records whole in their slots */
+    uint64_t torn;           /* slots being written (repair.c): two ids + 1,
+                                low and high word, 0 = none */
+    uint64_t writing;        /* 1 while a writer holds the lock */
 };
 
 /* The counters, in IRC__STRIPES stripes of one cache line each (a part of
@@ -277,21 +281,6 @@ static inline irc__rec *irc__rec_at(const irc_cache *c, uint32_t id)
     return (irc__rec *)(void *)irc__part(c, c->o_records + (size_t)id * c->rec_size);
 }
 
-/* Swaps records i and j through a 64-byte buffer: the stack holds no
- * record of the largest kind (1.2 KB; README, "Embedded"). */
-static inline void irc__rec_swap(const irc_cache *c, uint32_t i, uint32_t j)
-{
-    unsigned char *a = (unsigned char *)irc__rec_at(c, i), *b = (unsigned char *)irc__rec_at(c, j);
-    unsigned char tmp[64];
-    uint32_t at, n;
-    for (at = 0; at < c->rec_size; at += n) {
-        n = c->rec_size - at < 64u ? c->rec_size - at : 64u;
-        IRC_MEMCPY(tmp, a + at, n);
-        IRC_MEMCPY(a + at, b + at, n);
-        IRC_MEMCPY(b + at, tmp, n);
-    }
-}
-
 /* check.c */
 int irc__check_vec(const float v[3]);
 int irc__check_normal(const float n[3], float unit[3]);
@@ -322,6 +311,20 @@ int irc__block_sane(const irc_cache *c);
  * E, E >= 0, R > 0, a free point only in an SH cache); the snapshot
  * reader checks decoded heads with it too. */
 int irc__rec_head_sane(const irc_cache *c, const irc__rec *r);
+/* verify.c: record id whole as a cache could have made it (its head, its
+ * ellipse, its SH words finite). */
+int irc__rec_sane(const irc_cache *c, uint32_t id);
+/* repair.c: the lock through the library, so that a writer's death is
+ * repaired; slots being written named in the block (irc__mark, b IRC__NIL
+ * for one slot); records swapped in place. */
+int irc__write_lock(irc_cache *c);
+void irc__write_unlock(irc_cache *c);
+int irc__read_lock(irc_cache *c);
+void irc__read_unlock(irc_cache *c);
+void irc__mark(irc_cache *c, uint32_t a, uint32_t b);
+void irc__unmark(irc_cache *c);
+void irc__rec_swap(irc_cache *c, uint32_t i, uint32_t j);
+void irc__repair_locked(irc_cache *c);
 /* sight.c: the kind's find at k->q, leaving out the records out of the
  * query's sight when cfg.check_visibility asks (k->c, k->host set). */
 int irc__find_in_sight(irc__call *k, void *out, float *weight);
@@ -394,6 +397,7 @@ void irc__commit_locked(irc_cache *c, uint32_t id);
 int irc__order(const irc_cache *c, const unsigned char *a, const unsigned char *b);
 void irc__sort(irc_cache *c, uint32_t first, uint32_t n);
 uint32_t irc__unique(irc_cache *c, uint32_t first, uint32_t n);
+void irc__zero_slots(irc_cache *c, uint32_t first, uint32_t n);
 
 /* snapshot.c: the format's parts merge.c shares */
 #define IRC__SNAP_VERSION 1u

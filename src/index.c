@@ -66,6 +66,21 @@ static int irc__inside(const irc__cube *q, const float p[3])
            IRC_FABS((double)p[2] - q->c[2]) <= q->h;
 }
 
+/* The root holds no point on its upper faces.  When it grows, the old
+ * root becomes a child, and a face it shares with a new sibling is its
+ * lower face on every axis but those it grows up along, where it is its
+ * upper face; the octant rule sends a point on a shared face to the
+ * upper side.  So no record is ever where removal, following that rule,
+ * would not look (test_index_grow_faces). */
+static int irc__in_root(const irc__cube *q, const float p[3])
+{
+    int i;
+    for (i = 0; i < 3; i++)
+        if (!((double)p[i] >= q->c[i] - q->h && (double)p[i] < q->c[i] + q->h))
+            return 0;
+    return 1;
+}
+
 static int irc__octant(const irc__cube *q, const float p[3])
 {
     return ((double)p[0] >= q->c[0]) | ((double)p[1] >= q->c[1]) << 1 |
@@ -215,7 +230,8 @@ static double irc__max3(const double v[3])
 
 /* A root cube around the box [lo, hi]: half edge a power of two no less
  * than half the box's extent and 1/32 of its centre's distance from the
- * origin (exactness), doubled about its centre until the box fits. */
+ * origin (exactness), doubled about its centre until the box fits below
+ * its upper faces (irc__in_root). */
 static void irc__root_fit(irc_cache *c, const double lo[3], const double hi[3])
 {
     double mid[3], ext[3], m;
@@ -233,7 +249,7 @@ static void irc__root_fit(irc_cache *c, const double lo[3], const double hi[3])
         c->home->root_c[i] = irc__cell_centre(mid[i], c->home->root_h);
     for (;;) {
         for (i = 0; i < 3; i++)
-            if (lo[i] < c->home->root_c[i] - c->home->root_h || hi[i] > c->home->root_c[i] + c->home->root_h)
+            if (lo[i] < c->home->root_c[i] - c->home->root_h || hi[i] >= c->home->root_c[i] + c->home->root_h)
                 break;
         if (i == 3)
             return;
@@ -278,7 +294,8 @@ static int irc__grow(irc_cache *c, const float p[3])
     nodes = irc__nodes(c);
     irc__root_cube(c, &old);
     for (i = 0; i < 3; i++) {
-        int below = (double)p[i] < old.c[i];
+        /* up only where p lies past the upper face (irc__in_root) */
+        int below = !((double)p[i] >= old.c[i] + old.h);
         oct |= below << i;
         c->home->root_c[i] = old.c[i] + (below ? -old.h : old.h);
     }
@@ -314,7 +331,7 @@ static void irc__root_cover(irc_cache *c, const float p[3])
         c->home->root_set = 1;
     }
     irc__root_cube(c, &q);
-    if (irc__inside(&q, p))
+    if (irc__in_root(&q, p))
         return;
     if (!irc__nodes(c)[0].child) {
         irc__root_refit(c, p);
@@ -322,7 +339,7 @@ static void irc__root_cover(irc_cache *c, const float p[3])
     }
     do
         irc__root_cube(c, &q);
-    while (!irc__inside(&q, p) && irc__grow(c, p));
+    while (!irc__in_root(&q, p) && irc__grow(c, p));
 }
 
 void irc__index_insert(irc_cache *c, uint32_t id)

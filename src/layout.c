@@ -340,7 +340,9 @@ static int irc__header_sane(const irc_config *cfg, const irc_cache *h)
         return 0;
     return h->count <= h->capacity && h->nodes_used >= 1u && h->nodes_used <= h->node_cap &&
            h->hand < h->capacity && h->depth <= IRC__LEVELS && h->root_set <= 1u &&
-           h->pass_open <= 1u && h->pass_base <= h->capacity && h->pending <= h->capacity &&
+           h->pass_open <= 1u && h->pass_base <= h->capacity && h->packed <= h->capacity &&
+           (uint32_t)h->torn <= h->capacity && (uint32_t)(h->torn >> 32) <= h->capacity &&
+           h->writing <= 1u &&
            irc__finite_d(h->root_c[0]) && irc__finite_d(h->root_c[1]) &&
            irc__finite_d(h->root_c[2]) && h->root_h >= 0.0 && h->root_h <= 1e39;
 }
@@ -361,6 +363,12 @@ static int irc__move_checked(const irc_config *cfg, irc_cache *head, size_t was,
         IRC_MEMMOVE(b + pad, b + was, total);
     }
     head->home = (irc_cache *)(void *)(b + pad);
+    /* A writer killed inside the lock left it mid-write: repaired, not
+     * refused (repair.c). */
+    if (head->home->writing || head->home->torn) {
+        irc__repair_locked(head);
+        head->home->writing = 0;
+    }
     if (irc__block_sane(head))
         return IRC_OK;
     if (pad != was) {
@@ -385,6 +393,7 @@ int irc_attach(const irc_config *cfg, irc_cache **out)
         return IRC_ERR_CONFIG;
     if (!irc__header_sane(cfg, &head))
         return IRC_ERR_CORRUPT;
+    head.port = port;
     pad = irc__pad(cfg->buffer);
     if ((st = irc__move_checked(cfg, &head, was, pad)) < 0)
         return st;
@@ -449,10 +458,10 @@ int irc_join(const irc_config *cfg, void *view, size_t view_size, irc_cache **ou
     irc__attach_pointers(v, cfg, port);
     v->home = home;
     /* a live block: its records and index are read under the lock */
-    if (port->read_lock(irc__lock(v)) < 0)
+    if (irc__read_lock(v) < 0)
         return IRC_ERR_PORT;
     st = irc__block_sane(v);
-    port->read_unlock(irc__lock(v));
+    irc__read_unlock(v);
     if (!st)
         return IRC_ERR_CORRUPT;
     *out = v;

@@ -57,18 +57,26 @@ void irc__sort(irc_cache *c, uint32_t first, uint32_t n)
 }
 
 /* Sorted slots [first, first + n) with runs of equal records kept once,
- * moved down; the slots freed are zeroed.  Returns the records kept. */
+ * moved down.  Returns the records kept; the caller zeroes the slots
+ * freed (irc__zero_slots) once they are no longer counted in. */
+void irc__zero_slots(irc_cache *c, uint32_t first, uint32_t n)
+{
+    IRC_MEMSET(irc__bytes(c, first), 0, (size_t)n * c->rec_size);
+}
+
 uint32_t irc__unique(irc_cache *c, uint32_t first, uint32_t n)
 {
     uint32_t i, kept;
     for (i = kept = 0; i < n; i++)
         if (kept == 0 ||
             irc__order(c, irc__bytes(c, first + kept - 1), irc__bytes(c, first + i)) != 0) {
-            if (kept != i)
+            if (kept != i) {
+                irc__mark(c, first + kept, IRC__NIL);
                 IRC_MEMCPY(irc__bytes(c, first + kept), irc__bytes(c, first + i), c->rec_size);
+                irc__unmark(c);
+            }
             kept++;
         }
-    IRC_MEMSET(irc__bytes(c, first + kept), 0, (size_t)(n - kept) * c->rec_size);
     return kept;
 }
 
@@ -85,21 +93,24 @@ int irc_merge(irc_cache *c, uint64_t fingerprint, const void *data, size_t size)
         return st;
     st = irc__snap_check(c, fingerprint, d, size, c->capacity - c->home->count, &count);
     if (st < 0) {
-        c->port->write_unlock(irc__lock(c));
+        irc__write_unlock(c);
         return st;
     }
     n = c->home->count + count;
     for (i = 0; i < count; i++)
         irc__convert(c, d + IRC__SNAP_HEAD + (size_t)i * c->rec_size,
                      irc__bytes(c, c->home->count + i), 0);
+    /* Counted in before the sort moves them among the others (repair.c). */
+    c->home->count = n;
     irc__sort(c, 0, n);
     kept = irc__unique(c, 0, n);
+    c->home->count = kept;
+    irc__zero_slots(c, kept, n - kept);
     /* The index and CLOCK start over from the canonical order. */
     irc__forget_locked(c);
-    c->home->count = kept;
     for (i = 0; i < kept; i++)
         irc__index_insert(c, i);
     irc__index_compact(c);
-    c->port->write_unlock(irc__lock(c));
+    irc__write_unlock(c);
     return IRC_OK;
 }

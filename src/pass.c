@@ -13,16 +13,17 @@ int irc_pass_begin(irc_cache *c)
     int st = irc__enter(c, NULL);
     if (st < 0)
         return st;
-    if (c->port->write_lock(irc__lock(c)) < 0)
+    if (irc__write_lock(c) < 0)
         return IRC_ERR_PORT;
     if (c->home->pass_open) {
         st = IRC_ERR_STATE;
     } else {
-        c->home->pass_open = 1;
         c->home->pass_base = c->home->count;
         c->port->store(&c->home->pending, 0);
+        c->port->store(&c->home->packed, 0);
+        c->home->pass_open = 1;
     }
-    c->port->write_unlock(irc__lock(c));
+    irc__write_unlock(c);
     return st;
 }
 
@@ -33,20 +34,26 @@ int irc_pass_end(irc_cache *c, uint32_t *added)
     int st = irc__enter(c, NULL);
     if (st < 0)
         return st;
-    if (c->port->write_lock(irc__lock(c)) < 0)
+    if (irc__write_lock(c) < 0)
         return IRC_ERR_PORT;
     if (!c->home->pass_open) {
-        c->port->write_unlock(irc__lock(c));
+        irc__write_unlock(c);
         return IRC_ERR_STATE;
     }
     pend = c->port->load(&c->home->pending);
     room = c->capacity - c->home->pass_base;
     n = pend < (uint64_t)room ? (uint32_t)pend : room;
+    /* Fewer whole than reserved: a process died while it packed one, and
+     * which is torn cannot be told; the pass's records are dropped (their
+     * queries compute them again). */
+    if (c->port->load(&c->home->packed) != n)
+        n = 0;
     /* Slot order is the order threads happened to finish in; the
      * canonical order is not.  Two queries that made the same record made
      * it once as far as the cache is concerned. */
     irc__sort(c, c->home->pass_base, n);
     kept = irc__unique(c, c->home->pass_base, n);
+    irc__zero_slots(c, c->home->pass_base + kept, n - kept);
     for (i = 0; i < kept; i++) {
         c->home->count = c->home->pass_base + i + 1;
         irc__commit_locked(c, c->home->pass_base + i);
@@ -54,7 +61,8 @@ int irc_pass_end(irc_cache *c, uint32_t *added)
     irc__index_compact(c);
     c->home->pass_open = 0;
     c->port->store(&c->home->pending, 0);
-    c->port->write_unlock(irc__lock(c));
+    c->port->store(&c->home->packed, 0);
+    irc__write_unlock(c);
     if (added)
         *added = kept;
     return IRC_OK;

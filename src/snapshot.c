@@ -146,10 +146,10 @@ int irc_snapshot_size(irc_cache *c, size_t *bytes)
         return st;
     if (!bytes)
         return IRC_ERR_NULL;
-    if (c->port->read_lock(irc__lock(c)) < 0)
+    if (irc__read_lock(c) < 0)
         return IRC_ERR_PORT;
     n = irc__snap_bytes(c, c->home->count);
-    c->port->read_unlock(irc__lock(c));
+    irc__read_unlock(c);
     if (n > (uint64_t)(size_t)-1)
         return IRC_ERR_NOMEM;
     *bytes = (size_t)n;
@@ -209,13 +209,13 @@ int irc_snapshot_write(irc_cache *c, uint64_t fingerprint, void *buffer, size_t 
         return st;
     if (!write && !buffer)
         return IRC_ERR_NULL;
-    if (c->port->read_lock(irc__lock(c)) < 0)
+    if (irc__read_lock(c) < 0)
         return IRC_ERR_PORT;
     if (!write && irc__snap_bytes(c, c->home->count) > (uint64_t)size)
         st = IRC_ERR_NOMEM;
     else
         st = irc__write_locked(c, fingerprint, (unsigned char *)buffer, write, context, written);
-    c->port->read_unlock(irc__lock(c));
+    irc__read_unlock(c);
     return st;
 }
 
@@ -314,6 +314,6 @@ int irc_snapshot_read(irc_cache *c, uint64_t fingerprint, const void *data, size
         c->home->count = i + 1;
         irc__index_insert(c, i);
     }
-    c->port->write_unlock(irc__lock(c));
+    irc__write_unlock(c);
     return IRC_OK;
 }

@@ -204,6 +204,7 @@ static int irc__defer(irc_cache *c, const void *rec, const float un[3])
     if (k >= (uint64_t)(c->capacity - c->home->pass_base))
         return IRC_ERR_FULL;
     irc__pack_at(c, rec, un, c->home->pass_base + (uint32_t)k);
+    c->port->fetch_add(&c->home->packed, 1);
     return IRC_OK;
 }
 
@@ -214,7 +215,7 @@ static int irc__store(irc_cache *c, const void *rec, const float un[3])
     uint32_t id;
     if (c->home->pass_open)
         return irc__defer(c, rec, un);
-    if (c->port->write_lock(irc__lock(c)) < 0)
+    if (irc__write_lock(c) < 0)
         return IRC_ERR_PORT;
     if (c->home->count < c->capacity) {
         id = c->home->count++;
@@ -223,12 +224,14 @@ static int irc__store(irc_cache *c, const void *rec, const float un[3])
         irc__index_remove(c, id);
         irc__count(c, IRC__C_EVICTIONS, 1);
     } else {
-        c->port->write_unlock(irc__lock(c));
+        irc__write_unlock(c);
         return IRC_ERR_FULL;
     }
+    irc__mark(c, id, IRC__NIL);
     irc__pack_at(c, rec, un, id);
+    irc__unmark(c);
     irc__commit_locked(c, id);
-    c->port->write_unlock(irc__lock(c));
+    irc__write_unlock(c);
     return IRC_OK;
 }
 
@@ -320,11 +323,11 @@ static void irc__visit(void *ud, uint32_t id)
 static int irc__walk_index(irc_cache *c, irc__walk *v)
 {
     int lock = !c->home->pass_open;
-    if (lock && c->port->read_lock(irc__lock(c)) < 0)
+    if (lock && irc__read_lock(c) < 0)
         return IRC_ERR_PORT;
     irc__index_query(c, v->q->p, irc__visit, v);
     if (lock)
-        c->port->read_unlock(irc__lock(c));
+        irc__read_unlock(c);
     return IRC_OK;
 }
 
@@ -432,12 +435,12 @@ int irc__record_get(irc_cache *c, const irc__kind *want, uint32_t id, void *out)
         return IRC_ERR_NULL;
     if (id >= c->capacity)
         return IRC_ERR_RANGE;
-    if (c->port->read_lock(irc__lock(c)) < 0)
+    if (irc__read_lock(c) < 0)
         return IRC_ERR_PORT;
     st = id < c->home->count ? IRC_OK : IRC_MISS;
     if (st == IRC_OK)
         c->kind->unpack(c, irc__rec_at(c, id), out);
-    c->port->read_unlock(irc__lock(c));
+    irc__read_unlock(c);
     return st;
 }
 
@@ -473,11 +476,11 @@ int irc_cache_neighbours(irc_cache *c, const float p[3], const float n[3],
 
 int irc__write_lock_idle(irc_cache *c)
 {
-    if (c->port->write_lock(irc__lock(c)) < 0)
+    if (irc__write_lock(c) < 0)
         return IRC_ERR_PORT;
     if (!c->home->pass_open)
         return IRC_OK;
-    c->port->write_unlock(irc__lock(c));
+    irc__write_unlock(c);
     return IRC_ERR_STATE;
 }
 
@@ -506,7 +509,7 @@ int irc_cache_clear(irc_cache *c)
     if ((st = irc__write_lock_idle(c)) < 0)
         return st;
     irc__clear_locked(c);
-    c->port->write_unlock(irc__lock(c));
+    irc__write_unlock(c);
     return IRC_OK;
 }
 
@@ -517,12 +520,12 @@ int irc_cache_stats(irc_cache *c, irc_stats *out)
         return st;
     if (!out)
         return IRC_ERR_NULL;
-    if (c->port->read_lock(irc__lock(c)) < 0)
+    if (irc__read_lock(c) < 0)
         return IRC_ERR_PORT;
     IRC_MEMSET(out, 0, sizeof *out);
     out->records = c->home->count;
     out->index_nodes = c->home->nodes_used;
-    c->port->read_unlock(irc__lock(c));
+    irc__read_unlock(c);
     out->capacity = c->capacity;
     out->inserts = irc__counter(c, IRC__C_INSERTS);
     out->evictions = irc__counter(c, IRC__C_EVICTIONS);

@@ -15,7 +15,7 @@ int irc__rec_head_sane(const irc_cache *c, const irc__rec *r)
            (r->n != IRC__FREE || c->kind_id == IRC__KIND_SH);
 }
 
-static int irc__rec_sane(const irc_cache *c, uint32_t id)
+int irc__rec_sane(const irc_cache *c, uint32_t id)
 {
     const irc__rec *r = irc__rec_at(c, id);
     const unsigned char *b = (const unsigned char *)r;

@@ -6,12 +6,12 @@
     X(test_rotational_gradient_sky) X(test_radius_rules) X(test_strata_directions) \
     X(test_pack_roundtrip) X(test_weighted_mean) X(test_behind_relative)  \
     X(test_extrapolation) X(test_lookup_gradient_one) X(test_lookup_gradient_sphere) X(test_lookup_gradient_status) X(test_lookup_or_compute) X(test_open_sky_own_point) X(test_full_no_evict) \
-    X(test_evict_clock) X(test_index_exact) X(test_index_scales)          \
+    X(test_evict_clock) X(test_index_exact) X(test_index_scales) X(test_index_grow_faces)          \
     X(test_config_checks) X(test_version) X(test_footprints) X(test_defaults) X(test_init_block) \
     X(test_bad_input_unchanged) X(test_callback_failures) X(test_overflow_radiance) X(test_ports) \
     X(test_threads_stress) X(test_threads_determinism)                 \
     X(test_visibility_sphere) X(test_visibility_box) X(test_visibility_open_sky) \
-    X(test_sight_wall) X(test_sight_clear) X(test_sight_callback) X(test_attach_bit_flips) \
+    X(test_sight_wall) X(test_sight_clear) X(test_sight_callback) X(test_attach_bit_flips) X(test_attach_open_pass_overfull) \
     X(test_occlusion_sphere) X(test_sh_orthonormal) X(test_sh_closed_forms)  \
     X(test_sh_gradient) X(test_sh_cap_closed_form) X(test_sh_emitter_gradient) \
     X(test_sh_irradiance_convolution) X(test_sh_glossy_zonal) X(test_sh_radiance_closed_form) \
@@ -23,7 +23,7 @@
     X(test_hessian_closed_forms) X(test_eigen2) X(test_hessian_radius) X(test_gradient_within_reach) X(test_ellipse_records) X(test_screen_bound) X(test_leak_guard_by_hand) \
     X(test_snapshot_round_trip) X(test_snapshot_round_trip_sh) X(test_snapshot_rejects) X(test_snapshot_by_hand) X(test_merge_order_free) \
     X(test_pass_order_free) X(test_pass_frozen) X(test_pass_full) X(test_pass_state) X(test_pass_lock_free) \
-    X(test_share_processes) X(test_share_killed) X(test_share_killed_in_lock) X(test_join_refused) \
+    X(test_share_processes) X(test_share_killed) X(test_share_killed_in_lock) X(test_share_killed_random) X(test_join_refused) \
     X(test_safe_defaults) X(test_index_clamped) X(test_index_compact)
 
 TESTS(TEST_DECL)

@@ -102,3 +102,39 @@ TEST(test_attach_bit_flips)
     free(damaged);
     block_free(&cfg);
 }
+
+/* A block copied while a pass is open in which more records were made
+ * than there was room for (the pass counts every attempt): a valid block,
+ * which attach refused (found by fuzz_api; its input is in the corpus as
+ * crash-pass-pending-over-capacity).  The copy attaches, and its pass
+ * ends with the records that found room. */
+TEST(test_attach_open_pass_overfull)
+{
+    tscene s;
+    irc_config cfg, ac;
+    irc_cache *c, *a;
+    unsigned char *copy;
+    uint32_t added = 0;
+    int i;
+    scene_sphere_plane(&s);
+    cfg = scene_config(&s, IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION, 4, 16);
+    c = block_cache(&cfg, 8, 0);
+    CHECK(c != NULL && irc_pass_begin(c) == IRC_OK, "init, pass");
+    if (!c) return;
+    for (i = 0; i < 20; i++) {
+        const float p[3] = {0.3f * (float)i - 3.0f, 0.0f, 0.0f}, n[3] = {0, 0, 1};
+        float rgb[3], w;
+        irc_cache_lookup_or_compute(c, p, n, rgb, &w, NULL);
+    }
+    copy = malloc(cfg.buffer_size + 64);
+    CHECK(copy != NULL, "malloc");
+    if (copy) {
+        memcpy(copy + 8, cfg.buffer, cfg.buffer_size);
+        ac = cfg;
+        ac.buffer = copy + 8;
+        CHECK(irc_attach(&ac, &a) == IRC_OK && irc_pass_end(a, &added) == IRC_OK && added == 8,
+              "attach a block with an overfull pass open: %u records", (unsigned)added);
+        free(copy);
+    }
+    block_free(&cfg);
+}

@@ -340,3 +340,52 @@ TEST(test_index_compact)
     free(h1);
     block_free(&cfg);
 }
+
+/* A root that grows becomes a child of the new root, and every record of
+ * its subtree must stay where removal looks for it.  A record on the face
+ * the old root shares with a new sibling was not: the octant rule sends
+ * such a point to the sibling, removal (an eviction) did not find it, and
+ * its entry stayed linked while its slot took another record (found by
+ * t_kill.c's eviction fill on a lattice with rows on y = 0).  Here: a
+ * cluster on every face of its fitted root, growth on every axis both
+ * ways, then every record evicted, twice over. */
+TEST(test_index_grow_faces)
+{
+    static const float far[6][3] = {{9, .75f, .75f}, {-9, .75f, .75f}, {.75f, 9, .75f},
+                                    {.75f, -9, .75f}, {.75f, .75f, 9}, {.75f, .75f, -9}};
+    irc_config cfg = scene_config(&dummy, 0, 4, 4);
+    irc_record r;
+    irc_stats st;
+    irc_cache *c;
+    uint32_t i, bad = 0, seen, lost = 0;
+    cfg.evict = IRC_EVICT_CLOCK;
+    c = block_cache(&cfg, 40, 0);
+    CHECK(c != NULL, "init");
+    if (!c) return;
+    memset(&r, 0, sizeof r);
+    r.n[2] = 1.0f;
+    r.e[0] = r.e[1] = r.e[2] = 1.0f;
+    r.radius = 0.01f;
+    for (i = 0; i < 27 + 6 + 80; i++) {
+        uint32_t ids[4], n;
+        const float up[3] = {0, 0, 1};
+        if (i < 27) {
+            r.p[0] = 0.5f + 0.25f * (float)(i % 3);
+            r.p[1] = 0.5f + 0.25f * (float)(i / 3 % 3);
+            r.p[2] = 0.5f + 0.25f * (float)(i / 9);
+        } else if (i < 33) {
+            memcpy(r.p, far[i - 27], sizeof r.p);
+        } else {
+            r.p[0] = (float)(i % 7) * 3.0f - 9.0f;
+            r.p[1] = (float)(i / 7 % 7) * 3.0f - 9.0f;
+            r.p[2] = 0.5f * (float)(i % 2);
+        }
+        CHECK(irc_cache_insert(c, &r) == IRC_OK, "insert %u", i);
+        lost += irc_cache_neighbours(c, r.p, up, ids, 4, &n) != IRC_OK || n != 1;
+    }
+    seen = runs_check(c, &irc__nodes(c)[0], 0, &bad);
+    CHECK(irc_cache_stats(c, &st) == IRC_OK && st.records == 40 && seen == 40 &&
+              st.evictions == 27 + 6 + 80 - 40 && lost == 0,
+          "%u entries in the index for %u records, %u not found", seen, (unsigned)st.records, lost);
+    block_free(&cfg);
+}

@@ -13,8 +13,8 @@
 #include <unistd.h>
 
 #include "irrcache.h"
-#include "cache.h" /* the lock, on purpose: test_share_killed_in_lock */
 #include "scenes.h"
+#include "share.h"
 #include "test.h"
 
 /* A host context whose callback counts its own calls: each process must
@@ -33,25 +33,21 @@ static int counting_trace(const irc_trace_args *a)
     return scene_trace(&b);
 }
 
-#define SIDE 30
-
-static void nap(void)
+void share_nap(void)
 {
     struct timespec t = {0, 1000000};
     nanosleep(&t, NULL);
 }
 
-/* Fills the half of a SIDE x SIDE lattice on the plane (half 0: x < 0,
- * half 1: x >= 0, with a shared column at x = 0); returns failures. */
-static int fill_half(irc_cache *c, int half)
+int share_fill_half(irc_cache *c, int half)
 {
     const float up[3] = {0, 0, 1};
     int i, bad = 0;
-    for (i = 0; i < SIDE * SIDE; i++) {
-        int ix = i % SIDE;
-        float p[3] = {(float)(ix - SIDE / 2) * 0.2f, (float)(i / SIDE - SIDE / 2) * 0.2f, 0.0f},
+    for (i = 0; i < SHARE_SIDE * SHARE_SIDE; i++) {
+        int ix = i % SHARE_SIDE;
+        float p[3] = {(float)(ix - SHARE_SIDE / 2) * 0.2f, (float)(i / SHARE_SIDE - SHARE_SIDE / 2) * 0.2f, 0.0f},
               rgb[3], w;
-        if ((half == 0 && ix > SIDE / 2) || (half == 1 && ix < SIDE / 2))
+        if ((half == 0 && ix > SHARE_SIDE / 2) || (half == 1 && ix < SHARE_SIDE / 2))
             continue;
         bad += irc_cache_lookup_or_compute(c, p, up, rgb, &w, NULL) < 0;
     }
@@ -62,7 +58,7 @@ static int fill_half(irc_cache *c, int half)
  * position, normal +z): position, radius and irradiance exactly, the
  * normal and the gradients to their packed precision; and a lookup there
  * finds it.  Returns failures. */
-static int verify_all(irc_cache *c)
+int share_verify_all(irc_cache *c)
 {
     const float up[3] = {0, 0, 1};
     irc_stats st;
@@ -144,11 +140,11 @@ TEST(test_share_processes)
         bad += irc_join(&mc, view, 64, &v) != IRC_ERR_NOMEM;
         if (bad || irc_join(&mc, view, sizeof view, &v) != IRC_OK)
             _exit(100);
-        bad += fill_half(v, 1);
+        bad += share_fill_half(v, 1);
         __atomic_store_n(&flags[0], 1, __ATOMIC_RELEASE);
         while (!__atomic_load_n(&flags[1], __ATOMIC_ACQUIRE))
-            nap();
-        bad += verify_all(v);
+            share_nap();
+        bad += share_verify_all(v);
         bad += mine.calls == 0 || host.calls != before; /* its own host only */
         bad += irc_fini(v) != IRC_OK;
         _exit(bad > 99 ? 99 : bad);
@@ -156,16 +152,16 @@ TEST(test_share_processes)
     CHECK(pid > 0, "fork");
     if (pid > 0) {
         irc_stats st;
-        int bad = fill_half(c, 0), gone = 0;
+        int bad = share_fill_half(c, 0), gone = 0;
         while (!gone && !__atomic_load_n(&flags[0], __ATOMIC_ACQUIRE)) {
             gone = waitpid(pid, &status, WNOHANG) == pid;
-            nap();
+            share_nap();
         }
         CHECK(irc_cache_stats(c, &st) == IRC_OK && st.records > 100 &&
                   st.records == st.computes && st.records == st.inserts,
               "records %u computes %u inserts %u", (unsigned)st.records, (unsigned)st.computes,
               (unsigned)st.inserts);
-        bad += verify_all(c);
+        bad += share_verify_all(c);
         CHECK(bad == 0, "the creator found %d bad records or failed lookups", bad);
         __atomic_store_n(&flags[1], 1, __ATOMIC_RELEASE);
         if (!gone)
@@ -216,164 +212,4 @@ TEST(test_join_refused)
               irc_cache_clear(c) == IRC_OK,
           "a view's fini leaves the creator's lock");
     block_free(&cfg);
-}
-
-/* A process killed inside a record computation keeps a scratch slot; with
- * one slot, every other process's next miss would wait for it forever.
- * The port's owner check hands the slot over.  A joined child kills
- * itself (SIGKILL, from its trace callback) at several points of its
- * first records; a second child, the survivor, then fills the lattice on
- * the creator's handle within 10 s, and every record it finds is whole. */
-typedef struct suicidal {
-    tscene s;
-    unsigned long calls, die_at;
-} suicidal;
-
-static int suicidal_trace(const irc_trace_args *a)
-{
-    irc_trace_args b = *a;
-    suicidal *k = (suicidal *)a->context;
-    if (++k->calls == k->die_at)
-        kill(getpid(), SIGKILL);
-    b.context = &k->s;
-    return scene_trace(&b);
-}
-
-/* Waits up to 10 s for pid; kills it after that.  1 if it exited with 0. */
-static int finished(pid_t pid)
-{
-    int status = -1, i;
-    for (i = 0; i < 10000; i++) {
-        if (waitpid(pid, &status, WNOHANG) == pid)
-            return WIFEXITED(status) && WEXITSTATUS(status) == 0;
-        nap();
-    }
-    kill(pid, SIGKILL);
-    waitpid(pid, &status, 0);
-    return 0;
-}
-
-TEST(test_share_killed)
-{
-    static const unsigned long die_at[6] = {1, 128, 256, 257, 400, 700};
-    suicidal host;
-    irc_config cfg;
-    irc_cache *c;
-    char path[] = "/tmp/irc_killed_XXXXXX";
-    size_t bytes = 0, mapped;
-    void *map;
-    int t, fd = mkstemp(path);
-    scene_sphere_plane(&host.s);
-    host.calls = host.die_at = 0;
-    cfg = scene_config(&host.s, IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION, 8, 32);
-    cfg.trace = suicidal_trace;
-    cfg.context = &host;
-    cfg.max_radius = 1.0f;
-    cfg.threads = 1;
-    CHECK(fd >= 0 && irc_footprint(&cfg, 4096, &bytes) == IRC_OK, "footprint");
-    mapped = (bytes + 4095) / 4096 * 4096;
-    CHECK(fd >= 0 && ftruncate(fd, (off_t)mapped) == 0, "temporary file");
-    map = fd < 0 ? MAP_FAILED : mmap(NULL, mapped, PROT_READ | PROT_WRITE, MAP_SHARED, fd, 0);
-    CHECK(map != MAP_FAILED, "mmap");
-    if (fd >= 0) {
-        close(fd);
-        unlink(path);
-    }
-    if (map == MAP_FAILED)
-        return;
-    for (t = 0; t < 6; t++) {
-        pid_t victim, survivor;
-        int status = -1;
-        cfg.buffer = map;
-        cfg.buffer_size = bytes;
-        if (irc_init(&cfg, 4096, &c) != IRC_OK) {
-            CHECK(0, "init");
-            break;
-        }
-        victim = fork();
-        if (victim == 0) {
-            static double view[IRC_VIEW_BYTES / sizeof(double)];
-            irc_cache *v;
-            host.die_at = die_at[t];
-            if (irc_join(&cfg, view, sizeof view, &v) != IRC_OK)
-                _exit(100);
-            fill_half(v, 1);
-            _exit(101); /* it should have died */
-        }
-        waitpid(victim, &status, 0);
-        CHECK(WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL, "trial %d: the victim %s", t,
-              WIFEXITED(status) ? "exited" : "did not die by SIGKILL");
-        survivor = fork();
-        if (survivor == 0) {
-            irc_stats st;
-            int bad = fill_half(c, 0) + fill_half(c, 1) + verify_all(c);
-            bad += irc_cache_stats(c, &st) != IRC_OK || st.records < 100;
-            _exit(bad > 99 ? 99 : bad);
-        }
-        CHECK(survivor > 0 && finished(survivor),
-              "trial %d (victim killed at ray %lu): the survivor hung or found bad records", t,
-              die_at[t]);
-        irc_fini(c);
-    }
-    munmap(map, mapped);
-}
-
-/* A process killed while it holds the write lock leaves it taken (the
- * posix rwlock is not robust); the documented recovery is irc_attach once
- * every process has let go, which makes a fresh lock: the block's records
- * are all there and the cache takes new ones. */
-TEST(test_share_killed_in_lock)
-{
-    char path[] = "/tmp/irc_locked_XXXXXX";
-    tscene s;
-    irc_config cfg;
-    irc_cache *c, *again;
-    irc_stats before, after;
-    size_t bytes = 0, mapped;
-    void *map;
-    int fd = mkstemp(path), status = -1, k;
-    pid_t pid;
-    scene_sphere_plane(&s);
-    cfg = scene_config(&s, IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION, 4, 16);
-    CHECK(fd >= 0 && irc_footprint(&cfg, 256, &bytes) == IRC_OK, "footprint");
-    mapped = (bytes + 4095) / 4096 * 4096;
-    CHECK(fd >= 0 && ftruncate(fd, (off_t)mapped) == 0, "temporary file");
-    map = fd < 0 ? MAP_FAILED : mmap(NULL, mapped, PROT_READ | PROT_WRITE, MAP_SHARED, fd, 0);
-    if (fd >= 0) {
-        close(fd);
-        unlink(path);
-    }
-    CHECK(map != MAP_FAILED, "mmap");
-    if (map == MAP_FAILED)
-        return;
-    cfg.buffer = map;
-    cfg.buffer_size = bytes;
-    CHECK(irc_init(&cfg, 256, &c) == IRC_OK, "init");
-    for (k = 0; k < 30; k++) {
-        const float p[3] = {0.2f * (float)k - 3.0f, 0.0f, 0.0f}, n[3] = {0, 0, 1};
-        float rgb[3], w;
-        irc_cache_lookup_or_compute(c, p, n, rgb, &w, NULL);
-    }
-    CHECK(irc_cache_stats(c, &before) == IRC_OK && before.records > 5, "records");
-    pid = fork();
-    if (pid == 0) {
-        /* internals on purpose: the lock taken as an insert takes it */
-        c->port->write_lock(irc__lock(c));
-        kill(getpid(), SIGKILL);
-    }
-    waitpid(pid, &status, 0);
-    CHECK(WIFSIGNALED(status), "the child died");
-    CHECK(irc_attach(&cfg, &again) == IRC_OK && irc_cache_stats(again, &after) == IRC_OK &&
-              after.records == before.records,
-          "attach anew: %llu records of %llu", (unsigned long long)after.records,
-          (unsigned long long)before.records);
-    {
-        const float p[3] = {5.0f, 5.0f, 0.0f}, n[3] = {0, 0, 1};
-        float rgb[3], w;
-        CHECK(irc_cache_lookup_or_compute(again, p, n, rgb, &w, NULL) == IRC_OK &&
-                  irc_cache_stats(again, &after) == IRC_OK && after.records == before.records + 1,
-              "a new record after the recovery");
-    }
-    irc_fini(again);
-    munmap(map, mapped);
 }

@@ -1,11 +1,12 @@
 /*
- * port/posix/irc_port.c -- POSIX threads: a pthread rwlock in the cache's
- * block, and the GCC/Clang __atomic builtins on the block's 64-bit words.
+ * port/posix/irc_port.c -- POSIX processes and threads: a reader/writer
+ * lock in the cache's block that survives a holder killed inside it, and
+ * the GCC/Clang __atomic builtins on the block's 64-bit words.
  */
 #include <errno.h>
-#include <pthread.h>
 #include <sched.h>
 #include <signal.h>
+#include <string.h>
 #include <sys/types.h>
 #include <unistd.h>
 
@@ -15,26 +16,152 @@
 #error "port/posix needs GCC or Clang __atomic builtins; use port/c11 with another compiler"
 #endif
 
-/* Process-shared, so that processes mapping one block (irc_join) share the
- * lock; within one process it costs nothing more. */
+/*
+ * The lock: a reader/writer lock that outlives its holders.  A pthread
+ * rwlock cannot: a process killed while it holds one (even for reading,
+ * inside a lookup) leaves it taken, and every process sharing the block
+ * hangs.  This one is built from words in the block:
+ *   - writer: the process id of the writer, 0 if none;
+ *   - readers: a table of words, each 0 or (process id << 32 | count).
+ *     A process's threads share its entries; any process may hold several.
+ * A reader counts itself in, then looks at writer (both sequentially
+ * consistent, so of a reader and a writer arriving together at least one
+ * sees the other) and backs out if a writer came.  A writer claims writer,
+ * then waits for the counts to drain.  A waiter that has waited a while
+ * asks the system whether the process it waits for still runs: a dead
+ * reader's count is dropped (readers change nothing), a dead writer's
+ * claim is taken over and write_lock returns 1 so that the library
+ * repairs what the writer left half done; read_lock returns 1 without the
+ * lock, for the library to take the write lock and repair.
+ * A waiting writer keeps new readers out, so writers do not starve.
+ * Process ids are of one pid namespace; a reused id looks alive.
+ */
+#define POSIX_READERS 63u
+#define POSIX_CHECK_EVERY 64u /* waits between liveness checks */
+
+typedef struct posix_lock {
+    uint64_t writer;
+    uint64_t readers[POSIX_READERS];
+} posix_lock;
+
+static uint64_t posix_owner(void) { return (uint64_t)getpid(); }
+static int posix_owner_alive(uint64_t tok)
+{
+    return kill((pid_t)tok, 0) == 0 || errno != ESRCH;
+}
+
+static uint64_t posix_get(const uint64_t *w) { return __atomic_load_n(w, __ATOMIC_SEQ_CST); }
+static int posix_swap(uint64_t *w, uint64_t e, uint64_t d)
+{
+    return __atomic_compare_exchange_n(w, &e, d, 0, __ATOMIC_SEQ_CST, __ATOMIC_SEQ_CST);
+}
+
+static unsigned posix_home_entry(uint64_t me) { return (unsigned)(me * 2654435761u % POSIX_READERS); }
+
 static int posix_lock_init(void *l)
 {
-    pthread_rwlockattr_t a;
-    int st;
-    if (pthread_rwlockattr_init(&a) != 0)
-        return -1;
-    st = pthread_rwlockattr_setpshared(&a, PTHREAD_PROCESS_SHARED) == 0 &&
-                 pthread_rwlock_init((pthread_rwlock_t *)l, &a) == 0
-             ? 0
-             : -1;
-    pthread_rwlockattr_destroy(&a);
-    return st;
+    memset(l, 0, sizeof(posix_lock));
+    return 0;
 }
-static void posix_lock_destroy(void *l) { pthread_rwlock_destroy((pthread_rwlock_t *)l); }
-static int posix_read_lock(void *l) { return pthread_rwlock_rdlock((pthread_rwlock_t *)l) == 0 ? 0 : -1; }
-static int posix_write_lock(void *l) { return pthread_rwlock_wrlock((pthread_rwlock_t *)l) == 0 ? 0 : -1; }
+static void posix_lock_destroy(void *l) { (void)l; }
+
+/* One more count on an entry of this process: its own, a free one, or
+ * (when the table is full) one of a process that is gone.  0 if none. */
+static int posix_count_in(posix_lock *k, uint64_t me)
+{
+    unsigned i, at, pass;
+    for (pass = 0; pass < 3; pass++)
+        for (i = 0; i < POSIX_READERS; i++) {
+            uint64_t *e = &k->readers[(posix_home_entry(me) + i) % POSIX_READERS];
+            uint64_t v = posix_get(e);
+            at = 0;
+            if (pass == 0 && v >> 32 == me)
+                at = posix_swap(e, v, v + 1);
+            else if (pass == 1 && v == 0)
+                at = posix_swap(e, 0, me << 32 | 1u);
+            else if (pass == 2 && v >> 32 != me && !posix_owner_alive(v >> 32))
+                at = posix_swap(e, v, me << 32 | 1u);
+            if (at)
+                return 1;
+        }
+    return 0;
+}
+
+static void posix_count_out(posix_lock *k, uint64_t me)
+{
+    for (;;) {
+        unsigned i;
+        for (i = 0; i < POSIX_READERS; i++) {
+            uint64_t *e = &k->readers[(posix_home_entry(me) + i) % POSIX_READERS];
+            uint64_t v = posix_get(e);
+            if (v >> 32 == me && (v & 0xffffffffu) &&
+                posix_swap(e, v, (v & 0xffffffffu) == 1u ? 0 : v - 1))
+                return;
+        }
+    }
+}
+
+static int posix_read_lock(void *l)
+{
+    posix_lock *k = (posix_lock *)l;
+    uint64_t me = posix_owner(), w;
+    unsigned waits = 0;
+    for (;;) {
+        if ((w = posix_get(&k->writer)) == 0) {
+            if (posix_count_in(k, me)) {
+                if (posix_get(&k->writer) == 0)
+                    return 0;
+                posix_count_out(k, me);
+            }
+        } else if (++waits % POSIX_CHECK_EVERY == 0 && w != me && !posix_owner_alive(w)) {
+            return 1;
+        }
+        sched_yield();
+    }
+}
+static void posix_read_unlock(void *l) { posix_count_out((posix_lock *)l, posix_owner()); }
+
+/* Waits for entry e's readers to leave, or drops them if their process is
+ * gone. */
+static void posix_drain(uint64_t *e, uint64_t me)
+{
+    unsigned waits = 0;
+    uint64_t v;
+    while ((v = posix_get(e)) != 0) {
+        if (++waits % POSIX_CHECK_EVERY == 0 && v >> 32 != me && !posix_owner_alive(v >> 32))
+            posix_swap(e, v, 0);
+        else
+            sched_yield();
+    }
+}
+
+static int posix_write_lock(void *l)
+{
+    posix_lock *k = (posix_lock *)l;
+    uint64_t me = posix_owner(), w;
+    unsigned waits = 0, i;
+    int took_over = 0;
+    for (;;) {
+        if ((w = posix_get(&k->writer)) == 0) {
+            if (posix_swap(&k->writer, 0, me))
+                break;
+        } else if (++waits % POSIX_CHECK_EVERY == 0 && w != me && !posix_owner_alive(w) &&
+                   posix_swap(&k->writer, w, me)) {
+            took_over = 1;
+            break;
+        }
+        sched_yield();
+    }
+    for (i = 0; i < POSIX_READERS; i++)
+        posix_drain(&k->readers[i], me);
+    return took_over;
+}
+static void posix_write_unlock(void *l)
+{
+    __atomic_store_n(&((posix_lock *)l)->writer, 0, __ATOMIC_SEQ_CST);
+}
+
 static void posix_yield(void) { sched_yield(); }
-static void posix_unlock(void *l) { pthread_rwlock_unlock((pthread_rwlock_t *)l); }
 
 static uint64_t posix_load(const uint64_t *o) { return __atomic_load_n(o, __ATOMIC_ACQUIRE); }
 static void posix_store(uint64_t *o, uint64_t v) { __atomic_store_n(o, v, __ATOMIC_RELEASE); }
@@ -45,15 +172,7 @@ static int posix_cas(uint64_t *o, uint64_t e, uint64_t d)
     return __atomic_compare_exchange_n(o, &e, d, 0, __ATOMIC_ACQ_REL, __ATOMIC_ACQUIRE);
 }
 
-/* A scratch slot's owner: the process id; kill(pid, 0) tells whether it
- * still runs (EPERM: it does, as another user's). */
-static uint64_t posix_owner(void) { return (uint64_t)getpid(); }
-static int posix_owner_alive(uint64_t tok)
-{
-    return kill((pid_t)tok, 0) == 0 || errno != ESRCH;
-}
-
 const irc_port irc_port_posix = {
-    "posix", sizeof(pthread_rwlock_t), posix_lock_init, posix_lock_destroy,
-    posix_read_lock, posix_unlock, posix_write_lock, posix_unlock, posix_yield,
+    "posix", sizeof(posix_lock), posix_lock_init, posix_lock_destroy,
+    posix_read_lock, posix_read_unlock, posix_write_lock, posix_write_unlock, posix_yield,
     posix_load, posix_store, posix_add, posix_or, posix_cas, posix_owner, posix_owner_alive};

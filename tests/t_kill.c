@@ -1,0 +1,370 @@
+/* t_kill.c -- processes killed (SIGKILL) inside calls on a cache they
+ * share with others (irc_join): at a record computation, holding the read
+ * lock, holding the write lock in the middle of a write, and at random
+ * points of fills and passes.  Every time, a survivor fills the cache
+ * within 10 s, every record it then holds equals a fresh computation at
+ * its query and is found by a lookup there, and the index passes the
+ * checks irc_attach makes. */
+#include <fcntl.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/mman.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "irrcache.h"
+#include "cache.h" /* internals on purpose: a writer stopped mid-write */
+#include "scenes.h"
+#include "share.h"
+#include "test.h"
+
+/* A block in a file mapped shared (the file itself unlinked at once),
+ * then a page for the tests' own flags; *mapped: the bytes to unmap. */
+static void *map_block(irc_config *cfg, uint32_t records, size_t *mapped)
+{
+    char path[] = "/tmp/irc_kill_XXXXXX";
+    size_t bytes = 0;
+    void *map = MAP_FAILED;
+    int fd = mkstemp(path);
+    if (fd < 0)
+        return NULL;
+    unlink(path);
+    if (irc_footprint(cfg, records, &bytes) == IRC_OK) {
+        *mapped = (bytes + 4095) / 4096 * 4096 + 4096;
+        if (ftruncate(fd, (off_t)*mapped) == 0)
+            map = mmap(NULL, *mapped, PROT_READ | PROT_WRITE, MAP_SHARED, fd, 0);
+    }
+    close(fd);
+    cfg->buffer = map == MAP_FAILED ? NULL : map;
+    cfg->buffer_size = bytes;
+    return cfg->buffer;
+}
+
+/* Waits up to 10 s for pid; kills it after that.  1 if it exited with 0. */
+static int finished(pid_t pid)
+{
+    int status = -1, i;
+    for (i = 0; i < 10000; i++) {
+        if (waitpid(pid, &status, WNOHANG) == pid)
+            return WIFEXITED(status) && WEXITSTATUS(status) == 0;
+        share_nap();
+    }
+    kill(pid, SIGKILL);
+    waitpid(pid, &status, 0);
+    return 0;
+}
+
+/* The survivor, in a child of its own (a hang is a failure, not the end
+ * of the suite): ends a pass the victim left open, fills the lattice on
+ * the creator's handle, and checks every record and the index.  1 if it
+ * finished in time with nothing wrong. */
+static int survives(irc_cache *c, uint32_t min_records)
+{
+    pid_t pid = fork();
+    if (pid == 0) {
+        irc_stats st;
+        int bad, end = irc_pass_end(c, NULL);
+        bad = end != IRC_OK && end != IRC_ERR_STATE;
+        bad += share_fill_half(c, 0) + share_fill_half(c, 1) + share_verify_all(c);
+        bad += !irc__block_sane(c);
+        bad += irc_cache_stats(c, &st) != IRC_OK || st.records < min_records;
+        _exit(bad > 99 ? 99 : bad);
+    }
+    return pid > 0 && finished(pid);
+}
+
+static irc_config share_config(tscene *s)
+{
+    irc_config cfg = scene_config(s, IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION, 8, 32);
+    cfg.max_radius = 1.0f;
+    cfg.threads = 1;
+    return cfg;
+}
+
+/* A joined process killed inside a record computation keeps a scratch
+ * slot; with one slot, every other process's next miss would wait for it
+ * forever.  The port's owner check hands the slot over.  The victim kills
+ * itself from its trace callback at several points of its first records. */
+typedef struct suicidal {
+    tscene s;
+    unsigned long calls, die_at;
+} suicidal;
+
+static int suicidal_trace(const irc_trace_args *a)
+{
+    irc_trace_args b = *a;
+    suicidal *k = (suicidal *)a->context;
+    if (++k->calls == k->die_at)
+        kill(getpid(), SIGKILL);
+    b.context = &k->s;
+    return scene_trace(&b);
+}
+
+TEST(test_share_killed)
+{
+    static const unsigned long die_at[6] = {1, 128, 256, 257, 400, 700};
+    suicidal host;
+    irc_config cfg;
+    irc_cache *c;
+    size_t mapped = 0;
+    int t;
+    scene_sphere_plane(&host.s);
+    host.calls = host.die_at = 0;
+    cfg = share_config(&host.s);
+    cfg.trace = suicidal_trace;
+    cfg.context = &host;
+    CHECK(map_block(&cfg, 4096, &mapped) != NULL, "mapped block");
+    if (!cfg.buffer)
+        return;
+    for (t = 0; t < 6; t++) {
+        pid_t victim;
+        int status = -1;
+        if (irc_init(&cfg, 4096, &c) != IRC_OK) {
+            CHECK(0, "init");
+            break;
+        }
+        victim = fork();
+        if (victim == 0) {
+            static double view[IRC_VIEW_BYTES / sizeof(double)];
+            irc_cache *v;
+            host.die_at = die_at[t];
+            if (irc_join(&cfg, view, sizeof view, &v) != IRC_OK)
+                _exit(100);
+            share_fill_half(v, 1);
+            _exit(101); /* it should have died */
+        }
+        waitpid(victim, &status, 0);
+        CHECK(WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL, "trial %d: the victim %s", t,
+              WIFEXITED(status) ? "exited" : "did not die by SIGKILL");
+        CHECK(survives(c, 100), "trial %d (victim killed at ray %lu): the survivor hung or found "
+                                "bad records", t, die_at[t]);
+        irc_fini(c);
+    }
+    munmap(cfg.buffer, mapped);
+}
+
+/* Holding a lock, the victim stops where an insert would be, by hand:
+ *   0: the read lock (a lookup's), nothing written;
+ *   1: the write lock, nothing written yet;
+ *   2: the write lock, record 3 half overwritten with another's position,
+ *      as an eviction that packs into slot 3 leaves it (irc__mark names
+ *      the slot first);
+ *   3: as 2, recovered by irc_attach of the block at rest instead.
+ * With a pthread rwlock every survivor of 0-2 hung.  After 2 and 3 the
+ * torn record is gone and every other is whole. */
+static void stop_in_lock(irc_cache *c, int how)
+{
+    if (how == 0) {
+        c->port->read_lock(irc__lock(c));
+    } else {
+        irc__write_lock(c);
+        if (how >= 2) {
+            irc__mark(c, 3, IRC__NIL);
+            irc__rec_at(c, 3)->p[0] += 0.5f;
+            irc__rec_at(c, 3)->e[0] *= 0.5f;
+        }
+    }
+    kill(getpid(), SIGKILL);
+}
+
+TEST(test_share_killed_in_lock)
+{
+    tscene s;
+    irc_config cfg;
+    irc_cache *c;
+    irc_stats before, after;
+    size_t mapped = 0;
+    int how, k;
+    scene_sphere_plane(&s);
+    cfg = share_config(&s);
+    CHECK(map_block(&cfg, 4096, &mapped) != NULL, "mapped block");
+    if (!cfg.buffer)
+        return;
+    for (how = 0; how < 4; how++) {
+        int status = -1;
+        pid_t pid;
+        CHECK(irc_init(&cfg, 4096, &c) == IRC_OK, "init");
+        for (k = 0; k < 30; k++) {
+            const float p[3] = {0.2f * (float)k - 3.0f, 0.0f, 0.0f}, n[3] = {0, 0, 1};
+            float rgb[3], w;
+            irc_cache_lookup_or_compute(c, p, n, rgb, &w, NULL);
+        }
+        CHECK(irc_cache_stats(c, &before) == IRC_OK && before.records > 5, "records");
+        pid = fork();
+        if (pid == 0)
+            stop_in_lock(c, how);
+        waitpid(pid, &status, 0);
+        CHECK(WIFSIGNALED(status), "the victim died");
+        if (how == 3) {
+            CHECK(irc_attach(&cfg, &c) == IRC_OK && irc_cache_stats(c, &after) == IRC_OK &&
+                      after.records == before.records - 1 && share_verify_all(c) == 0,
+                  "attach of a block left mid-write: %u records of %u, or one not whole",
+                  (unsigned)after.records, (unsigned)before.records);
+        } else {
+            CHECK(survives(c, 100), "%d: the survivor hung or found bad records", how);
+        }
+        irc_fini(c);
+    }
+    munmap(cfg.buffer, mapped);
+}
+
+/* A port that kills its process at its die_at-th call (any call: loads of
+ * a lookup, a slot's claim, the write lock's taking, a slot's marking
+ * inside it...), after the call for the locks, so that the victim dies
+ * holding them.  Same name as irc_port_posix: it joins that block. */
+static unsigned long port_calls, port_die_at;
+static int port_held;   /* 1: the read lock, 2: the write lock */
+static int *port_died;  /* shared with the parent: port_held at death */
+
+static void tick(void)
+{
+    if (++port_calls == port_die_at) {
+        if (port_died)
+            *port_died = port_held;
+        kill(getpid(), SIGKILL);
+    }
+}
+static int k_read_lock(void *l)
+{
+    int st = irc_port_posix.read_lock(l);
+    port_held = st == 0;
+    tick();
+    return st;
+}
+static void k_read_unlock(void *l) { tick(); port_held = 0; irc_port_posix.read_unlock(l); }
+static int k_write_lock(void *l)
+{
+    int st = irc_port_posix.write_lock(l);
+    port_held = st >= 0 ? 2 : 0;
+    tick();
+    return st;
+}
+static void k_write_unlock(void *l) { tick(); port_held = 0; irc_port_posix.write_unlock(l); }
+static uint64_t k_load(const uint64_t *o) { tick(); return irc_port_posix.load(o); }
+static void k_store(uint64_t *o, uint64_t v) { tick(); irc_port_posix.store(o, v); }
+static uint64_t k_add(uint64_t *o, uint64_t v) { tick(); return irc_port_posix.fetch_add(o, v); }
+static uint64_t k_or(uint64_t *o, uint64_t v) { tick(); return irc_port_posix.fetch_or(o, v); }
+static int k_cas(uint64_t *o, uint64_t e, uint64_t d)
+{
+    int st = irc_port_posix.cas(o, e, d);
+    tick();
+    return st;
+}
+
+static irc_port killing_port(void)
+{
+    irc_port p = irc_port_posix;
+    p.read_lock = k_read_lock;
+    p.read_unlock = k_read_unlock;
+    p.write_lock = k_write_lock;
+    p.write_unlock = k_write_unlock;
+    p.load = k_load;
+    p.store = k_store;
+    p.fetch_add = k_add;
+    p.fetch_or = k_or;
+    p.cas = k_cas;
+    return p;
+}
+
+/* The victim: a fill of half the lattice, in two passes on odd trials
+ * (each ending with its records joining the index and a compaction, all
+ * under the write lock), with clamping (which writes neighbours' radii)
+ * and CLOCK eviction in a pool too small for the lattice. */
+static void victim_fill(irc_cache *v, int passes)
+{
+    int round;
+    for (round = 0; round < 2; round++) {
+        if (passes)
+            irc_pass_begin(v);
+        share_fill_half(v, round);
+        if (passes)
+            irc_pass_end(v, NULL);
+    }
+}
+
+/* Port calls of one whole victim fill: the range die_at is drawn from. */
+static unsigned long calls_of_fill(irc_config cfg, int passes)
+{
+    irc_port kp = killing_port();
+    irc_cache *c;
+    size_t bytes = 0;
+    cfg.port = &kp;
+    port_calls = port_die_at = 0;
+    if (irc_footprint(&cfg, 300, &bytes) != IRC_OK || !(cfg.buffer = malloc(bytes)))
+        return 0;
+    cfg.buffer_size = bytes;
+    if (irc_init(&cfg, 300, &c) == IRC_OK) {
+        victim_fill(c, passes);
+        irc_fini(c);
+    }
+    free(cfg.buffer);
+    return port_calls;
+}
+
+TEST(test_share_killed_random)
+{
+    const int trials = irc_t_quick ? 12 : 48;
+    tscene s;
+    irc_config cfg;
+    irc_cache *c;
+    size_t mapped = 0;
+    unsigned long total[2];
+    unsigned long long seed = 12345;
+    int t, died = 0, held[3] = {0, 0, 0}, *where;
+    scene_sphere_plane(&s);
+    cfg = share_config(&s);
+    cfg.evict = IRC_EVICT_CLOCK;
+    cfg.clamp_neighbours = IRC_ON;
+    total[0] = calls_of_fill(cfg, 0);
+    total[1] = calls_of_fill(cfg, 1);
+    CHECK(total[0] > 1000 && total[1] > 1000, "port calls of a fill: %lu, %lu", total[0], total[1]);
+    CHECK(map_block(&cfg, 300, &mapped) != NULL, "mapped block");
+    if (!cfg.buffer || total[0] <= 1000 || total[1] <= 1000)
+        return;
+    where = (int *)(void *)((unsigned char *)cfg.buffer + mapped - 4096);
+    for (t = 0; t < trials; t++) {
+        pid_t victim;
+        int status = -1;
+        unsigned long at;
+        seed = seed * 6364136223846793005ull + 1442695040888963407ull;
+        at = 1 + (unsigned long)(seed >> 33) % total[t & 1];
+        if (irc_init(&cfg, 300, &c) != IRC_OK) {
+            CHECK(0, "init");
+            break;
+        }
+        victim = fork();
+        if (victim == 0) {
+            static double view[IRC_VIEW_BYTES / sizeof(double)];
+            irc_port kp = killing_port();
+            irc_config vc = cfg;
+            irc_cache *v;
+            vc.port = &kp;
+            port_calls = 0;
+            port_die_at = at;
+            port_died = where;
+            if (irc_join(&vc, view, sizeof view, &v) != IRC_OK)
+                _exit(100);
+            victim_fill(v, t & 1);
+            _exit(101);
+        }
+        *where = -1;
+        waitpid(victim, &status, 0);
+        if (WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL && *where >= 0) {
+            died++;
+            held[*where]++;
+        }
+        CHECK(survives(c, 150), "trial %d (%s, killed at port call %lu of %lu): the survivor "
+                                "hung or found bad records", t, t & 1 ? "passes" : "no pass", at,
+              total[t & 1]);
+        irc_fini(c);
+    }
+    /* a join's calls come before the fill's: a late die_at may miss */
+    CHECK(died >= trials * 3 / 4 && held[2] >= 1 && held[1] >= 1,
+          "%d of %d victims died, %d holding no lock, %d the read lock, %d the write lock", died,
+          trials, held[0], held[1], held[2]);
+    printf("  %d victims of %d died: %d holding no lock, %d the read lock, %d the write lock\n",
+           died, trials, held[0], held[1], held[2]);
+    munmap(cfg.buffer, mapped);
+}
