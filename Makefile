@@ -124,7 +124,7 @@ coverage:
 # ---------------------------------------------------------------- embedded
 # The library for a Cortex-M4F (single-precision FPU) with the none port,
 # and a host of the project's own run under QEMU's mps2-an386 board with
-# semihosting (README, "Embedded").  embedded/need.sh installs the
+# semihosting (docs/PORTING.md, "Embedded").  embedded/need.sh installs the
 # compiler, newlib and QEMU from Debian's packages when they are missing.
 CROSS ?= arm-none-eabi-
 M4_FLAGS = -mcpu=cortex-m4 -mfpu=fpv4-sp-d16 -mfloat-abi=hard -mthumb
@@ -177,8 +177,8 @@ demo: $(BUILD)/irc_demo
 	$(BUILD)/irc_demo demo/scenes/cornell.scene $(DEMO_ARGS) --reference 1024 --seed 2 --compare $(DEMO_OUT)/cornell-reference.exr
 	$(BUILD)/irc_demo demo/scenes/cornell.scene $(DEMO_ARGS) --cache --compare $(DEMO_OUT)/cornell-reference.exr --out $(DEMO_OUT)/cornell-cache
 
-# The real scenes (the Dabrovic Sponza and the Stanford bunny, README
-# "Scene files"): shipped gzip'd, read from build/scenes with their scene
+# The real scenes (the Dabrovic Sponza and the Stanford bunny,
+# demo/README.md, "Scene files"): shipped gzip'd, read from build/scenes with their scene
 # files and materials beside them.
 REAL_SCENES = $(BUILD)/scenes/sponza.obj $(BUILD)/scenes/bunny.obj $(BUILD)/scenes/sponza.mtl \
               $(BUILD)/scenes/sponza-atrium.scene $(BUILD)/scenes/sponza-arcade.scene
@@ -190,7 +190,7 @@ $(BUILD)/scenes/%: demo/scenes/%
 	cp $< $@
 real-scenes: $(REAL_SCENES)
 
-# The first-order paper's Fig. 15 experiment (README: "Visibility gradients").
+# The first-order paper's Fig. 15 experiment (docs/DESIGN.md: "Visibility gradients").
 $(BUILD)/fig15: experiments/fig15.c $(DEMO_LIB_SRC) demo/*.h $(LIBA)
 	$(CC) $(DEMO_CFLAGS) experiments/fig15.c $(DEMO_LIB_SRC) $(LIBA) -o $@ -lm -lpthread
 
@@ -198,7 +198,7 @@ fig15: $(BUILD)/fig15
 	$(BUILD)/fig15 demo/scenes/fig15.scene 200 16384 64 256
 	$(BUILD)/fig15 demo/scenes/fig15-sharp.scene 200 16384 64 256
 
-# The first-order paper's adaptive image sampling (README: "Adaptive
+# The first-order paper's adaptive image sampling (experiments/README.md: "Adaptive
 # image sampling"): three importance metrics at 10% and 17% of the pixels
 # against the full render, on the Fig. 5 scene and the Cornell box (each
 # with the gradient check); then the gradient's SV and CDV terms and their
@@ -217,7 +217,7 @@ adaptive: $(BUILD)/adaptive $(BUILD)/terms
 	$(BUILD)/terms demo/scenes/fig5.scene
 
 # Glossy indirect light from SH records against sampling the lobe, by
-# Phong exponent (README: "Glossy indirect light").
+# Phong exponent (experiments/README.md: "Glossy indirect light").
 $(BUILD)/glossy: experiments/glossy.c $(DEMO_LIB_SRC) demo/*.h $(LIBA)
 	$(CC) $(DEMO_CFLAGS) experiments/glossy.c $(DEMO_LIB_SRC) $(LIBA) -o $@ -lm -lpthread
 
@@ -226,7 +226,7 @@ glossy: $(BUILD)/glossy
 	$(BUILD)/glossy demo/scenes/fig5.scene glossy 256 192
 	$(BUILD)/glossy demo/scenes/cornell-glossy.scene glossy 128 128
 
-# The SH-gradient paper's experiments (README: "SH records").
+# The SH-gradient paper's experiments (experiments/README.md).
 SHOBJ = experiments/shobj.c experiments/shobj.h
 $(BUILD)/shexp: experiments/shexp.c $(SHOBJ) $(DEMO_LIB_SRC) demo/*.h $(LIBA)
 	$(CC) $(DEMO_CFLAGS) experiments/shexp.c experiments/shobj.c $(DEMO_LIB_SRC) $(LIBA) \
@@ -238,7 +238,7 @@ sh-experiments: $(BUILD)/shexp
 # The paper's setting animated: the object on a loop among the emitters,
 # shaded per frame from 1 or 8 records with and without gradients against
 # a record per pixel, with Eq. 16's exponent at the default 2 and at 8
-# (README: "A moving object").  About 8 minutes.
+# (experiments/README.md: "A moving object").  About 8 minutes.
 $(BUILD)/shanim: experiments/shanim.c $(SHOBJ) $(DEMO_LIB_SRC) demo/*.h $(LIBA)
 	$(CC) $(DEMO_CFLAGS) experiments/shanim.c experiments/shobj.c $(DEMO_LIB_SRC) $(LIBA) \
 	      -o $@ -lm -lpthread
@@ -336,7 +336,7 @@ $(BUILD)/minimal_cpp: examples/minimal.cpp $(LIBA)
 	       -o $@ -lm $(THREAD_LIBS)
 examples: $(BUILD)/minimal $(BUILD)/threads $(BUILD)/passes $(BUILD)/minimal_cpp
 
-# irrcache in an Embree 3 tracer on the Sponza atrium (README "On real
+# irrcache in an Embree 3 tracer on the Sponza atrium (bench/README.md, "On real
 # geometry"): installs libembree-dev from Debian's packages when missing;
 # neither the library nor make test needs Embree.
 $(BUILD)/embree: examples/embree.c $(LOADER_SRC) demo/scene.h $(LIBA)
@@ -350,18 +350,18 @@ embree-example: real-scenes
 bench-core: $(BUILD)/bench_core
 	$(BUILD)/bench_core
 
-# One lookup workload for profilers (README: "Where the lookup time goes"):
+# One lookup workload for profilers (bench/README.md: "Where the lookup time goes"):
 # rates, entries scanned and passed, and a checksum of the answers.
 bench-lookups: $(BUILD)/bench_lookups
 	for o in scanline random; do for n in 100000 1000000; do for f in "" pass; do \
 	  $(BUILD)/bench_lookups $$o 200000 $$n $$f count || exit 1; done; done; done
 
-# One record workload for profilers (README: "Speed and memory"): time a
+# One record workload for profilers (bench/README.md: "Speed and memory"): time a
 # record and a checksum of the records, per feature set.
 bench-records: $(BUILD)/bench_records
 	for f in bare both sh shgrad; do $(BUILD)/bench_records $$f 2000 || exit 1; done
 
-# Speed against error on every shipped scene (README: "Speed against
+# Speed against error on every shipped scene (bench/README.md: "Speed against
 # error").  BENCH_QUICK=1: small images, fewer runs, under two minutes.
 $(BUILD)/bench_run: bench/bench.c bench/report.c bench/bench.h $(DEMO_LIB_SRC) demo/*.h $(LIBA)
 	$(CC) $(DEMO_CFLAGS) bench/bench.c bench/report.c $(DEMO_LIB_SRC) $(LIBA) -o $@ -lm -lpthread
@@ -370,11 +370,11 @@ bench: $(BUILD)/bench_run $(BUILD)/glossy real-scenes
 	sh bench/bench.sh $(BUILD)/bench_run
 
 # The Cornell box on a Slurm job array of 4 tile jobs, merged by a fifth
-# (README: "The farm"); starts a single-node Slurm of its own as root.
+# (farm/README.md); starts a single-node Slurm of its own as root.
 farm-demo: $(BUILD)/irc_demo
 	sh farm/farm-demo.sh 4
 
-# What deterministic fill passes cost over free-running fills (README:
+# What deterministic fill passes cost over free-running fills (bench/README.md:
 # "Deterministic fills"); about two minutes.
 $(BUILD)/bench_fill: bench/fill.c $(DEMO_LIB_SRC) demo/*.h $(LIBA)
 	$(CC) $(DEMO_CFLAGS) bench/fill.c $(DEMO_LIB_SRC) $(LIBA) -o $@ -lm -lpthread
@@ -418,6 +418,6 @@ clean:
 .PHONY: embree-example all lib cross embedded-test embedded-host size examples test coverage demo real-scenes fig15 adaptive glossy sh-experiments sh-animation fuzz fuzz-long replay bench-core bench-lookups bench-records bench bench-fill farm-demo install uninstall clean
 
 # Which records answer the worst pixels of a Sponza render, and why
-# (README "On real geometry"); needs make bench's cached references.
+# (bench/README.md, "On real geometry"); needs make bench's cached references.
 $(BUILD)/outliers: experiments/outliers.c $(DEMO_LIB_SRC) demo/*.h $(LIBA)
 	$(CC) $(DEMO_CFLAGS) experiments/outliers.c $(DEMO_LIB_SRC) $(LIBA) -o $@ -lm -lpthread

@@ -17,11 +17,11 @@
  * seeds and averaged; its own noise, the RMSE between the two over 2, is
  * reported.  References are cached in build/bench/ and reused.
  *
- * Writes build/bench/bench.csv, build/bench/table.md (the README's table),
+ * Writes build/bench/bench.csv, build/bench/table.md (bench/README.md's table),
  * one data file per scene and method and build/bench/plot.gp for gnuplot.
  *   bench [quick]
  * BENCH_SCENES and BENCH_METHODS (comma-separated names) restrict a run to
- * some scenes and methods, for experiments; such a run leaves README.md
+ * some scenes and methods, for experiments; such a run leaves bench/README.md
  * alone (bench.sh).
  */
 #define _POSIX_C_SOURCE 200809L

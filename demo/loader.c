@@ -1,4 +1,4 @@
-/* loader.c -- scene files into a scene (scene.h; format in README.md,
+/* loader.c -- scene files into a scene (scene.h; format in demo/README.md,
  * "Scene files"), and the line reader, errors and material table that
  * obj.c shares.  One pass over each file; the first problem stops the load,
  * is reported as FILE:LINE and leaves *s empty. */

@@ -73,7 +73,7 @@ typedef struct scene {
 } scene;
 
 /*
- * Load a scene file (format in README.md, "Scene files").  Returns 0, or -1
+ * Load a scene file (format in demo/README.md, "Scene files").  Returns 0, or -1
  * with err holding "FILE:LINE: message" (FILE the file where the problem is:
  * the scene, an OBJ or an MTL; LINE 1-based, or 0 when the scene file
  * itself cannot be opened).  On failure *s is left empty

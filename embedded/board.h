@@ -12,7 +12,7 @@
 /* Instructions executed since reset, from SysTick: QEMU run with
  * `-icount shift=0` makes one instruction one nanosecond of emulated time,
  * and SysTick counts the 25 MHz core clock, so a tick is 40 instructions
- * (README, "Embedded"). */
+ * (docs/PORTING.md, "Embedded"). */
 uint64_t board_instructions(void);
 
 /* Fills the stack below the caller's frame (up to `bytes`) with a

@@ -173,7 +173,7 @@ static void irradiance(void)
 
 /* Lookups among 1,000 records of random radii on a 10 x 10 square (no
  * ray cast): the instructions a lookup takes once the octree has depth,
- * and the share the index's double arithmetic keeps (README, "Embedded").
+ * and the share the index's double arithmetic keeps (docs/PORTING.md, "Embedded").
  * Every answer is checked against the one value all records hold. */
 static unsigned char many_block[160 * 1024];
 

@@ -1,5 +1,5 @@
 /*
- * shanim.c -- the SH-gradient paper's setting as an animation (README:
+ * shanim.c -- the SH-gradient paper's setting as an animation (experiments/README.md:
  * "A moving object"): the `sh` scene's object travels a loop among the three
  * coloured emitters, and every frame it is shaded from SH records at free
  * points computed for that frame (Eq. 14-16, SH-gradient paper):

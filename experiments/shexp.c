@@ -1,5 +1,5 @@
 /*
- * shexp.c -- the SH-gradient paper's experiments on the sh scene (README:
+ * shexp.c -- the SH-gradient paper's experiments on the sh scene (experiments/README.md:
  * "SH records").  The object (the scene's sphere) is the receiver: the
  * incident radiance comes from the rest of the scene (three small coloured
  * emitters and the ground they light), sampled at free points.

@@ -31,8 +31,8 @@
  *     status (IRC_MISS, IRC_NOT_STORED), or a negative irc_status code.  A
  *     call that returns a negative code has left the cache's block byte for
  *     byte as it was, but for the port's lock object (a call may take and
- *     release the lock before it fails; glibc's rwlock keeps phase bits
- *     that a lock-unlock pair need not restore).  A negative value returned
+ *     release the lock before it fails, and a lock-unlock pair need not
+ *     restore the lock's bytes).  A negative value returned
  *     by the host's trace callback is passed through unchanged, so keep host
  *     codes below IRC_ERR_LAST.  Positive statuses are not failures: a host
  *     that tests `st < 0` must still look at IRC_NOT_STORED (or at
@@ -140,7 +140,7 @@ typedef enum irc_status {
                                  without VISIBILITY), or a config or block
                                  asking for what the library was built
                                  without (IRC_NO_SH, IRC_NO_VISIBILITY,
-                                 IRC_NO_HESSIAN: README, "Porting"); then
+                                 IRC_NO_HESSIAN: docs/PORTING.md); then
                                  the SH calls, irc_sh_irradiance and
                                  irc_sh_glossy included, return it too */
     IRC_ERR_PORT = -11,       /* the port failed to initialise or take its
@@ -847,8 +847,12 @@ IRC_API int irc_cache_clear(irc_cache *cache);
 
 
 /* ------------------------------------------------------------------------ */
-/* Snapshots: a cache's records as portable bytes (the README defines the  */
+/* Snapshots: a cache's records as portable bytes (docs/FORMAT.md defines the */
 /* format byte by byte), to save a cache and load it in another process.   */
+
+/* The format version this build writes and the only one it reads (bytes
+ * 4-5 of a snapshot); another gets IRC_ERR_VERSION. */
+#define IRC_SNAPSHOT_VERSION 1u
 
 /*
  * A writer for streamed snapshots: takes count bytes; returns 0, or a
@@ -930,7 +934,7 @@ IRC_API int irc_merge(irc_cache *cache, uint64_t fingerprint, const void *data, 
  * should hold no two queries within a record's reach of each other (the
  * demo shades pixels P apart in P^2 passes, P above a record's reach in
  * pixels; all pixels at strides 8, 4, 2, 1 in 4 passes made 1.5x the
- * records of a free fill, README "Fill passes").  Lookups in a pass take
+ * records of a free fill, docs/DESIGN.md, "Fill passes").  Lookups in a pass take
  * no lock (nothing they read can change before irc_pass_end).  Not
  * concurrent with other calls on the cache.  Returns IRC_OK, IRC_ERR_STATE when a pass is
  * already open, or a negative error code.
@@ -944,7 +948,7 @@ IRC_API int irc_pass_begin(irc_cache *cache);
  * and become visible.  Then every record of the cache is renumbered in the
  * order lookups visit the index (depth first), which puts the records a
  * lookup reads side by side in memory: lookups answer bit for bit as
- * before, faster (README, "Speed and memory"), but record ids change, and
+ * before, faster (bench/README.md, "Speed and memory"), but record ids change, and
  * the end of a pass costs a move of every record (a pass with no records,
  * begun and ended at once, does only that, for a cache filled without
  * passes).  *added (optional) gets how many.  Not concurrent
@@ -1055,7 +1059,7 @@ IRC_API int irc_sh_record(irc_cache *cache, uint32_t id, irc_sh *out);
  * clamped-cosine convolution (Ramamoorthi-Hanrahan 2001), sum over l, m of
  * A_l c_lm y_lm(n) with A_0 = pi, A_1 = 2 pi/3, A_2 = pi/4, A_3 = 0,
  * A_4 = -pi/24.  Exact for radiance of band < L; the band-limit error of
- * L = 3 is about 1% average for smooth skies (README).  rgb gets
+ * L = 3 is about 1% average for smooth skies (docs/DESIGN.md, "SH records").  rgb gets
  * sh->channels values (one channel is copied to all three).  Returns IRC_OK,
  * IRC_ERR_NULL, IRC_ERR_NORMAL, or IRC_ERR_RANGE (bands or channels out of
  * range).

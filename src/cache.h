@@ -400,7 +400,6 @@ uint32_t irc__unique(irc_cache *c, uint32_t first, uint32_t n);
 void irc__zero_slots(irc_cache *c, uint32_t first, uint32_t n);
 
 /* snapshot.c: the format's parts merge.c shares */
-#define IRC__SNAP_VERSION 1u
 #define IRC__SNAP_HEAD 48u /* header bytes, its own CRC included */
 #define IRC__SNAP_TAIL 4u  /* the CRC of everything before it */
 int irc__snap_check(const irc_cache *c, uint64_t fingerprint, const unsigned char *d,

@@ -1,6 +1,6 @@
 /*
  * snapshot.c -- a cache's records as a portable byte string, and back: the
- * format the README defines byte by byte (little-endian, IEEE floats, a
+ * format docs/FORMAT.md defines byte by byte (little-endian, IEEE floats, a
  * versioned header, CRC-32C over header and records).
  */
 #include "cache.h"
@@ -119,7 +119,7 @@ static void irc__header(const irc_cache *c, uint64_t fingerprint, unsigned char 
     IRC_MEMCPY(&abits, &a, 4);
     IRC_MEMSET(h, 0, IRC__SNAP_HEAD);
     h[0] = 'I'; h[1] = 'R'; h[2] = 'C'; h[3] = 'S';
-    irc__le_put(h + 4, IRC__SNAP_VERSION, 2);
+    irc__le_put(h + 4, IRC_SNAPSHOT_VERSION, 2);
     irc__le_put(h + 6, c->kind_id, 2);
     irc__le_put(h + 8, c->cfg.features, 4);
     irc__le_put(h + 12, c->home->count, 4);
@@ -177,7 +177,7 @@ static int irc__write_locked(irc_cache *c, uint64_t fingerprint, unsigned char *
                              irc_write_fn fn, void *ctx, size_t *written)
 {
     /* Records go out through 64 bytes at a time (whole fields): the stack
-     * holds no record of the largest kind (1.2 KB; README, "Embedded"). */
+     * holds no record of the largest kind (1.2 KB; docs/PORTING.md, "Embedded"). */
     unsigned char buf[IRC__SNAP_HEAD > 64 ? IRC__SNAP_HEAD : 64], tail[IRC__SNAP_TAIL];
     uint32_t crc = 0xffffffffu, id, from, n;
     size_t at = 0;
@@ -264,7 +264,7 @@ int irc__snap_check(const irc_cache *c, uint64_t fingerprint, const unsigned cha
         return IRC_ERR_TRUNCATED;
     if (d[0] != 'I' || d[1] != 'R' || d[2] != 'C' || d[3] != 'S')
         return IRC_ERR_CORRUPT;
-    if (irc__le_get(d + 4, 2) != IRC__SNAP_VERSION)
+    if (irc__le_get(d + 4, 2) != IRC_SNAPSHOT_VERSION)
         return IRC_ERR_VERSION;
     if (size < IRC__SNAP_HEAD)
         return IRC_ERR_TRUNCATED;

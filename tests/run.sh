@@ -13,7 +13,8 @@
 #   stage 2b the demo tracer: BVH, loader, images, the EXR read back by
 #            OpenEXR, malformed scenes
 #   stage 5  the header alone as C99 and as C++; no allocator symbol in
-#            libirrcache.a; no thread or I/O header in src/
+#            libirrcache.a; no thread or I/O header in src/; the documents
+#            list every status, public call and source file (tests/docs.sh)
 #   stage 2c the suite built for 32 bits (-m32: size_t and pointers of a
 #            microcontroller)
 #   stage 2d the suite with assertions compiled out (-DIRC_NO_ASSERT: IRC_ASSERT
@@ -245,6 +246,7 @@ src_headers() {
     [ -z "$bare" ] || { echo "calls past util.h: $bare"; return 1; }
 }
 check src-headers src_headers
+check docs sh tests/docs.sh
 
 echo "== stage 6: coverage of src/"
 MAKE=$MAKE sh tests/coverage.sh > "$LOG/coverage-report.log" 2>&1

@@ -241,7 +241,7 @@ TEST(test_leak_scene)
      * dark pixels (brightest 0.030; 48 without the guard), on the back
      * wall 1 mm below its top beside the middle wall, where rays of the
      * neighbouring sector pass over the wall: a gap of the guard, open
-     * (README, "Error control"). */
+     * (docs/DESIGN.md, "Error control"). */
     o.free_fill = 1;
     o.seed = 5;
     o.show = SHOW_INDIRECT;

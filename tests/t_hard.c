@@ -1,7 +1,7 @@
 /*
  * t_hard.c -- hard numerical cases: each asserts a finite answer within a
  * stated tolerance of the right one, or a documented error, never a crash
- * or a silent NaN.  README "Hard cases" lists them.
+ * or a silent NaN.  TESTING.md lists them.
  */
 #include <float.h>
 #include <math.h>

@@ -104,7 +104,7 @@ TEST(test_hessian_closed_forms)
     w = worst_over(&s, sphere_plane_e, sp, 4, 64, 256, "sphere");
     /* A curved blocker's silhouette slides over it as p moves, while the
      * triangles between hit points move as a rigid polygon: the
-     * magnitudes read 22-45% high (README); the principal axes, which
+     * magnitudes read 22-45% high (docs/DESIGN.md); the principal axes, which
      * orient a record's radii, hold. */
     printf("  sphere: worst magnitude error %.1f%%, worst major axis %.2f deg\n", 100.0 * w,
            worst_axis);

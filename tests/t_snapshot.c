@@ -1,6 +1,6 @@
 /* t_snapshot.c -- snapshots: round trips bit for bit, every truncation and
  * single-byte corruption refused with its status and the cache unchanged,
- * and a snapshot built by hand from the README's definition. */
+ * and a snapshot built by hand from docs/FORMAT.md's definition. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -362,7 +362,7 @@ static void lef(unsigned char *d, float f)
     le(d, u, 4);
 }
 
-/* A snapshot written byte by byte from the README (a bare irradiance
+/* A snapshot written byte by byte from docs/FORMAT.md (a bare irradiance
  * cache without the guard: 32-byte records) holds the records it says,
  * and the cache writes it back byte for byte. */
 TEST(test_snapshot_by_hand)
