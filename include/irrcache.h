@@ -23,6 +23,16 @@
  *     concurrently with anything else on that cache.  Lookups take the port's read lock; inserts (and the insert of
  *     lookup_or_compute) its write lock; the trace callback runs with no
  *     lock held.  With irc_port_none, one thread at a time.
+ *   - Stability: while the major version is 0, a minor release may change
+ *     the block's layout (irc_attach refuses an older block) but keeps the
+ *     stable calls' contracts: footprint, init, attach, fini, compute,
+ *     insert, lookup, lookup_or_compute(_px), record, clear, stats,
+ *     snapshots and merges, passes, the SH calls but irc_sh_radiance,
+ *     irc_strerror and the version calls, and
+ *     the ports.  Five calls are experimental, research tools whose
+ *     contract may change in any release: irc_occlusion_compute,
+ *     irc_cache_lookup_gradient, irc_cache_neighbours, irc_join and
+ *     irc_sh_radiance; each says so.
  *   - Determinism: a record is a pure function of (p, n, config, seed).  Its
  *     random numbers come from a hash of the query, so the same query gives
  *     the same record, bit for bit, in any thread and at any time.  Which
@@ -594,6 +604,7 @@ IRC_API int irc_init(const irc_config *cfg, uint32_t max_records, irc_cache **ca
 IRC_API int irc_attach(const irc_config *cfg, irc_cache **cache);
 
 /*
+ * Experimental (see "Stability" above).
  * Share a block live between processes on one machine: one process makes
  * the cache (irc_init) in memory every process maps (a file or shm object
  * mapped MAP_SHARED); each other process joins it with irc_join, which
@@ -721,6 +732,7 @@ typedef struct irc_occlusion {
 } irc_occlusion;
 
 /*
+ * Experimental (see "Stability" above).
  * Sample the hemisphere around (p, n) and return its net visibility and
  * that visibility's exact gradient from the silhouettes.  Needs
  * IRC_FEATURE_VISIBILITY in the config (IRC_ERR_UNSUPPORTED otherwise).
@@ -764,6 +776,7 @@ typedef struct irc_gradient {
 } irc_gradient;
 
 /*
+ * Experimental (see "Stability" above).
  * irc_cache_lookup, and the gradient of what it interpolates: the same
  * records with the same weights, each record's extrapolation E_i + (p -
  * p_i).grad_t + (n_i x n).grad_r differentiated, dp = grad_t and dn =
@@ -821,6 +834,7 @@ IRC_API int irc_cache_lookup_or_compute_px(irc_cache *cache, const float p[3],
                                            float *weight, void *host);
 
 /*
+ * Experimental (see "Stability" above).
  * The ids (slot numbers) of the records a lookup at (p, n) would use, in no
  * particular order: up to cap of them in ids, and how many there are in
  * *count (which may exceed cap).  Either kind of cache (n NULL in an SH
@@ -1078,6 +1092,7 @@ IRC_API int irc_sh_irradiance(const irc_sh *sh, const float n[3], float rgb[3]);
 IRC_API int irc_sh_glossy(const irc_sh *sh, const float r[3], float s, float rgb[3]);
 
 /*
+ * Experimental (see "Stability" above).
  * The band-limited radiance arriving from the unit-ish direction w, sum
  * over l, m of c_lm y_lm(w): what a host integrates its own BRDF against
  * (e.g. over samples of a lobe whose product with the cosine is not

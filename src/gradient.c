@@ -109,7 +109,7 @@ static void irc__inverse_depths(const irc_cache *c, const irc__sample *restrict 
  * keeps it at the neighbour's distance, with the failed stratum's filled-in
  * radiance (irradiance.c, irc__fill_failed) -- the rule this estimator has
  * always had.  An escaped pair (both 0) adds nothing. */
-static inline float irc__edge(float ia, float ib)
+static inline float irc__grad_edge(float ia, float ib)
 {
     float x = ia > ib ? ia : ib;
     return x > 0.0f ? x : 0.0f;
@@ -122,7 +122,7 @@ typedef struct irc__vis_edges {
     const irc__cross *x;
 } irc__vis_edges;
 
-static int irc__silhouette(const irc__vis_edges *v, const int32_t *e, uint32_t i)
+static int irc__grad_silhouette(const irc__vis_edges *v, const int32_t *e, uint32_t i)
 {
     return v->x && e[i] >= 0 && v->x[e[i]].ok;
 }
@@ -144,24 +144,24 @@ static void irc__row_weights(const irc_cache *c, const irc__vis_edges *v, uint32
         const float *a4 = ia + k, *b4 = ib + k;
         float *w4 = below + k;
         for (q = 0; q < 4; q++)
-            w4[q] = U * irc__edge(a4[q], b4[q]);
+            w4[q] = U * irc__grad_edge(a4[q], b4[q]);
     }
     for (; k < nphi; k++)
-        below[k] = U * irc__edge(ia[k], ib[k]);
-    left[0] = V * irc__edge(ia[0], ia[nphi - 1]);
+        below[k] = U * irc__grad_edge(ia[k], ib[k]);
+    left[0] = V * irc__grad_edge(ia[0], ia[nphi - 1]);
     for (k = 1; k + 4 <= nphi; k += 4) {
         const float *a4 = ia + k;
         float *w4 = left + k;
         for (q = 0; q < 4; q++)
-            w4[q] = V * irc__edge(a4[q], a4[q - 1]);
+            w4[q] = V * irc__grad_edge(a4[q], a4[q - 1]);
     }
     for (; k < nphi; k++)
-        left[k] = V * irc__edge(ia[k], ia[k - 1]);
+        left[k] = V * irc__grad_edge(ia[k], ia[k - 1]);
     if (v->x)
         for (k = 0; k < nphi; k++) {
-            if (j > 0 && irc__silhouette(v, v->ev, (j - 1) * nphi + k))
+            if (j > 0 && irc__grad_silhouette(v, v->ev, (j - 1) * nphi + k))
                 below[k] = 0.0f;
-            if (irc__silhouette(v, v->eh, j * nphi + (k ? k - 1 : nphi - 1)))
+            if (irc__grad_silhouette(v, v->eh, j * nphi + (k ? k - 1 : nphi - 1)))
                 left[k] = 0.0f;
         }
     left[nphi] = left[0];

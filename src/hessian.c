@@ -104,7 +104,7 @@ static int irc__escaped_at(const irc__mesh *g, int64_t j, int64_t k)
     return !(g->s[j * g->n + k].d < HUGE_VALF);
 }
 
-static float irc__facing(const irc__mesh *g, uint32_t i)
+static float irc__hess_facing(const irc__mesh *g, uint32_t i)
 {
     const float *w = g->dirs + 3 * i, *nn = g->nrm + 3 * i;
     return IRC_FABSF((float)w[0] * nn[0] + (float)w[1] * nn[1] + (float)w[2] * nn[2]);
@@ -116,7 +116,7 @@ static float irc__facing(const irc__mesh *g, uint32_t i)
  * blocker's depth and facing both go as sqrt of the angle to the
  * silhouette), but only when the facing falls as fast as that (the SH
  * estimator's rule, shgrad.c); a polygon's edge keeps its depth. */
-static float irc__silhouette(const irc__mesh *g, uint32_t j, uint32_t k, float d)
+static float irc__hess_silhouette(const irc__mesh *g, uint32_t j, uint32_t k, float d)
 {
     static const int dj[4] = {0, 0, 1, -1}, dk[4] = {1, -1, 0, 0};
     int q;
@@ -131,8 +131,8 @@ static float irc__silhouette(const irc__mesh *g, uint32_t j, uint32_t k, float d
             dout = g->s[o].d;
             if (!(dout < HUGE_VALF) || dout != dout)
                 return d;
-            fi = irc__facing(g, i);
-            fo = irc__facing(g, o);
+            fi = irc__hess_facing(g, i);
+            fo = irc__hess_facing(g, o);
             if (!(fo * fo >= 1.25f * fi * fi))
                 return d;
             d += fi * (d - dout) / (fo - fi);
@@ -155,7 +155,7 @@ static void irc__depths(const irc__mesh *g)
             else if (!(d < HUGE_VALF))
                 d = g->far;
             else {
-                float x = irc__silhouette(g, j, k, d);
+                float x = irc__hess_silhouette(g, j, k, d);
                 d = x < d ? d : x > 2.0f * d ? 2.0f * d : x;
             }
             g->depth[j * g->n + k] = (float)d;

@@ -24,7 +24,7 @@ static int irc__hit(const irc__sample *x)
 }
 
 /* |n.w| at sample i: 1 facing the ray, 0 grazing (a silhouette). */
-static float irc__facing(const irc__grid *g, uint32_t i)
+static float irc__shg_facing(const irc__grid *g, uint32_t i)
 {
     const float *w = g->dir + 3 * i, *n = g->nrm + 3 * i;
     return IRC_FABSF((float)w[0] * n[0] + (float)w[1] * n[1] + (float)w[2] * n[2]);
@@ -66,8 +66,8 @@ static float irc__silhouette_depth(const irc__grid *g, uint32_t i, int64_t o)
     float d = g->s[i].d, fi, fo, ds;
     if (o < 0 || !irc__continuous(g, i, (uint32_t)o))
         return d;
-    fi = irc__facing(g, i);
-    fo = irc__facing(g, (uint32_t)o);
+    fi = irc__shg_facing(g, i);
+    fo = irc__shg_facing(g, (uint32_t)o);
     if (!(fo * fo >= 1.25f * fi * fi) || !(g->s[o].d < d))
         return d;
     ds = d + fi * (d - g->s[o].d) / (fo - fi);
@@ -85,7 +85,7 @@ static float irc__silhouette_depth(const irc__grid *g, uint32_t i, int64_t o)
  * surface: the nearer side's 1/r runs on to the silhouette's depth
  * (irc__silhouette_depth), the farther side's surface continues behind.
  * w_out gets the vector for sample i. */
-static void irc__edge(const irc__grid *g, uint32_t i, int64_t o, int64_t back,
+static void irc__shg_edge(const irc__grid *g, uint32_t i, int64_t o, int64_t back,
                       float len, const float nu[3], float w_out[3])
 {
     float f, k;
@@ -106,7 +106,7 @@ static void irc__edge(const irc__grid *g, uint32_t i, int64_t o, int64_t back,
 /* Sample index of row j (of rows 0..2M-1 counted from the first
  * hemisphere's pole across the equator), column k; -1 off the grid.  Once
  * per row: it divides. */
-static int64_t irc__at(const irc__grid *g, int64_t j, uint32_t k)
+static int64_t irc__shg_at(const irc__grid *g, int64_t j, uint32_t k)
 {
     uint32_t h;
     if (j < 0 || j >= (int64_t)(g->halves * g->m))
@@ -121,16 +121,16 @@ static int64_t irc__at(const irc__grid *g, int64_t j, uint32_t k)
 /* A row's geometry (cos theta at its two edges, their sines, its angular
  * height) and a column's (cos, sin of its left edge, centre, right edge):
  * the callers advance them by recurrence, so no stratum needs trig. */
-typedef struct irc__cell {
+typedef struct irc__shg_cell {
     float z0, z1, s0, s1, len;
     float cl, sl, cc, sc, cr, sr;
     const float *axis;
     int64_t row, up, dn; /* first sample of the row, of the rows toward the
                             pole and toward the horizon (-1: none) */
-} irc__cell;
+} irc__shg_cell;
 
 /* The edge vector of the sample in column k of the row q describes. */
-static void irc__edge_vector(const irc__grid *g, uint32_t k, const irc__cell *q, float w[3])
+static void irc__edge_vector(const irc__grid *g, uint32_t k, const irc__shg_cell *q, float w[3])
 {
     const float dphi = 2.0f * IRC_PI / g->n;
     const uint32_t i = (uint32_t)q->row + k, kl = k ? k - 1 : g->n - 1,
@@ -143,19 +143,19 @@ static void irc__edge_vector(const irc__grid *g, uint32_t k, const irc__cell *q,
     for (c = 0; c < 3; c++)
         nu[c] = q->sl * g->t1[c] - q->cl * g->t2[c];
     if (g->n > 1)
-        irc__edge(g, i, q->row + kl, q->row + kr, q->len, nu, w);
+        irc__shg_edge(g, i, q->row + kl, q->row + kr, q->len, nu, w);
     for (c = 0; c < 3; c++)
         nu[c] = -q->sr * g->t1[c] + q->cr * g->t2[c];
     if (g->n > 1)
-        irc__edge(g, i, q->row + kr, q->row + kl, q->len, nu, w);
+        irc__shg_edge(g, i, q->row + kr, q->row + kl, q->len, nu, w);
     /* Toward the pole and toward the horizon (the other hemisphere's
      * equator row for a free point): arcs of constant theta. */
     for (c = 0; c < 3; c++)
         nu[c] = -(q->z0 * (q->cc * g->t1[c] + q->sc * g->t2[c]) - q->s0 * q->axis[c]);
-    irc__edge(g, i, up, dn, q->s0 * dphi, nu, w);
+    irc__shg_edge(g, i, up, dn, q->s0 * dphi, nu, w);
     for (c = 0; c < 3; c++)
         nu[c] = q->z1 * (q->cc * g->t1[c] + q->sc * g->t2[c]) - q->s1 * q->axis[c];
-    irc__edge(g, i, dn, up, q->s1 * dphi, nu, w);
+    irc__shg_edge(g, i, dn, up, q->s1 * dphi, nu, w);
     /* A hemisphere's surface integral (Eq. 11) ends at the horizon plane,
      * which moves with p along n: raised by h, it uncovers the strip of
      * surface below the new horizon, a solid angle h/r per unit of azimuth
@@ -170,7 +170,7 @@ static void irc__edge_vector(const irc__grid *g, uint32_t k, const irc__cell *q,
 /* One sample's share of the coefficients and, with gradients, of Eq. 11
  * over the surface it hit, rewritten over solid angle with dA = dw r^2 /
  * (n.w) (Eq. 13): the regular part -dw L/r [grad_w y_i - 2 y_i w] here,
- * the singular part through the edge vector e (irc__edge), -L y_i e.  w
+ * the singular part through the edge vector e (irc__shg_edge), -L y_i e.  w
  * is the stratum's direction, dw = 1 (the caller scales). */
 static void irc__sh_add(const irc_cache *c, irc__shsum *a, const irc__sample *x,
                         const float w[3], const float *n, const float e[3])
@@ -214,7 +214,7 @@ static void irc__sh_accumulate(const irc_cache *c, const irc__grid *g, const flo
     int q;
     for (jj = 0; jj < (int64_t)(g->halves * g->m); jj++) {
         const uint32_t j = jj < g->m ? (uint32_t)jj : g->m - 1 - (uint32_t)(jj - g->m);
-        irc__cell cell;
+        irc__shg_cell cell;
         cell.z0 = 1.0f - (float)j / g->m;
         cell.z1 = 1.0f - (j + 1.0f) / g->m;
         cell.s0 = IRC_SQRTF(1.0f - cell.z0 * cell.z0);
@@ -223,9 +223,9 @@ static void irc__sh_accumulate(const irc_cache *c, const irc__grid *g, const flo
         cell.cl = 1.0f;
         cell.sl = 0.0f;
         cell.axis = g->axis[jj < g->m ? 0 : 1];
-        cell.row = irc__at(g, jj, 0);
-        cell.up = irc__at(g, jj < g->m ? jj - 1 : jj + 1, 0);
-        cell.dn = irc__at(g, jj < g->m ? jj + 1 : jj - 1, 0);
+        cell.row = irc__shg_at(g, jj, 0);
+        cell.up = irc__shg_at(g, jj < g->m ? jj - 1 : jj + 1, 0);
+        cell.dn = irc__shg_at(g, jj < g->m ? jj + 1 : jj - 1, 0);
         for (k = 0; k < g->n; k++) {
             const uint32_t i = (uint32_t)cell.row + k;
             float w[3], e[3] = {0, 0, 0};

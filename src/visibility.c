@@ -66,7 +66,7 @@ static irc__pt irc__stratum(const irc_cache *c, const irc__sample *s, uint32_t i
  * deeper.  ia, ib: the strata beyond a and b on the same grid line (s
  * NULL: none), the blocker's first hit before its side of the bracket.
  * Returns its index, or -1. */
-static int32_t irc__edge(irc_cache *c, irc__sample *s, irc__pt a, irc__pt b, irc__pt ia,
+static int32_t irc__vis_edge(irc_cache *c, irc__sample *s, irc__pt a, irc__pt b, irc__pt ia,
                          irc__pt ib, int netvis, uint32_t *count)
 {
     irc__cross *x;
@@ -116,17 +116,17 @@ static uint32_t irc__find_edges(irc_cache *c, irc__sample *s, irc__pt zenith, in
         for (k = 0; k < nphi; k++) {
             uint32_t i = j * nphi + k;
             irc__pt here = irc__stratum(c, s, i);
-            h[i] = irc__edge(c, s, here, irc__stratum(c, s, j * nphi + (k + 1) % nphi),
+            h[i] = irc__vis_edge(c, s, here, irc__stratum(c, s, j * nphi + (k + 1) % nphi),
                             irc__stratum(c, s, j * nphi + (k + nphi - 1) % nphi),
                             irc__stratum(c, s, j * nphi + (k + 2) % nphi), netvis, &count);
-            v[i] = j + 1 < m ? irc__edge(c, s, here, irc__stratum(c, s, i + nphi),
+            v[i] = j + 1 < m ? irc__vis_edge(c, s, here, irc__stratum(c, s, i + nphi),
                                          j > 0 ? irc__stratum(c, s, i - nphi) : none,
                                          j + 2 < m ? irc__stratum(c, s, i + 2 * nphi) : none,
                                          netvis, &count)
                              : -1;
         }
     for (k = 0; k < nphi; k++)
-        z[k] = zenith.s ? irc__edge(c, s, zenith, irc__stratum(c, s, k), none,
+        z[k] = zenith.s ? irc__vis_edge(c, s, zenith, irc__stratum(c, s, k), none,
                                     m > 1 ? irc__stratum(c, s, nphi + k) : none, netvis, &count)
                         : -1;
     return count;

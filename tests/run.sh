@@ -14,7 +14,9 @@
 #            OpenEXR, malformed scenes
 #   stage 5  the header alone as C99 and as C++; no allocator symbol in
 #            libirrcache.a; no thread or I/O header in src/; the documents
-#            list every status, public call and source file (tests/docs.sh)
+#            list every status, public call and source file (tests/docs.sh);
+#            the one-file library builds alone, and the examples built on it
+#            print what the library's print (tests/amalgamation.sh)
 #   stage 2c the suite built for 32 bits (-m32: size_t and pointers of a
 #            microcontroller)
 #   stage 2d the suite with assertions compiled out (-DIRC_NO_ASSERT: IRC_ASSERT
@@ -247,6 +249,7 @@ src_headers() {
 }
 check src-headers src_headers
 check docs sh tests/docs.sh
+check amalgamation sh tests/amalgamation.sh
 
 echo "== stage 6: coverage of src/"
 MAKE=$MAKE sh tests/coverage.sh > "$LOG/coverage-report.log" 2>&1
