@@ -43,7 +43,7 @@ PIC = $(if $(filter none,$(PORT)),,-fPIC)
 SRC = src/status.c src/version.c src/check.c src/config.c src/layout.c src/store.c src/kind_irr.c src/gradient.c \
       src/kind_sh.c src/sampler.c src/irradiance.c src/octa.c src/weight.c src/index.c src/compact.c \
       src/visibility.c src/hessian.c src/sh.c src/shgrad.c src/snapshot.c src/merge.c \
-      src/pass.c src/sight.c src/slots.c src/verify.c src/repair.c
+      src/pass.c src/sight.c src/slots.c src/verify.c src/repair.c src/occlusion.c
 # The chosen port, and the single-threaded one (it needs nothing).
 PORT_SRC = $(sort port/$(PORT)/irc_port.c port/none/irc_port.c) port/irc_port_default.c
 OBJ = $(SRC:%.c=$(BUILD)/%.o)
@@ -63,7 +63,7 @@ THREAD_LIBS = $(if $(filter posix,$(PORT)),-lpthread,)
 all: $(LIBA) $(if $(filter none,$(PORT)),,$(LIBSO))
 lib: $(LIBA)
 
-$(BUILD)/src/%.o: src/%.c src/cache.h src/util.h include/irrcache.h
+$(BUILD)/src/%.o: src/%.c $(wildcard src/*.h) include/irrcache.h
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_LIB) -c $< -o $@
 
@@ -278,7 +278,7 @@ $(BUILD)/t_exr: tests/t_exr.c tests/harness.c tests/test.h $(IMAGE_SRC) demo/ima
 # chosen port in one file) and irrcache.h beside it (pkg/amalgamate.sh).
 AMALG = $(BUILD)/amalgamation
 amalgamation: $(AMALG)/irrcache.c $(AMALG)/irrcache.h
-$(AMALG)/irrcache.c: $(SRC) src/cache.h src/util.h $(PORT_SRC) pkg/amalgamate.sh include/irrcache.h
+$(AMALG)/irrcache.c: $(SRC) $(wildcard src/*.h) $(PORT_SRC) pkg/amalgamate.sh include/irrcache.h
 	@mkdir -p $(AMALG)
 	sh pkg/amalgamate.sh $(PORT) $(VERSION) $@ $(SRC)
 $(AMALG)/irrcache.h: include/irrcache.h

@@ -26,6 +26,7 @@
 #include <time.h>
 #include "bench_util.h"
 #include "cache.h" /* irc__index_query: entries scanned and passed */
+#include "index.h"
 
 static unsigned long long rng = 1;
 

@@ -1,13 +1,16 @@
 #!/bin/sh
 # amalgamate.sh PORT VERSION OUT SRC... -- the library as one C file (OUT), for
-# hosts that copy one .c and irrcache.h into their tree: src/util.h and
-# src/cache.h, then every source file in the order given, then the chosen
-# port and the single-threaded one.  Nothing is rewritten but the
+# hosts that copy one .c and irrcache.h into their tree: the headers of
+# src/, then every source file in the order given, then the single-threaded
+# port and the chosen one.  Nothing is rewritten but the
 # internal includes, which the concatenation makes redundant.
 set -eu
 port=$1 version=$2 out=$3
 shift 3
-strip() { grep -v '^#include "\(cache\|util\)\.h"' "$1"; }
+# The library's own headers, in an order where each follows what it
+# includes; their includes of each other are dropped.
+HEADERS="src/util.h src/index.h src/cache.h src/sampler.h src/octa.h src/weight.h src/estimator.h src/shrec.h src/snapshot.h"
+strip() { grep -v '^#include "\(util\|index\|cache\|sampler\|octa\|weight\|estimator\|shrec\|snapshot\)\.h"' "$1"; }
 {
     cat <<HEAD
 /*
@@ -22,7 +25,7 @@ strip() { grep -v '^#include "\(cache\|util\)\.h"' "$1"; }
 HEAD
     [ "$port" = posix ] && printf '#ifndef _POSIX_C_SOURCE\n#define _POSIX_C_SOURCE 200809L\n#endif\n'
     printf '#define IRC_PORT_DEFAULT irc_port_%s\n#include "irrcache.h"\n' "$port"
-    for f in src/util.h src/cache.h "$@" port/none/irc_port.c; do
+    for f in $HEADERS "$@" port/none/irc_port.c; do
         printf '\n/* ---- %s ---- */\n' "$f"
         strip "$f"
     done

@@ -7,6 +7,7 @@
 
 #include "irrcache.h"
 #include "util.h"
+#include "index.h"
 
 #define IRC__MAGIC 0x69726332u /* "irc2" */
 #define IRC__NIL 0xffffffffu
@@ -50,59 +51,10 @@ typedef struct irc__aniso {
     float q;
 } irc__aniso;
 
-/* The sector (of 16, 22.5 degrees each, counter-clockwise from x) holding
- * the tangent direction (x, y), from signs and comparisons with tan(22.5
- * degrees): the leak guard's lookups need no trig. */
-static inline int irc__sector(float x, float y)
-{
-    const float t = 0.41421356237309503f, ax = x < 0.0f ? -x : x, ay = y < 0.0f ? -y : y;
-    int sub = ay < t * ax ? 0 : ay < ax ? 1 : ax > t * ay ? 2 : 3;
-    if (y >= 0.0f)
-        return x >= 0.0f ? sub : 7 - sub;
-    return x < 0.0f ? 8 + sub : 15 - sub;
-}
-
-/* Octree node.  Its cube is implied by the path from the root.  12 bytes. */
-typedef struct irc__node {
-    uint32_t child;  /* first of 8 consecutive children, 0 = leaf */
-    uint32_t head;   /* first record stored at this node (IRC__NIL = none) */
-    float reach;     /* largest a*R_i of any record in this subtree */
-} irc__node;
-
-/* The deepest node below the root, growth included: a root that grows
- * makes every node one deeper, and refuses to once that would pass this
- * (records then stay in the root's list); a walk's stack holds a frame a
- * level (index.c, compact.c). */
-#define IRC__LEVELS 48
-
-/* A record's entry in the index, by id: its list link and its position and
- * reach a*R_i quantized against the cube (centre c, half edge h) of the
- * node whose list holds it, in steps of 2h/65535.  A query tests these
- * before it touches the record, and most candidates fail the test: it
- * reads 12 bytes, not a record's line.  Entries sit at their records'
- * ids, so one lookup's entries share lines only as far as their ids are
- * near: after a pass's end each list is a run of ids (compact.c).  12
- * bytes. */
-#define IRC__IX_ANY 0xffffu  /* rq: no bound in this cube's steps (a root
-                                record outside the cube, or a reach of
-                                2h or more): always a candidate */
-typedef struct irc__ixe {
-    uint16_t q[3];   /* (x - (c - h)) / step, rounded to nearest */
-    uint16_t rq;     /* reach / step, rounded up */
-    uint32_t next;   /* next record in the same list, IRC__NIL = last */
-} irc__ixe;
-
 enum {
     IRC__C_INSERTS, IRC__C_EVICTIONS, IRC__C_LOOKUPS, IRC__C_HITS,
     IRC__C_COMPUTES, IRC__C_RAYS, IRC__C_NOT_STORED, IRC__C_WAITS, IRC__C_COUNT
 }; /* IRC__C_COUNT * 8 bytes: one stripe, at most a cache line */
-
-/* One stratum's sample: the estimator needs radiance and distance, nothing
- * else, so scratch is 16 bytes a stratum. */
-typedef struct irc__sample {
-    float l[3];
-    float d;         /* hit distance; +inf when escaped; NaN when failed */
-} irc__sample;
 
 #define IRC__SH_MAX_BANDS 5
 #define IRC__FREE 0xffffffffu /* irc__rec.n of a free-point SH record */
@@ -289,13 +241,6 @@ int irc__check_normal(const float n[3], float unit[3]);
 int irc__config_resolve(const irc_config *in, irc_config *out);
 int irc__port_ok(const irc_port *p);
 
-/* sampler.c */
-typedef struct irc__rng { uint64_t key; } irc__rng;
-irc__rng irc__rng_for(const float p[3], const float n[3], uint64_t seed);
-int irc__accept_hit(const irc_hit *h, irc__sample *s);
-void irc__frame(const float n[3], float t1[3], float t2[3]);
-int irc__cast(irc__call *k, irc_ray *rays, irc_hit *hits, uint32_t count);
-
 /* store.c: the ids (and positions, pos not NULL) of up to cap records a
  * lookup at q would use; *found gets how many there are in all. */
 int irc__collect(irc_cache *c, const irc__query *q, uint32_t *ids, float (*pos)[3],
@@ -328,52 +273,6 @@ void irc__repair_locked(irc_cache *c);
 /* sight.c: the kind's find at k->q, leaving out the records out of the
  * query's sight when cfg.check_visibility asks (k->c, k->host set). */
 int irc__find_in_sight(irc__call *k, void *out, float *weight);
-int irc__sample_hemisphere(irc__call *k, const float n[3], const float t1[3],
-                           const float t2[3], uint32_t first, uint32_t *used);
-int irc__supersample(irc__call *k, const float n[3], const float t1[3], const float t2[3]);
-
-/* sh.c */
-void irc__sh_eval(int bands, const float s[3], float *y, float (*grad)[3]);
-
-/* shgrad.c: an SH record's samples summed. */
-typedef struct irc__shsum {
-    float c[3][IRC__NC];
-    float g[3][3 * IRC__NC]; /* d c_i / dp at [3 i + k] */
-    float e[3];
-    float inv_d;
-    uint32_t used, total;
-} irc__shsum;
-int irc__sh_sample(irc__call *k, irc__shsum *a);
-
-/* hessian.c */
-void irc__hessian(const irc_cache *c, const irc__sample *s, const float *dirs,
-                  const float n[3], float h[3][6]);
-void irc__eigen2(float a, float b, float c, float *l0, float *l1, float u[2]);
-
-/* visibility.c */
-int irc__grad_visibility(irc__call *k, int netvis, float g[3][3]);
-
-/* irradiance.c: the irradiance record's estimator */
-int irc__irr_compute(irc__call *k, void *rec);
-int irc__hemisphere(irc__call *k, float t1[3], float t2[3]);
-uint64_t irc__gtab_bytes(uint32_t m, uint32_t nphi);
-void irc__gtab_fill(const irc_cache *c, void *tab);
-void irc__gradients(const irc_cache *c, const irc__sample *s, const float mean[3],
-                    const float t1[3], const float t2[3], float gt[3][3], float gr[3][3]);
-
-/* octa.c: the normal codec */
-uint32_t irc__oct_encode(const float n[3]);
-void irc__oct_decode(uint32_t code, float n[3]);
-void irc__oct_frame(uint32_t code, float t1[3], float t2[3]);
-
-/* weight.c */
-int irc__weigh(const irc_cache *c, const irc__rec *r, const float p[3],
-               const float n[3], float *w, float ni[3]);
-void irc__extrapolate(const irc_cache *c, const irc__rec *r, const float ni[3],
-                      const float p[3], const float n[3], float out[3]);
-void irc__extrapolate_grad(const irc_cache *c, const irc__rec *r, const float ni[3],
-                           const float val[3], float f, irc_gradient *g);
-float irc__grad_scale(const irc__grad *g, int ch);
 
 /* store.c: the handle, scratch slots, insert and eviction, the lookup
  * driver, counters; every public call goes through it. */
@@ -392,21 +291,6 @@ int irc__write_lock_idle(irc_cache *c);
  * joins the index, clamped by its neighbours if the config asks. */
 void irc__commit_locked(irc_cache *c, uint32_t id);
 
-/* merge.c: the canonical order of packed records, and a heap sort of
- * slots [first, first + n) by it */
-int irc__order(const irc_cache *c, const unsigned char *a, const unsigned char *b);
-void irc__sort(irc_cache *c, uint32_t first, uint32_t n);
-uint32_t irc__unique(irc_cache *c, uint32_t first, uint32_t n);
-void irc__zero_slots(irc_cache *c, uint32_t first, uint32_t n);
-
-/* snapshot.c: the format's parts merge.c shares */
-#define IRC__SNAP_HEAD 48u /* header bytes, its own CRC included */
-#define IRC__SNAP_TAIL 4u  /* the CRC of everything before it */
-int irc__snap_check(const irc_cache *c, uint64_t fingerprint, const unsigned char *d,
-                    size_t size, uint32_t room, uint32_t *count);
-void irc__convert(const irc_cache *c, const unsigned char *src, unsigned char *dst, int to_le);
-unsigned irc__field_width(const irc_cache *c, uint32_t at);
-uint64_t irc__native_get(const unsigned char *p, unsigned width);
 /* A lookup weighs and accumulates with ops: the cache's kind (want), or a
  * table that shares its records and answers more (a gradient lookup). */
 int irc__lookup_once(irc_cache *c, const irc__kind *ops, const irc__query *q, void *out,
@@ -418,120 +302,5 @@ int irc__lookup_or_compute(irc_cache *c, const irc__kind *want, float footprint,
                            const float n[3], void *out, float *weight, void *host);
 int irc__record_get(irc_cache *c, const irc__kind *want, uint32_t id, void *out);
 void irc__count(irc_cache *c, int which, uint64_t v);
-
-/* index.c */
-/* Called with each candidate: a superset of the records the query asks
- * for, which the caller tests exactly. */
-typedef void (*irc__visit_fn)(void *ud, uint32_t id);
-void irc__index_reset(irc_cache *c);
-void irc__index_insert(irc_cache *c, uint32_t id);
-void irc__index_remove(irc_cache *c, uint32_t id);
-void irc__index_compact(irc_cache *c); /* compact.c */
-/* Returns the index entries it scanned (the work; tests check it). */
-uint32_t irc__index_query(const irc_cache *c, const float p[3], irc__visit_fn fn,
-                          void *ud);
-void irc__index_range(const irc_cache *c, const float p[3], float range, irc__visit_fn fn,
-                      void *ud);
-
-/* A visibility discontinuity on an edge between two neighbouring strata:
- * the bracket [wa, wb] around the silhouette, a on the blocker's side, b on
- * the visible side, narrowed by bisection rays (visibility.c). */
-typedef struct irc__cross {
-    float wa[3], wb[3];
-    float da, db;          /* distances; db = +inf when b escaped */
-    float la[3], lb[3];    /* radiances */
-    float na[3];           /* the blocker's unit normal at a */
-    float dnear, dfar;     /* the two strata's original distances */
-    float wp[3], np[3], dp;/* the blocker side before a: direction, normal,
-                              depth; dp NaN until a moves */
-    float ws[3], ds;       /* the silhouette's direction and depth, once
-                              the rounds are done */
-    int ok;                /* a silhouette (not a continuous surface) */
-} irc__cross;
-
-/* A thread's scratch slot: the samples (slot_samples of them), one batch of
- * rays and hits; with translational or rotational gradients an inverse hit
- * distance per stratum and five rows of boundary weights (gradient.c);
- * with IRC_FEATURE_VISIBILITY or SH each sample's direction and hit normal;
- * with VISIBILITY per stratum two edge indices and room for two crossings
- * (plus a spoke and a crossing per column). */
-static inline irc_ray *irc__slot_rays(const irc_cache *c, unsigned char *slot)
-{
-    return (irc_ray *)(void *)(slot + (size_t)c->slot_samples * sizeof(irc__sample));
-}
-
-/* The gradients' rows of per-column values are padded to a multiple of 4
- * plus 4, so that their loops run in blocks of four (which compilers turn
- * into vector operations) and column N can stand for column 0. */
-static inline uint32_t irc__pad4(uint32_t nphi)
-{
-    return (nphi + 3u) / 4u * 4u + 4u;
-}
-
-/* Whether a cache's slots carry the gradients' scratch: irradiance records
- * with a translational or rotational gradient. */
-static inline int irc__has_gscratch(uint32_t features)
-{
-    return !(features & IRC_FEATURE_SH) &&
-           (features & (IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION));
-}
-
-/* Slot floats the gradients need: the strata's inverse distances and five
- * padded rows (gradient.c). */
-static inline uint64_t irc__gscratch_floats(uint32_t strata, uint32_t nphi)
-{
-    return (uint64_t)strata + 5u * irc__pad4(nphi);
-}
-
-static inline float *irc__slot_inv(const irc_cache *c, const irc__sample *s)
-{
-    return (float *)(void *)((unsigned char *)(void *)(irc__sample *)s +
-                             (size_t)c->slot_samples * sizeof(irc__sample) +
-                             (size_t)c->cfg.max_batch * (sizeof(irc_ray) + sizeof(irc_hit)));
-}
-
-static inline float *irc__slot_dirs(const irc_cache *c, const irc__sample *s)
-{
-    return irc__slot_inv(c, s) + (irc__has_gscratch(c->cfg.features)
-                                      ? irc__gscratch_floats(c->strata, c->cfg.strata_phi)
-                                      : 0u);
-}
-
-static inline float *irc__slot_normals(const irc_cache *c, const irc__sample *s)
-{
-    return irc__slot_dirs(c, s) + 3u * c->slot_samples;
-}
-
-static inline int32_t *irc__slot_edges(const irc_cache *c, const irc__sample *s)
-{
-    return (int32_t *)(void *)(irc__slot_normals(c, s) + 3u * c->slot_samples);
-}
-
-/* Edges: H and V per stratum, then one zenith spoke per column; then the
- * crossings, one per edge at most. */
-static inline irc__cross *irc__slot_cross(const irc_cache *c, const irc__sample *s)
-{
-    return (irc__cross *)(void *)(irc__slot_edges(c, s) + 2u * c->strata + c->cfg.strata_phi);
-}
-
-/* With HESSIAN, a depth per stratum after everything else. */
-static inline float *irc__slot_depths(const irc_cache *c, const irc__sample *s)
-{
-    if (c->cfg.features & IRC_FEATURE_VISIBILITY)
-        return (float *)(void *)(irc__slot_cross(c, s) + 2u * c->strata + c->cfg.strata_phi);
-    return irc__slot_normals(c, s) + 3u * c->slot_samples;
-}
-
-/* The first test of irc__weigh, inlined where records are scanned: most
- * candidates fail it, and it needs only the record's first 16 bytes. */
-static inline int irc__within_reach(const irc_cache *c, const irc__rec *r, const float p[3])
-{
-    float dx = (float)p[0] - r->p[0], dy = (float)p[1] - r->p[1],
-           dz = (float)p[2] - r->p[2], ra = (float)c->cfg.accuracy * r->r;
-    float d2 = dx * dx + dy * dy + dz * dz;
-    /* d2 == 0: a record serves its own point even when (a R)^2 underflows
-     * (an open-sky record's R is FLT_MIN) */
-    return d2 < ra * ra || d2 == 0.0f;
-}
 
 #endif

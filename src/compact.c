@@ -15,6 +15,7 @@
  * irc_pass_end and irc_merge).
  */
 #include "cache.h"
+#include "index.h"
 
 /* Depth-first walk of the nodes that hold records or children: calls fn
  * on every node in the order queries visit them.  An explicit stack of a

@@ -11,6 +11,8 @@
  * its columns' boundary angles from it too.
  */
 #include "cache.h"
+#include "sampler.h"
+#include "estimator.h"
 
 /* The row loops' lanes: four where the target has 4-wide SIMD, three on
  * a scalar FPU (irc__row_coeffs, irc__row_sum). */

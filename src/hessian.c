@@ -12,6 +12,8 @@
  * second derivatives in x have the closed forms below.  No ray is cast.
  */
 #include "cache.h"
+#include "sampler.h"
+#include "estimator.h"
 
 #ifndef IRC_NO_HESSIAN
 

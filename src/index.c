@@ -27,6 +27,7 @@
  * When the pool is spent, lists grow instead: slower, never wrong.
  */
 #include "cache.h"
+#include "index.h"
 
 #ifndef IRC__SPLIT
 #define IRC__SPLIT 16u

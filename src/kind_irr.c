@@ -5,6 +5,9 @@
  * and the irradiance calls, thin wrappers over the store.
  */
 #include "cache.h"
+#include "estimator.h"
+#include "octa.h"
+#include "weight.h"
 
 /* Each channel's 2D vector as int16 mantissas with the channel's own
  * exponent: 2^ex is the smallest power of two with |v| < 2^(ex + 15) for
@@ -303,11 +306,21 @@ static int irc__irrg_finish(const irc_cache *c, const irc__query *q, const void 
     return st;
 }
 
+/* The estimator's record, checked as an inserted one is: finite radiances
+ * can still sum past FLT_MAX, and such a record is refused here, before
+ * anything is counted. */
+static int irc__irr_make(irc__call *k, void *rec)
+{
+    float un[3];
+    int st = irc__irr_compute(k, rec);
+    return st < 0 ? st : irc__irr_check(k->c, rec, un);
+}
+
 static int irc__irrg_find(irc_cache *c, const irc__query *q, void *out, float *weight);
 
 /* Only the lookup uses it: compute, pack and the rest are the kind's. */
 static const irc__kind irc__kind_irr_grad = {
-    0, irc__irr_compute, irc__irr_check,
+    0, irc__irr_make, irc__irr_check,
     irc__irr_pack, irc__irr_unpack, irc__irr_weigh, irc__irrg_begin,
     irc__irrg_accumulate, irc__irrg_finish, irc__irr_answer, irc__irrg_find};
 
@@ -319,14 +332,14 @@ static int irc__irrg_find(irc_cache *c, const irc__query *q, void *out, float *w
 }
 
 const irc__kind irc__kind_irr = {
-    0, irc__irr_compute, irc__irr_check,
+    0, irc__irr_make, irc__irr_check,
     irc__irr_pack, irc__irr_unpack, irc__irr_weigh, irc__irr_begin,
     irc__irr_accumulate, irc__irr_finish, irc__irr_answer, irc__irr_find};
 
 int irc_record_compute(irc_cache *c, const float p[3], const float n[3], irc_record *out,
                        void *host)
 {
-    return irc__compute(c, &irc__kind_irr, p, n, out, host, irc__irr_compute, 1);
+    return irc__compute(c, &irc__kind_irr, p, n, out, host, irc__irr_make, 1);
 }
 
 int irc_cache_insert(irc_cache *c, const irc_record *rec)

@@ -5,6 +5,9 @@
  * thin wrappers over the store.
  */
 #include "cache.h"
+#include "shrec.h"
+#include "octa.h"
+#include "weight.h"
 
 #ifndef IRC_NO_SH
 

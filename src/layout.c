@@ -13,6 +13,9 @@
  * cache in a block copied to any address.
  */
 #include "cache.h"
+#include "index.h"
+#include "sampler.h"
+#include "estimator.h"
 
 typedef struct irc__layout {
     uint64_t lock, scratch, records, ix, nodes, ctr, used, gtab, total;

@@ -5,6 +5,8 @@
  * rebuilt from that order.
  */
 #include "cache.h"
+#include "index.h"
+#include "snapshot.h"
 
 /* The canonical order: field by field in the format's order, each field
  * compared as an unsigned integer of its width, so every machine sorts

@@ -4,6 +4,8 @@
  * frame records keep their gradients in.
  */
 #include "cache.h"
+#include "sampler.h"
+#include "octa.h"
 
 uint32_t irc__oct_encode(const float n[3])
 {

@@ -7,6 +7,8 @@
  * pass also renumbers every record in the index's order (compact.c).
  */
 #include "cache.h"
+#include "index.h"
+#include "snapshot.h"
 
 int irc_pass_begin(irc_cache *c)
 {

@@ -17,6 +17,7 @@
  * from the records that are.
  */
 #include "cache.h"
+#include "index.h"
 
 static void irc__set(irc_cache *c, uint64_t *w, uint64_t v)
 {

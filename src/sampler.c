@@ -7,6 +7,8 @@
  * the same cosine-weighted measure pi/(MN).
  */
 #include "cache.h"
+#include "sampler.h"
+#include "estimator.h"
 
 /* splitmix64's finaliser: a bijective 64-bit mix. */
 static uint64_t irc__mix(uint64_t x)
@@ -409,4 +411,15 @@ int irc__supersample(irc__call *k, const float n[3], const float t1[3], const fl
     if (cnt && ((st = irc__cast(k, rays, hits, cnt)) < 0 || (st = irc__ss_merge(s, at, hits, cnt)) < 0))
         return st;
     return IRC_OK;
+}
+
+int irc__hemisphere(irc__call *k, float t1[3], float t2[3])
+{
+    uint32_t used = 0;
+    int st;
+    irc__frame(k->q.n, t1, t2);
+    st = irc__sample_hemisphere(k, k->q.n, t1, t2, 0, &used);
+    if (st == IRC_OK && k->c->cfg.supersamples)
+        st = irc__supersample(k, k->q.n, t1, t2);
+    return st;
 }

@@ -13,6 +13,7 @@
  * to the sphere over |s|, whichever polynomial that is.
  */
 #include "cache.h"
+#include "shrec.h"
 
 #ifndef IRC_NO_SH
 

@@ -5,6 +5,9 @@
  * surface-integral form taken over the strata grid.
  */
 #include "cache.h"
+#include "sampler.h"
+#include "shrec.h"
+#include "estimator.h"
 
 #ifndef IRC_NO_SH
 

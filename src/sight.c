@@ -9,6 +9,7 @@
  * itself (Krivanek and Gautron 2009, Sec. 2.3.3).
  */
 #include "cache.h"
+#include "sampler.h"
 
 #define IRC__SIGHT_CAP 32u   /* records checked per lookup; more: unchecked */
 #define IRC__SIGHT_BATCH 8u  /* rays per callback call, at most */

@@ -4,6 +4,8 @@
  * versioned header, CRC-32C over header and records).
  */
 #include "cache.h"
+#include "index.h"
+#include "snapshot.h"
 
 
 /* CRC-32C (Castagnoli, reflected polynomial 0x82F63B78), four bits at a

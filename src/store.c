@@ -9,6 +9,8 @@
  * the block as it was.
  */
 #include "cache.h"
+#include "index.h"
+#include "weight.h"
 
 /* Every public call on a cache starts here: a live cache (IRC_ERR_CONFIG
  * for anything else), of the kind the call serves when want is set. */

@@ -7,6 +7,7 @@
  * entry is visited at most once, or the block is refused.
  */
 #include "cache.h"
+#include "index.h"
 
 int irc__rec_head_sane(const irc_cache *c, const irc__rec *r)
 {

@@ -29,6 +29,8 @@
  * integrated by the trapezoid rule.  Edges without a silhouette keep Krivanek's terms (record.c).
  */
 #include "cache.h"
+#include "sampler.h"
+#include "estimator.h"
 
 #ifndef IRC_NO_VISIBILITY
 
@@ -456,7 +458,7 @@ int irc__grad_visibility(irc__call *k, int netvis, float g[3][3])
 /* Net visibility (Eq. 47, over 2 pi): each stratum's exact solid angle,
  * (2 pi/N)(cos theta_j- - cos theta_j+), weighs whether its ray escaped, so
  * no 1/cos(theta) weight from the cosine-weighted sampling enters. */
-static float irc__visible(const irc_cache *c, const irc__sample *s)
+float irc__net_visibility(const irc_cache *c, const irc__sample *s)
 {
     const uint32_t m = c->cfg.strata_theta, nphi = c->cfg.strata_phi;
     float vis = 0.0f, all = 0.0f;
@@ -475,40 +477,5 @@ static float irc__visible(const irc_cache *c, const irc__sample *s)
     return all > 0.0f ? vis / all : 0.0f;
 }
 
-static int irc__occlusion(irc__call *k, void *dst)
-{
-    irc_occlusion *out = (irc_occlusion *)dst;
-    float t1[3], t2[3], g[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
-    int st, i;
-    if ((st = irc__hemisphere(k, t1, t2)) < 0)
-        return st;
-    out->visible = (float)irc__visible(k->c, (const irc__sample *)(void *)k->slot);
-    if ((st = irc__grad_visibility(k, 1, g)) < 0)
-        return st;
-    for (i = 0; i < 3; i++)
-        out->grad[i] = (float)(g[0][i] / (2.0f * IRC_PI));
-    out->rays = k->rays;
-    return IRC_OK;
-}
-
-int irc_occlusion_compute(irc_cache *c, const float p[3], const float n[3],
-                          irc_occlusion *out, void *host)
-{
-    int st = irc__enter(c, &irc__kind_irr);
-    if (st < 0)
-        return st;
-    if (!(c->cfg.features & IRC_FEATURE_VISIBILITY))
-        return IRC_ERR_UNSUPPORTED;
-    return irc__compute(c, &irc__kind_irr, p, n, out, host, irc__occlusion, 0);
-}
-
-#else /* IRC_NO_VISIBILITY: visibility gradients left out of the build (util.h) */
-
-int irc_occlusion_compute(irc_cache *c, const float p[3], const float n[3],
-                          irc_occlusion *out, void *host)
-{
-    const int st = irc__enter(c, &irc__kind_irr);
-    (void)p; (void)n; (void)out; (void)host;
-    return st < 0 ? st : IRC_ERR_UNSUPPORTED;
-}
 #endif
+

@@ -3,6 +3,9 @@
  * value it extrapolates there.
  */
 #include "cache.h"
+#include "sampler.h"
+#include "octa.h"
+#include "weight.h"
 
 /* A record in front of the query's surface by more than this fraction of
  * its radius is rejected: relative to R_i so the test does not change with

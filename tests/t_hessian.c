@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "cache.h"
+#include "estimator.h"
 #include "scenes.h"
 #include "test.h"
 

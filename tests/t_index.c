@@ -4,6 +4,10 @@
 #include <string.h>
 
 #include "cache.h" /* internals on purpose: records scanned without the index */
+#include "index.h"
+#include "sampler.h"
+#include "octa.h"
+#include "weight.h"
 #include "scenes.h"
 #include "test.h"
 

@@ -2,6 +2,8 @@
 #include <math.h>
 
 #include "cache.h" /* internals on purpose: the SH basis (irc__sh_eval) */
+#include "sampler.h"
+#include "shrec.h"
 #include "scenes.h"
 #include "test.h"
 

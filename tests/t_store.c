@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "cache.h" /* internals on purpose: candidates the index hands over */
+#include "index.h"
 #include "scenes.h"
 #include "test.h"
 

@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "cache.h" /* internals on purpose: stored bytes and index compared */
+#include "index.h"
 #include "scenes.h"
 #include "test.h"
 

@@ -1,0 +1,118 @@
+/*
+ * estimator.h -- the irradiance record's estimators: irradiance and
+ * radius (irradiance.c), gradients (gradient.c), visibility gradients
+ * (visibility.c), the Hessian (hessian.c), and the scratch they share in a
+ * thread's slot.
+ */
+#ifndef IRC_ESTIMATOR_H
+#define IRC_ESTIMATOR_H
+
+#include "cache.h"
+#include "sampler.h"
+/* hessian.c */
+void irc__hessian(const irc_cache *c, const irc__sample *s, const float *dirs,
+                  const float n[3], float h[3][6]);
+void irc__eigen2(float a, float b, float c, float *l0, float *l1, float u[2]);
+
+/* visibility.c */
+int irc__grad_visibility(irc__call *k, int netvis, float g[3][3]);
+/* Net visibility over 2 pi from a sampled hemisphere (Eq. 47). */
+float irc__net_visibility(const irc_cache *c, const irc__sample *s);
+
+/* irradiance.c: the irradiance record's estimator */
+int irc__irr_compute(irc__call *k, void *rec);
+uint64_t irc__gtab_bytes(uint32_t m, uint32_t nphi);
+void irc__gtab_fill(const irc_cache *c, void *tab);
+void irc__gradients(const irc_cache *c, const irc__sample *s, const float mean[3],
+                    const float t1[3], const float t2[3], float gt[3][3], float gr[3][3]);
+
+/* A visibility discontinuity on an edge between two neighbouring strata:
+ * the bracket [wa, wb] around the silhouette, a on the blocker's side, b on
+ * the visible side, narrowed by bisection rays (visibility.c). */
+typedef struct irc__cross {
+    float wa[3], wb[3];
+    float da, db;          /* distances; db = +inf when b escaped */
+    float la[3], lb[3];    /* radiances */
+    float na[3];           /* the blocker's unit normal at a */
+    float dnear, dfar;     /* the two strata's original distances */
+    float wp[3], np[3], dp;/* the blocker side before a: direction, normal,
+                              depth; dp NaN until a moves */
+    float ws[3], ds;       /* the silhouette's direction and depth, once
+                              the rounds are done */
+    int ok;                /* a silhouette (not a continuous surface) */
+} irc__cross;
+
+/* A thread's scratch slot: the samples (slot_samples of them), one batch of
+ * rays and hits; with translational or rotational gradients an inverse hit
+ * distance per stratum and five rows of boundary weights (gradient.c);
+ * with IRC_FEATURE_VISIBILITY or SH each sample's direction and hit normal;
+ * with VISIBILITY per stratum two edge indices and room for two crossings
+ * (plus a spoke and a crossing per column). */
+static inline irc_ray *irc__slot_rays(const irc_cache *c, unsigned char *slot)
+{
+    return (irc_ray *)(void *)(slot + (size_t)c->slot_samples * sizeof(irc__sample));
+}
+
+/* The gradients' rows of per-column values are padded to a multiple of 4
+ * plus 4, so that their loops run in blocks of four (which compilers turn
+ * into vector operations) and column N can stand for column 0. */
+static inline uint32_t irc__pad4(uint32_t nphi)
+{
+    return (nphi + 3u) / 4u * 4u + 4u;
+}
+
+/* Whether a cache's slots carry the gradients' scratch: irradiance records
+ * with a translational or rotational gradient. */
+static inline int irc__has_gscratch(uint32_t features)
+{
+    return !(features & IRC_FEATURE_SH) &&
+           (features & (IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION));
+}
+
+/* Slot floats the gradients need: the strata's inverse distances and five
+ * padded rows (gradient.c). */
+static inline uint64_t irc__gscratch_floats(uint32_t strata, uint32_t nphi)
+{
+    return (uint64_t)strata + 5u * irc__pad4(nphi);
+}
+
+static inline float *irc__slot_inv(const irc_cache *c, const irc__sample *s)
+{
+    return (float *)(void *)((unsigned char *)(void *)(irc__sample *)s +
+                             (size_t)c->slot_samples * sizeof(irc__sample) +
+                             (size_t)c->cfg.max_batch * (sizeof(irc_ray) + sizeof(irc_hit)));
+}
+
+static inline float *irc__slot_dirs(const irc_cache *c, const irc__sample *s)
+{
+    return irc__slot_inv(c, s) + (irc__has_gscratch(c->cfg.features)
+                                      ? irc__gscratch_floats(c->strata, c->cfg.strata_phi)
+                                      : 0u);
+}
+
+static inline float *irc__slot_normals(const irc_cache *c, const irc__sample *s)
+{
+    return irc__slot_dirs(c, s) + 3u * c->slot_samples;
+}
+
+static inline int32_t *irc__slot_edges(const irc_cache *c, const irc__sample *s)
+{
+    return (int32_t *)(void *)(irc__slot_normals(c, s) + 3u * c->slot_samples);
+}
+
+/* Edges: H and V per stratum, then one zenith spoke per column; then the
+ * crossings, one per edge at most. */
+static inline irc__cross *irc__slot_cross(const irc_cache *c, const irc__sample *s)
+{
+    return (irc__cross *)(void *)(irc__slot_edges(c, s) + 2u * c->strata + c->cfg.strata_phi);
+}
+
+/* With HESSIAN, a depth per stratum after everything else. */
+static inline float *irc__slot_depths(const irc_cache *c, const irc__sample *s)
+{
+    if (c->cfg.features & IRC_FEATURE_VISIBILITY)
+        return (float *)(void *)(irc__slot_cross(c, s) + 2u * c->strata + c->cfg.strata_phi);
+    return irc__slot_normals(c, s) + 3u * c->slot_samples;
+}
+
+#endif
