@@ -44,6 +44,15 @@ SRC = src/status.c src/version.c src/check.c src/config.c src/layout.c src/store
       src/kind_sh.c src/sampler.c src/irradiance.c src/octa.c src/weight.c src/index.c src/compact.c \
       src/visibility.c src/hessian.c src/sh.c src/shgrad.c src/snapshot.c src/merge.c \
       src/pass.c src/sight.c src/slots.c src/verify.c src/repair.c src/occlusion.c
+# make LEAVE_OUT="SH VISIBILITY HESSIAN" (any of them): those parts are
+# not compiled, and util.h's IRC_NO_* switch tells the rest (the same
+# switches, set in a user config header, compile those files empty).
+LEAVE_OUT ?=
+LEFT_SH = src/kind_sh.c src/sh.c src/shgrad.c
+LEFT_VISIBILITY = src/visibility.c src/occlusion.c
+LEFT_HESSIAN = src/hessian.c
+SRC := $(filter-out $(foreach x,$(LEAVE_OUT),$(LEFT_$(x))),$(SRC) src/absent.c)
+CFLAGS_LIB += $(foreach x,$(LEAVE_OUT),-DIRC_NO_$(x))
 # The chosen port, and the single-threaded one (it needs nothing).
 PORT_SRC = $(sort port/$(PORT)/irc_port.c port/none/irc_port.c) port/irc_port_default.c
 OBJ = $(SRC:%.c=$(BUILD)/%.o)

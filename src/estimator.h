@@ -115,4 +115,16 @@ static inline float *irc__slot_depths(const irc_cache *c, const irc__sample *s)
     return irc__slot_normals(c, s) + 3u * c->slot_samples;
 }
 
+/* The sector (of 16, 22.5 degrees each, counter-clockwise from x) holding
+ * the tangent direction (x, y), from signs and comparisons with tan(22.5
+ * degrees): the leak guard's lookups need no trig. */
+static inline int irc__sector(float x, float y)
+{
+    const float t = 0.41421356237309503f, ax = x < 0.0f ? -x : x, ay = y < 0.0f ? -y : y;
+    int sub = ay < t * ax ? 0 : ay < ax ? 1 : ax > t * ay ? 2 : 3;
+    if (y >= 0.0f)
+        return x >= 0.0f ? sub : 7 - sub;
+    return x < 0.0f ? 8 + sub : 15 - sub;
+}
+
 #endif

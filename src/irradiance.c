@@ -157,18 +157,6 @@ static float irc__split_sphere(const irc_cache *c, const irc__totals *t, float *
     return (float)t->hits / t->inv;
 }
 
-/* The sector (of 16, 22.5 degrees each, counter-clockwise from x) holding
- * the tangent direction (x, y), from signs and comparisons with tan(22.5
- * degrees): the leak guard's lookups need no trig. */
-static int irc__sector(float x, float y)
-{
-    const float t = 0.41421356237309503f, ax = x < 0.0f ? -x : x, ay = y < 0.0f ? -y : y;
-    int sub = ay < t * ax ? 0 : ay < ax ? 1 : ax > t * ay ? 2 : 3;
-    if (y >= 0.0f)
-        return x >= 0.0f ? sub : 7 - sub;
-    return x < 0.0f ? 8 + sub : 15 - sub;
-}
-
 /* The leak guard (irc_record.leak_guard): per sector of the stored
  * normal's frame, the nearest hit seen at a grazing angle (rows with
  * sin^2 theta >= 1/2, cosine-weighted strata: a wall, not a ceiling), as

@@ -284,44 +284,8 @@ int irc_sh_record(irc_cache *c, uint32_t id, irc_sh *out)
     return irc__record_get(c, &irc__kind_sh, id, out);
 }
 
-#else /* IRC_NO_SH: SH records left out of the build (util.h) */
+#else /* IRC_NO_SH: the public calls are absent.c's */
 
-/* As on an irradiance cache: no cache of this build holds SH records. */
-static int irc__no_sh(const irc_cache *c)
-{
-    const int st = irc__enter(c, NULL);
-    return st < 0 ? st : IRC_ERR_UNSUPPORTED;
-}
+typedef int irc__kind_sh_absent; /* ISO C wants something in a file */
 
-int irc_sh_compute(irc_cache *c, const float p[3], const float n[3], irc_sh *out, void *host)
-{
-    (void)p; (void)n; (void)out; (void)host;
-    return irc__no_sh(c);
-}
-
-int irc_sh_insert(irc_cache *c, const irc_sh *rec)
-{
-    (void)rec;
-    return irc__no_sh(c);
-}
-
-int irc_sh_lookup(irc_cache *c, const float p[3], const float n[3], irc_sh *out,
-                  float *weight)
-{
-    (void)p; (void)n; (void)out; (void)weight;
-    return irc__no_sh(c);
-}
-
-int irc_sh_lookup_or_compute(irc_cache *c, const float p[3], const float n[3], irc_sh *out,
-                             float *weight, void *host)
-{
-    (void)p; (void)n; (void)out; (void)weight; (void)host;
-    return irc__no_sh(c);
-}
-
-int irc_sh_record(irc_cache *c, uint32_t id, irc_sh *out)
-{
-    (void)id; (void)out;
-    return irc__no_sh(c);
-}
 #endif

@@ -35,13 +35,8 @@ int irc_occlusion_compute(irc_cache *c, const float p[3], const float n[3],
     return irc__compute(c, &irc__kind_irr, p, n, out, host, irc__occlusion, 0);
 }
 
-#else /* IRC_NO_VISIBILITY: visibility gradients left out of the build (util.h) */
+#else /* IRC_NO_VISIBILITY: the public call is absent.c's */
 
-int irc_occlusion_compute(irc_cache *c, const float p[3], const float n[3],
-                          irc_occlusion *out, void *host)
-{
-    const int st = irc__enter(c, &irc__kind_irr);
-    (void)p; (void)n; (void)out; (void)host;
-    return st < 0 ? st : IRC_ERR_UNSUPPORTED;
-}
+typedef int irc__occlusion_absent; /* ISO C wants something in a file */
+
 #endif

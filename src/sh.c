@@ -242,23 +242,8 @@ int irc_sh_radiance(const irc_sh *sh, const float w[3], float rgb[3])
     return irc__sh_convolve(sh, w, 0.0f, 1, rgb);
 }
 
-#else /* IRC_NO_SH: SH records left out of the build (util.h) */
+#else /* IRC_NO_SH: the public calls are absent.c's */
 
-int irc_sh_glossy(const irc_sh *sh, const float r[3], float s, float rgb[3])
-{
-    (void)sh; (void)r; (void)s; (void)rgb;
-    return IRC_ERR_UNSUPPORTED;
-}
+typedef int irc__sh_absent; /* ISO C wants something in a file */
 
-int irc_sh_irradiance(const irc_sh *sh, const float n[3], float rgb[3])
-{
-    (void)sh; (void)n; (void)rgb;
-    return IRC_ERR_UNSUPPORTED;
-}
-
-int irc_sh_radiance(const irc_sh *sh, const float w[3], float rgb[3])
-{
-    (void)sh; (void)w; (void)rgb;
-    return IRC_ERR_UNSUPPORTED;
-}
 #endif

@@ -7,10 +7,12 @@
  * IRC_NO_ASSERT compiles the internal checks out.
  *
  * Build-time switches, defined the same way, leave what a firmware does
- * not use out of the build (irrcache.h, IRC_ERR_UNSUPPORTED):
+ * not use out of the build (irrcache.h, IRC_ERR_UNSUPPORTED); the files
+ * named then compile empty, or make LEAVE_OUT=... does not compile them,
+ * and absent.c answers their public calls:
  *   IRC_NO_SH          SH records (kind_sh.c, sh.c, shgrad.c)
- *   IRC_NO_VISIBILITY  visibility gradients, irc_occlusion_compute
- *   IRC_NO_HESSIAN     the Hessian and its ellipses
+ *   IRC_NO_VISIBILITY  visibility gradients (visibility.c, occlusion.c)
+ *   IRC_NO_HESSIAN     the Hessian and its ellipses (hessian.c)
  */
 #ifndef IRC_UTIL_H
 #define IRC_UTIL_H
