@@ -23,11 +23,12 @@
 #define IRC__FAR 1e3f
 /* Black occluders: every triangle's radiance is lifted by this fraction of
  * the record's mean radiance, so a black blocker against a black wall
- * still bends E (notes: Radiance adds 1%). */
+ * still bends E (Radiance's ambcomp.c adds 1%). */
 #define IRC__FLOOR 0.01f
 
 /* One edge r0 -> r1 (relative to x) of a triangle shining with l: adds
- * l H F_e to h (hessian.md: I1, I2, J2, I3, J3, K3, g, M). */
+ * l H F_e to h (the per-edge closed forms of Schwarzhaupt et al. 2012,
+ * as ambcomp.c names their terms: I1, I2, J2, I3, J3, K3, g, M). */
 static void irc__edge_hessian(const float r0[3], const float r1[3], const float n[3],
                               const float l[3], float h[3][6])
 {
@@ -277,7 +278,7 @@ void irc__hessian(const irc_cache *c, const irc__sample *s, const float *dirs,
 
 /* Eigen-decomposition of the symmetric 2x2 [[a, b], [b, c]]: l0 >= l1 in
  * |l| and the unit eigenvector (u[0], u[1]) of l0.  The angle comes from
- * atan2 of the signed entries (notes: Radiance's slope from |l| rotates the
+ * atan2 of the signed entries (Radiance's slope from |l| rotates the
  * axes when the smaller eigenvalue is negative). */
 void irc__eigen2(float a, float b, float c, float *l0, float *l1, float u[2])
 {

@@ -46,7 +46,7 @@ static void irc__tangent_hessian(const float h[6], const float t1[3], const floa
  * record extrapolated to first order errs by 1/2 |k| d^2 at distance d
  * along a tangent direction of curvature k = t^T H t; a lookup reaches
  * d = a R, so R = sqrt(2 E / |k|) keeps that error at a^2 E at the edge of
- * reach (hessian.md's max-error variant, relative to E).  The axes are the
+ * reach (Schwarzhaupt et al.'s max-error rule, relative to E).  The axes are the
  * eigenvectors of the channel whose larger eigenvalue relative to its E is
  * largest (1/2 atan2, signed entries: no division by a vanishing
  * off-diagonal); each radius is the smallest over channels of that

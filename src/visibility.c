@@ -26,7 +26,7 @@
  * narrow each bracket; marching squares over the grid's cells join the
  * crossings into segments (the cap above the first row is a fan of
  * triangles around one extra ray at the zenith); each segment is
- * integrated by the trapezoid rule.  Edges without a silhouette keep Krivanek's terms (record.c).
+ * integrated by the trapezoid rule.  Edges without a silhouette keep Krivanek's terms (gradient.c).
  */
 #include "cache.h"
 #include "sampler.h"
