@@ -18,7 +18,7 @@
 
 /* What a block must agree on to be re-attached (irc_attach): the layout's
  * version, pointer and size_t widths, byte order. */
-#define IRC__LAYOUT_VERSION 11u
+#define IRC__LAYOUT_VERSION 12u
 #define IRC__ABI                                                           \
     (IRC__LAYOUT_VERSION | (uint32_t)sizeof(void *) << 8 |                 \
      (uint32_t)sizeof(size_t) << 16 | (uint32_t)sizeof(double) << 24)
@@ -91,6 +91,22 @@ typedef struct irc__call {
     uint32_t sight;   /* 1 while casting confirming rays (sight.c) */
 } irc__call;
 
+/* A record's parts after its 32-byte head, each owned by its kind, which
+ * lists those a config asks for in order (irc__kind.parts); layout.c
+ * places them one after another and the block's header keeps their byte
+ * offsets (irc_cache.off[id], 0 = absent).  A part's fields are `lead`
+ * bytes of width w1, then the rest of width w2: the snapshot's byte order
+ * and the merge order walk them field by field.  `sane` says what a part
+ * a cache could have made holds (verify.c): anything, finite floats, or an
+ * ellipse's minor/major ratio in (0, 1] at byte 4. */
+enum { IRC__P_GRAD_T, IRC__P_GRAD_R, IRC__P_ELLIPSE, IRC__P_GUARD, IRC__P_SH, IRC__P_SH_GRAD,
+       IRC__P_COUNT };
+enum { IRC__SANE_ANY, IRC__SANE_FINITE, IRC__SANE_ELLIPSE };
+typedef struct irc__recpart {
+    uint8_t id, w1, w2, sane;
+    uint32_t lead, bytes;
+} irc__recpart;
+
 /* A record kind: what the store needs to check, pack, weigh and
  * accumulate one kind of record (kind_irr.c, kind_sh.c).  The public
  * structs differ (irc_record, irc_sh); the store sees them as void. */
@@ -110,12 +126,18 @@ typedef struct irc__kind {
     void (*answer)(const irc_cache *c, const void *rec, void *out);
     /* irc__lookup_once with an accumulator of the kind's own. */
     int (*find)(irc_cache *c, const irc__query *q, void *out, float *weight);
+    /* The parts a record of this resolved config carries, in order;
+     * returns how many (<= IRC__P_COUNT). */
+    uint32_t (*parts)(const irc_config *cfg, irc__recpart *out);
 } irc__kind;
 
 /* The block stores which kind it holds by number (a pointer to the table
  * would not survive irc_attach in another process). */
 enum { IRC__KIND_IRR = 1, IRC__KIND_SH = 2 };
 extern const irc__kind irc__kind_irr, irc__kind_sh;
+/* The kind a resolved config's records are, as a table and by number. */
+const irc__kind *irc__kind_of(uint32_t features);
+uint32_t irc__kind_id_of(uint32_t features);
 int irc__features_built(uint32_t features);
 
 /* The cache, at the start of its part of the block.  Everything after it
@@ -139,16 +161,14 @@ struct irc_cache {
     char port_name[16];      /* the port that made the lock (views must
                                 use the same) */
     uint32_t rec_size;       /* packed record bytes */
-    uint32_t off_t, off_r;   /* byte offsets of the gradients, 0 = absent */
-    uint32_t off_a;          /* byte offset of the ellipse, 0 = absent */
-    uint32_t off_g;          /* byte offset of the leak guard, 0 = absent */
+    uint32_t off[IRC__P_COUNT]; /* each part's byte offset, 0 = absent */
+    irc__recpart parts[IRC__P_COUNT]; /* the record's parts, in order */
+    uint32_t n_parts;
     uint32_t strata;         /* M * N */
     uint32_t slot_samples;   /* samples a scratch slot holds: M N, or 2 M N
                                 in an SH cache (free points: two hemispheres) */
     uint32_t keep_geom;      /* the sampler keeps directions and hit normals */
     uint32_t sh_n, sh_ch;    /* SH cache: L*L coefficients, channels; else 0 */
-    uint32_t off_sh, off_shg;/* byte offsets of SH coefficients and gradients,
-                                0 = absent */
     uint32_t node_cap;       /* nodes in the pool (1 + 8 k) */
     size_t lock_bytes;       /* room reserved for the port's lock */
     size_t slot_bytes;       /* scratch bytes per thread slot */
@@ -259,6 +279,9 @@ int irc__rec_head_sane(const irc_cache *c, const irc__rec *r);
 /* verify.c: record id whole as a cache could have made it (its head, its
  * ellipse, its SH words finite). */
 int irc__rec_sane(const irc_cache *c, uint32_t id);
+/* verify.c: the parts after a record's head as the part table says a
+ * cache makes them; rec in the block's byte order, or (le) a snapshot's. */
+int irc__parts_sane(const irc_cache *c, const unsigned char *rec, int le);
 /* repair.c: the lock through the library, so that a writer's death is
  * repaired; slots being written named in the block (irc__mark, b IRC__NIL
  * for one slot); records swapped in place. */

@@ -40,6 +40,23 @@ int irc__features_built(uint32_t features)
     return features & out ? IRC_ERR_UNSUPPORTED : IRC_OK;
 }
 
+/* The one place a config picks its kind (init, attach, the header's
+ * check). */
+const irc__kind *irc__kind_of(uint32_t features)
+{
+#ifndef IRC_NO_SH
+    if (features & IRC_FEATURE_SH)
+        return &irc__kind_sh;
+#endif
+    (void)features;
+    return &irc__kind_irr;
+}
+
+uint32_t irc__kind_id_of(uint32_t features)
+{
+    return irc__kind_of(features) == &irc__kind_irr ? IRC__KIND_IRR : IRC__KIND_SH;
+}
+
 /* Which kind of record, and its fields: SH excludes the irradiance
  * gradients, and sh_* fields mean nothing without it. */
 static int irc__features_resolve(irc_config *out)

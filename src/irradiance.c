@@ -312,7 +312,7 @@ static IRC__NOINLINE void irc__record_build(const irc_cache *c, const irc__sampl
             for (k = 0; k < 3; k++)
                 out->grad_r[ch][k] = (float)gr[ch][k];
     irc__radii(c, s, n, t1, t2, r, far, fp, out);
-    if (c->off_g)
+    if (c->off[IRC__P_GUARD])
         out->leak_guard = irc__leak_guard(c, s, n, t1, t2, out);
     out->mean_dist = (float)hm;
     out->features = c->cfg.features;

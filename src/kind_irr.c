@@ -148,21 +148,21 @@ static void irc__irr_pack(const irc_cache *c, const void *rec, const float un[3]
     r->n = irc__oct_encode(un);
     irc__oct_frame(r->n, t1, t2);
     (void)irc__ellipse(in, un, &q, axis); /* checked */
-    if (!c->off_a)
+    if (!c->off[IRC__P_ELLIPSE])
         q = 1.0f;
     else {
-        irc__aniso *a = (irc__aniso *)(void *)(b + c->off_a);
+        irc__aniso *a = (irc__aniso *)(void *)(b + c->off[IRC__P_ELLIPSE]);
         a->q = (float)q;
         a->axis = q < 1.0f ? irc__oct_encode(axis) : 0u;
     }
-    if (c->off_g)
-        IRC_MEMCPY(b + c->off_g, &in->leak_guard, sizeof in->leak_guard);
-    if (c->off_t) {
+    if (c->off[IRC__P_GUARD])
+        IRC_MEMCPY(b + c->off[IRC__P_GUARD], &in->leak_guard, sizeof in->leak_guard);
+    if (c->off[IRC__P_GRAD_T]) {
         irc__grad_limit(in, r->r, q, axis, g);
-        irc__grad_pack((const float(*)[3])g, t1, t2, (irc__grad *)(void *)(b + c->off_t));
+        irc__grad_pack((const float(*)[3])g, t1, t2, (irc__grad *)(void *)(b + c->off[IRC__P_GRAD_T]));
     }
-    if (c->off_r)
-        irc__grad_pack(in->grad_r, t1, t2, (irc__grad *)(void *)(b + c->off_r));
+    if (c->off[IRC__P_GRAD_R])
+        irc__grad_pack(in->grad_r, t1, t2, (irc__grad *)(void *)(b + c->off[IRC__P_GRAD_R]));
 }
 
 static void irc__irr_unpack(const irc_cache *c, const void *src, void *rec)
@@ -178,23 +178,23 @@ static void irc__irr_unpack(const irc_cache *c, const void *src, void *rec)
         out->e[ch] = r->e[ch];
     }
     out->radius = out->minor_radius = r->r;
-    if (c->off_a) {
-        const irc__aniso *a = (const irc__aniso *)(const void *)(b + c->off_a);
+    if (c->off[IRC__P_ELLIPSE]) {
+        const irc__aniso *a = (const irc__aniso *)(const void *)(b + c->off[IRC__P_ELLIPSE]);
         if (a->q < 1.0f) {
             out->minor_radius = a->q * r->r;
             irc__oct_decode(a->axis, out->axis);
         }
     }
-    if (c->off_g)
-        IRC_MEMCPY(&out->leak_guard, b + c->off_g, sizeof out->leak_guard);
+    if (c->off[IRC__P_GUARD])
+        IRC_MEMCPY(&out->leak_guard, b + c->off[IRC__P_GUARD], sizeof out->leak_guard);
     out->mean_dist = NAN; /* not stored */
     irc__oct_decode(r->n, out->n);
     irc__oct_frame(r->n, t1, t2);
     out->features = c->cfg.features;
-    if (c->off_t)
-        irc__grad_unpack((const irc__grad *)(const void *)(b + c->off_t), t1, t2, out->grad_t);
-    if (c->off_r)
-        irc__grad_unpack((const irc__grad *)(const void *)(b + c->off_r), t1, t2, out->grad_r);
+    if (c->off[IRC__P_GRAD_T])
+        irc__grad_unpack((const irc__grad *)(const void *)(b + c->off[IRC__P_GRAD_T]), t1, t2, out->grad_t);
+    if (c->off[IRC__P_GRAD_R])
+        irc__grad_unpack((const irc__grad *)(const void *)(b + c->off[IRC__P_GRAD_R]), t1, t2, out->grad_r);
 }
 
 static int irc__irr_weigh(const irc_cache *c, const irc__rec *r, const irc__query *q,
@@ -316,13 +316,34 @@ static int irc__irr_make(irc__call *k, void *rec)
     return st < 0 ? st : irc__irr_check(k->c, rec, un);
 }
 
+/* An irradiance record's parts: the gradients (six int16 mantissas and
+ * three int8 exponents and a pad byte each), the ellipse (axis code and
+ * minor/major), the leak guard (16 nibbles). */
+static uint32_t irc__irr_parts(const irc_config *cfg, irc__recpart *out)
+{
+    static const irc__recpart grad_t = {IRC__P_GRAD_T, 2, 1, IRC__SANE_ANY, 12, sizeof(irc__grad)},
+                           grad_r = {IRC__P_GRAD_R, 2, 1, IRC__SANE_ANY, 12, sizeof(irc__grad)},
+                           ellipse = {IRC__P_ELLIPSE, 4, 4, IRC__SANE_ELLIPSE, 0, sizeof(irc__aniso)},
+                           guard = {IRC__P_GUARD, 8, 8, IRC__SANE_ANY, 0, sizeof(uint64_t)};
+    uint32_t n = 0;
+    if (cfg->features & IRC_FEATURE_TRANSLATION)
+        out[n++] = grad_t;
+    if (cfg->features & IRC_FEATURE_ROTATION)
+        out[n++] = grad_r;
+    if (cfg->features & IRC_FEATURE_HESSIAN)
+        out[n++] = ellipse;
+    if (cfg->leak_guard)
+        out[n++] = guard;
+    return n;
+}
+
 static int irc__irrg_find(irc_cache *c, const irc__query *q, void *out, float *weight);
 
 /* Only the lookup uses it: compute, pack and the rest are the kind's. */
 static const irc__kind irc__kind_irr_grad = {
     0, irc__irr_make, irc__irr_check,
     irc__irr_pack, irc__irr_unpack, irc__irr_weigh, irc__irrg_begin,
-    irc__irrg_accumulate, irc__irrg_finish, irc__irr_answer, irc__irrg_find};
+    irc__irrg_accumulate, irc__irrg_finish, irc__irr_answer, irc__irrg_find, irc__irr_parts};
 
 static int irc__irrg_find(irc_cache *c, const irc__query *q, void *out, float *weight)
 {
@@ -334,7 +355,7 @@ static int irc__irrg_find(irc_cache *c, const irc__query *q, void *out, float *w
 const irc__kind irc__kind_irr = {
     0, irc__irr_make, irc__irr_check,
     irc__irr_pack, irc__irr_unpack, irc__irr_weigh, irc__irr_begin,
-    irc__irr_accumulate, irc__irr_finish, irc__irr_answer, irc__irr_find};
+    irc__irr_accumulate, irc__irr_finish, irc__irr_answer, irc__irr_find, irc__irr_parts};
 
 int irc_record_compute(irc_cache *c, const float p[3], const float n[3], irc_record *out,
                        void *host)

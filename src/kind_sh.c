@@ -75,8 +75,8 @@ static void irc__sh_pack(const irc_cache *c, const void *rec, const float un[3],
     const irc_sh *in = (const irc_sh *)rec;
     unsigned char *dst = (unsigned char *)out;
     irc__rec *r = (irc__rec *)out;
-    float *cf = (float *)(void *)(dst + c->off_sh);
-    float *gf = c->off_shg ? (float *)(void *)(dst + c->off_shg) : NULL;
+    float *cf = (float *)(void *)(dst + c->off[IRC__P_SH]);
+    float *gf = c->off[IRC__P_SH_GRAD] ? (float *)(void *)(dst + c->off[IRC__P_SH_GRAD]) : NULL;
     uint32_t ch, i, k;
     IRC_MEMSET(dst, 0, c->rec_size);
     for (k = 0; k < 3; k++) {
@@ -99,8 +99,8 @@ static void irc__sh_unpack(const irc_cache *c, const void *rec, void *dst)
     const unsigned char *src = (const unsigned char *)rec;
     const irc__rec *r = (const irc__rec *)rec;
     irc_sh *out = (irc_sh *)dst;
-    const float *cf = (const float *)(const void *)(src + c->off_sh);
-    const float *gf = c->off_shg ? (const float *)(const void *)(src + c->off_shg) : NULL;
+    const float *cf = (const float *)(const void *)(src + c->off[IRC__P_SH]);
+    const float *gf = c->off[IRC__P_SH_GRAD] ? (const float *)(const void *)(src + c->off[IRC__P_SH_GRAD]) : NULL;
     uint32_t ch, i, k;
     IRC_MEMSET(out, 0, sizeof *out);
     for (k = 0; k < 3; k++) {
@@ -159,8 +159,8 @@ static void irc__sh_gather(const irc_cache *c, const irc__rec *r, const irc__que
 {
     irc__sh_acc *a = (irc__sh_acc *)acc;
     const unsigned char *b = (const unsigned char *)r;
-    const float *cf = (const float *)(const void *)(b + c->off_sh);
-    const float *gf = c->off_shg ? (const float *)(const void *)(b + c->off_shg) : NULL;
+    const float *cf = (const float *)(const void *)(b + c->off[IRC__P_SH]);
+    const float *gf = c->off[IRC__P_SH_GRAD] ? (const float *)(const void *)(b + c->off[IRC__P_SH_GRAD]) : NULL;
     float d[3];
     uint32_t ch, i, k;
     (void)ni;
@@ -252,10 +252,31 @@ static int irc__sh_find(irc_cache *c, const irc__query *q, void *out, float *wei
     return irc__lookup_once(c, &irc__kind_sh, q, out, weight, &acc);
 }
 
+/* An SH record's parts: the coefficients c[channel][i], then with
+ * SH_GRADIENT their gradients grad[channel][i][x, y, z], floats. */
+static uint32_t irc__sh_parts(const irc_config *cfg, irc__recpart *out)
+{
+    const uint32_t k = cfg->sh_bands * cfg->sh_bands * cfg->sh_channels;
+    irc__recpart p;
+    uint32_t n = 0;
+    p.w1 = p.w2 = 4;
+    p.sane = IRC__SANE_FINITE;
+    p.lead = 0;
+    p.id = IRC__P_SH;
+    p.bytes = k * (uint32_t)sizeof(float);
+    out[n++] = p;
+    if (cfg->features & IRC_FEATURE_SH_GRADIENT) {
+        p.id = IRC__P_SH_GRAD;
+        p.bytes = 3u * k * (uint32_t)sizeof(float);
+        out[n++] = p;
+    }
+    return n;
+}
+
 const irc__kind irc__kind_sh = {
     1, irc__sh_compute, irc__sh_check,
     irc__sh_pack, irc__sh_unpack, irc__sh_weigh, irc__sh_begin,
-    irc__sh_gather, irc__sh_end, irc__sh_answer, irc__sh_find};
+    irc__sh_gather, irc__sh_end, irc__sh_answer, irc__sh_find, irc__sh_parts};
 
 int irc_sh_compute(irc_cache *c, const float p[3], const float n[3], irc_sh *out, void *host)
 {

@@ -20,7 +20,8 @@
 typedef struct irc__layout {
     uint64_t lock, scratch, records, ix, nodes, ctr, used, gtab, total;
     uint64_t slot_bytes, slot_rec, lock_bytes;
-    uint32_t rec_size, off_t, off_r, off_a, off_g, off_sh, off_shg, node_cap, samples;
+    uint32_t rec_size, off[IRC__P_COUNT], n_parts, node_cap, samples;
+    irc__recpart parts[IRC__P_COUNT];
 } irc__layout;
 
 static uint64_t irc__up(uint64_t x)
@@ -41,35 +42,18 @@ static uint32_t irc__node_cap(uint32_t capacity)
     return 1u + 8u * (capacity / 32u + 8u);
 }
 
-/* Record bytes: the 32-byte head, then the kind's payload. */
+/* Record bytes: the 32-byte head, then the parts the kind lists, one
+ * after another. */
 static void irc__record_layout(const irc_config *cfg, irc__layout *l)
 {
+    uint32_t i;
+    IRC_MEMSET(l->off, 0, sizeof l->off);
+    IRC_MEMSET(l->parts, 0, sizeof l->parts);
     l->rec_size = (uint32_t)sizeof(irc__rec);
-    l->off_t = l->off_r = l->off_a = l->off_g = l->off_sh = l->off_shg = 0;
-    if (cfg->features & IRC_FEATURE_TRANSLATION) {
-        l->off_t = l->rec_size;
-        l->rec_size += (uint32_t)sizeof(irc__grad);
-    }
-    if (cfg->features & IRC_FEATURE_ROTATION) {
-        l->off_r = l->rec_size;
-        l->rec_size += (uint32_t)sizeof(irc__grad);
-    }
-    if (cfg->features & IRC_FEATURE_HESSIAN) {
-        l->off_a = l->rec_size;
-        l->rec_size += (uint32_t)sizeof(irc__aniso);
-    }
-    if (!(cfg->features & IRC_FEATURE_SH) && cfg->leak_guard) {
-        l->off_g = l->rec_size;
-        l->rec_size += (uint32_t)sizeof(uint64_t);
-    }
-    if (cfg->features & IRC_FEATURE_SH) {
-        uint32_t k = cfg->sh_bands * cfg->sh_bands * cfg->sh_channels;
-        l->off_sh = l->rec_size;
-        l->rec_size += k * (uint32_t)sizeof(float);
-        if (cfg->features & IRC_FEATURE_SH_GRADIENT) {
-            l->off_shg = l->rec_size;
-            l->rec_size += 3u * k * (uint32_t)sizeof(float);
-        }
+    l->n_parts = irc__kind_of(cfg->features)->parts(cfg, l->parts);
+    for (i = 0; i < l->n_parts; i++) {
+        l->off[l->parts[i].id] = l->rec_size;
+        l->rec_size += l->parts[i].bytes;
     }
 }
 
@@ -165,11 +149,7 @@ static void irc__attach_pointers(irc_cache *c, const irc_config *cfg, const irc_
     c->cfg.port = c->port = port;
     c->cfg.buffer = cfg->buffer;
     c->cfg.buffer_size = cfg->buffer_size;
-#ifdef IRC_NO_SH
-    c->kind = &irc__kind_irr; /* irc__find refuses an SH block */
-#else
-    c->kind = c->kind_id == IRC__KIND_SH ? &irc__kind_sh : &irc__kind_irr;
-#endif
+    c->kind = irc__kind_of(c->cfg.features); /* without SH, irc__find refuses an SH block */
     c->home = c;
 }
 
@@ -186,12 +166,9 @@ static void irc__port_name(const irc_port *port, char out[16])
 static void irc__set_parts(irc_cache *c, const irc__layout *l)
 {
     c->rec_size = l->rec_size;
-    c->off_t = l->off_t;
-    c->off_r = l->off_r;
-    c->off_a = l->off_a;
-    c->off_g = l->off_g;
-    c->off_sh = l->off_sh;
-    c->off_shg = l->off_shg;
+    IRC_MEMCPY(c->off, l->off, sizeof c->off);
+    IRC_MEMCPY(c->parts, l->parts, sizeof c->parts);
+    c->n_parts = l->n_parts;
     c->slot_samples = l->samples;
     c->node_cap = l->node_cap;
     c->lock_bytes = (size_t)l->lock_bytes;
@@ -233,7 +210,7 @@ int irc_init(const irc_config *cfg, uint32_t max_records, irc_cache **out)
     c->abi = IRC__ABI;
     c->capacity = max_records;
     c->cfg = r;
-    c->kind_id = (r.features & IRC_FEATURE_SH) ? IRC__KIND_SH : IRC__KIND_IRR;
+    c->kind_id = irc__kind_id_of(r.features);
     irc__attach_pointers(c, cfg, r.port);
     irc__set_parts(c, &l);
     c->strata = r.strata_theta * r.strata_phi;
@@ -285,11 +262,21 @@ static int irc__switch_back(uint32_t v, uint32_t *out)
     return v <= 1u;
 }
 
+static int irc__record_same(const irc_cache *a, const irc_cache *b)
+{
+    uint32_t i;
+    for (i = 0; i < IRC__P_COUNT; i++) {
+        const irc__recpart *p = &a->parts[i], *q = &b->parts[i];
+        if (a->off[i] != b->off[i] || p->id != q->id || p->w1 != q->w1 || p->w2 != q->w2 ||
+            p->sane != q->sane || p->lead != q->lead || p->bytes != q->bytes)
+            return 0;
+    }
+    return a->rec_size == b->rec_size && a->n_parts == b->n_parts;
+}
+
 static int irc__parts_same(const irc_cache *a, const irc_cache *b)
 {
-    return a->rec_size == b->rec_size && a->off_t == b->off_t && a->off_r == b->off_r &&
-           a->off_a == b->off_a && a->off_g == b->off_g && a->off_sh == b->off_sh &&
-           a->off_shg == b->off_shg && a->slot_samples == b->slot_samples &&
+    return irc__record_same(a, b) && a->slot_samples == b->slot_samples &&
            a->node_cap == b->node_cap && a->lock_bytes == b->lock_bytes &&
            a->slot_bytes == b->slot_bytes && a->slot_rec == b->slot_rec &&
            a->total_bytes == b->total_bytes && a->o_lock == b->o_lock &&
@@ -310,7 +297,7 @@ static int irc__header_sane(const irc_config *cfg, const irc_cache *h)
     irc__layout l;
     const int sh = (h->cfg.features & IRC_FEATURE_SH) != 0;
     if (h->capacity == 0 || h->capacity > IRC_MAX_RECORDS || h->lock_bytes > 4096u ||
-        h->lock_bytes % IRC__ALIGN || h->kind_id != (sh ? IRC__KIND_SH : IRC__KIND_IRR) ||
+        h->lock_bytes % IRC__ALIGN || h->kind_id != irc__kind_id_of(h->cfg.features) ||
         !irc__switch_back(h->cfg.clamp_neighbours, &in.clamp_neighbours) ||
         !irc__switch_back(h->cfg.leak_guard, &in.leak_guard) ||
         !irc__switch_back(h->cfg.check_visibility, &in.check_visibility))

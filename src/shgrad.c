@@ -179,7 +179,7 @@ static void irc__sh_add(const irc_cache *c, irc__shsum *a, const irc__sample *x,
                         const float w[3], const float *n, const float e[3])
 {
     const int nc = (int)c->sh_n, nch = (int)c->sh_ch, bands = (int)c->cfg.sh_bands;
-    const int grad = c->off_shg != 0;
+    const int grad = c->off[IRC__P_SH_GRAD] != 0;
     float y[IRC__NC], gy[IRC__NC][3], v[3 * IRC__NC], id;
     int ch, i, k;
     irc__sh_eval(bands, w, y, grad ? gy : NULL);
@@ -241,7 +241,7 @@ static void irc__sh_accumulate(const irc_cache *c, const irc__grid *g, const flo
                 a->used++;
                 for (q = 0; q < 3; q++)
                     w[q] = g->dir[3 * i + q];
-                if (c->off_shg) {
+                if (c->off[IRC__P_SH_GRAD]) {
                     irc__edge_vector(g, k, &cell, e);
                     for (q = 0; q < 3; q++)
                         e[q] *= idw;

@@ -71,18 +71,16 @@ static void irc__native_put(unsigned char *p, uint64_t v, unsigned width)
     }
 }
 
-/* The width of the packed record's field at byte `at`: 4-byte words
- * (floats, octahedral codes), but a gradient block's six int16 and four
- * int8, and the leak guard's uint64. */
+/* The width of the packed record's field at byte `at`: the head's 4-byte
+ * words (floats, the octahedral code), then each part's as its table says. */
 unsigned irc__field_width(const irc_cache *c, uint32_t at)
 {
-    uint32_t g;
-    if (c->off_g && at == c->off_g)
-        return 8;
-    for (g = 0; g < 2; g++) {
-        uint32_t o = g ? c->off_r : c->off_t;
-        if (o && at >= o && at < o + (uint32_t)sizeof(irc__grad))
-            return at - o < 12u ? 2u : 1u;
+    uint32_t i;
+    for (i = 0; i < c->n_parts; i++) {
+        const irc__recpart *p = &c->parts[i];
+        const uint32_t o = c->off[p->id];
+        if (at >= o && at < o + p->bytes)
+            return at - o < p->lead ? p->w1 : p->w2;
     }
     return 4;
 }
@@ -221,14 +219,6 @@ int irc_snapshot_write(irc_cache *c, uint64_t fingerprint, void *buffer, size_t 
     return st;
 }
 
-static float irc__le_float(const unsigned char *p)
-{
-    uint32_t u = (uint32_t)irc__le_get(p, 4);
-    float f;
-    IRC_MEMCPY(&f, &u, 4);
-    return f;
-}
-
 /* Whether a record, still in the snapshot's bytes, holds values a cache
  * could have made: its head decoded into 32 bytes, the rest read where it
  * lies (no record-sized buffer on the stack). */
@@ -237,20 +227,9 @@ static int irc__record_sane(const irc_cache *c, const unsigned char *le)
     union { irc__rec r; unsigned char b[sizeof(irc__rec)]; } h;
     const irc__rec *r = &h.r;
     const uint32_t got = irc__convert_part(c, le, h.b, 0, sizeof h.b, 0);
-    uint32_t i;
     IRC_ASSERT(got == sizeof h.b);
     (void)got;
-    if (!irc__rec_head_sane(c, r))
-        return 0;
-    if (c->off_a) {
-        const float q = irc__le_float(le + c->off_a + offsetof(irc__aniso, q));
-        if (!(q > 0.0f && q <= 1.0f))
-            return 0;
-    }
-    for (i = c->off_sh; c->off_sh && i < c->rec_size; i += 4)
-        if (!irc__finite(irc__le_float(le + i)))
-            return 0;
-    return 1;
+    return irc__rec_head_sane(c, r) && irc__parts_sane(c, le, 1);
 }
 
 /* Everything a read checks before it touches the cache; the record count

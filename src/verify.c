@@ -16,26 +16,44 @@ int irc__rec_head_sane(const irc_cache *c, const irc__rec *r)
            (r->n != IRC__FREE || c->kind_id == IRC__KIND_SH);
 }
 
+/* A float of a record as the block holds it, or as a snapshot does
+ * (little-endian bits). */
+static float irc__float_at(const unsigned char *b, int le)
+{
+    float f;
+    if (le) {
+        uint32_t u = (uint32_t)b[0] | (uint32_t)b[1] << 8 | (uint32_t)b[2] << 16 |
+                     (uint32_t)b[3] << 24;
+        IRC_MEMCPY(&f, &u, 4);
+    } else {
+        IRC_MEMCPY(&f, b, 4);
+    }
+    return f;
+}
+
+int irc__parts_sane(const irc_cache *c, const unsigned char *rec, int le)
+{
+    uint32_t i, at;
+    for (i = 0; i < c->n_parts; i++) {
+        const irc__recpart *p = &c->parts[i];
+        const unsigned char *b = rec + c->off[p->id];
+        if (p->sane == IRC__SANE_ELLIPSE) {
+            const float q = irc__float_at(b + 4, le);
+            if (!(q > 0.0f && q <= 1.0f))
+                return 0;
+        } else if (p->sane == IRC__SANE_FINITE) {
+            for (at = 0; at + 4 <= p->bytes; at += 4)
+                if (!irc__finite(irc__float_at(b + at, le)))
+                    return 0;
+        }
+    }
+    return 1;
+}
+
 int irc__rec_sane(const irc_cache *c, uint32_t id)
 {
     const irc__rec *r = irc__rec_at(c, id);
-    const unsigned char *b = (const unsigned char *)r;
-    uint32_t i;
-    if (!irc__rec_head_sane(c, r))
-        return 0;
-    if (c->off_a) {
-        irc__aniso a;
-        IRC_MEMCPY(&a, b + c->off_a, sizeof a);
-        if (!(a.q > 0.0f && a.q <= 1.0f))
-            return 0;
-    }
-    for (i = c->off_sh; c->off_sh && i + 4 <= c->rec_size; i += 4) {
-        float f;
-        IRC_MEMCPY(&f, b + i, 4);
-        if (!irc__finite(f))
-            return 0;
-    }
-    return 1;
+    return irc__rec_head_sane(c, r) && irc__parts_sane(c, (const unsigned char *)r, 0);
 }
 
 /* A node's own fields: its children a block of 8 inside the pool, its

@@ -74,12 +74,12 @@ int irc__weigh(const irc_cache *c, const irc__rec *r, const float p[3],
     if (0.5f * (dx * (n[0] + ni[0]) + dy * (n[1] + ni[1]) + dz * (n[2] + ni[2])) <
         -IRC__BEHIND_TOL * rad)
         return 0;
-    if (c->off_a) {
+    if (c->off[IRC__P_ELLIPSE]) {
         /* An ellipse (Schwarzhaupt et al. 2012): the distance along the
          * major axis u over R, the rest over the minor radius q R, so a
          * disk (q = 1) is the plain distance. */
         const irc__aniso *an = (const irc__aniso *)(const void *)((const unsigned char *)r +
-                                                                  c->off_a);
+                                                                  c->off[IRC__P_ELLIPSE]);
         if (an->q < 1.0f) {
             float u[3];
             float du;
@@ -91,7 +91,7 @@ int irc__weigh(const irc_cache *c, const irc__rec *r, const float p[3],
         }
     }
     e = IRC_SQRTF(d2) / rad;
-    if (c->off_g && irc__guarded(r, c->off_g, ni, dx, dy, dz, e / a))
+    if (c->off[IRC__P_GUARD] && irc__guarded(r, c->off[IRC__P_GUARD], ni, dx, dy, dz, e / a))
         return 0;
     {
         /* sqrt(1 - n.n_i) as |n - n_i|/sqrt(2), equal for unit normals: in
@@ -133,12 +133,12 @@ void irc__extrapolate(const irc_cache *c, const irc__rec *r, const float ni[3],
     int ch;
     for (ch = 0; ch < 3; ch++)
         out[ch] = r->e[ch];
-    if (!c->off_t && !c->off_r)
+    if (!c->off[IRC__P_GRAD_T] && !c->off[IRC__P_GRAD_R])
         return;
     nd[0] = ni[0]; nd[1] = ni[1]; nd[2] = ni[2];
     irc__frame(nd, t1, t2);
-    if (c->off_t) {
-        const irc__grad *g = (const irc__grad *)(const void *)(b + c->off_t);
+    if (c->off[IRC__P_GRAD_T]) {
+        const irc__grad *g = (const irc__grad *)(const void *)(b + c->off[IRC__P_GRAD_T]);
         float d[3], da, db;
         d[0] = (float)p[0] - r->p[0];
         d[1] = (float)p[1] - r->p[1];
@@ -148,8 +148,8 @@ void irc__extrapolate(const irc_cache *c, const irc__rec *r, const float ni[3],
         for (ch = 0; ch < 3; ch++)
             out[ch] += irc__grad_dot(g, ch, da, db);
     }
-    if (c->off_r) {
-        const irc__grad *g = (const irc__grad *)(const void *)(b + c->off_r);
+    if (c->off[IRC__P_GRAD_R]) {
+        const irc__grad *g = (const irc__grad *)(const void *)(b + c->off[IRC__P_GRAD_R]);
         float q[3], x[3], da, db;
         q[0] = n[0]; q[1] = n[1]; q[2] = n[2];
         irc__cross3(nd, q, x);
@@ -180,13 +180,13 @@ void irc__extrapolate_grad(const irc_cache *c, const irc__rec *r, const float ni
     for (ch = 0; ch < 3; ch++) {
         const int live = val[ch] > 0.0f;
         for (k = 0; k < 3; k++) {
-            v[k] = c->off_t && live ? irc__grad_dot((const irc__grad *)(const void *)(b + c->off_t),
+            v[k] = c->off[IRC__P_GRAD_T] && live ? irc__grad_dot((const irc__grad *)(const void *)(b + c->off[IRC__P_GRAD_T]),
                                                     ch, t1[k], t2[k])
                                     : 0.0f;
             g->dp[ch][k] += f * (v[k] - g->dp[ch][k]);
         }
         for (k = 0; k < 3; k++)
-            v[k] = c->off_r && live ? irc__grad_dot((const irc__grad *)(const void *)(b + c->off_r),
+            v[k] = c->off[IRC__P_GRAD_R] && live ? irc__grad_dot((const irc__grad *)(const void *)(b + c->off[IRC__P_GRAD_R]),
                                                     ch, t1[k], t2[k])
                                     : 0.0f;
         for (k = 0; k < 3; k++) /* (v x n_i)[k] */
