@@ -65,9 +65,17 @@ static int located(const char *err, char paths[3][128])
     return 0;
 }
 
+/* The loader's token separators (loader_int.h, LD_SEP). */
+static int sep(uint8_t c)
+{
+    return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
+}
+
 /* A file named on an "obj" or "mtllib" line outside the folder (a name
  * with '/' or starting with '.') could be /dev/stdin and wait forever:
- * such inputs are skipped. */
+ * such inputs are skipped.  A name starts after any of the loader's
+ * separators ("mtllib \f." named the folder itself, whose read error
+ * names no file of the three). */
 static int escapes(const uint8_t *p, size_t n)
 {
     size_t i = 0;
@@ -76,12 +84,12 @@ static int escapes(const uint8_t *p, size_t n)
         while (e < n && p[e] != '\n' && p[e] != 0)
             e++;
         k = i;
-        while (k < e && (p[k] == ' ' || p[k] == '\t'))
+        while (k < e && sep(p[k]))
             k++;
         if ((e - k > 4 && !memcmp(p + k, "obj", 3)) || (e - k > 7 && !memcmp(p + k, "mtllib", 6))) {
             size_t q;
             for (q = k; q < e; q++)
-                if (p[q] == '/' || (p[q] == '.' && (p[q - 1] == ' ' || p[q - 1] == '\t')))
+                if (p[q] == '/' || (p[q] == '.' && sep(p[q - 1])))
                     return 1;
         }
         i = e + 1;

@@ -64,6 +64,15 @@ enum {
 
 /* A validated query: the point, and the unit normal (zero for a free
  * point). */
+/* The CLOCK bits a lookup-or-compute set, so that a call that then fails
+ * clears them and leaves the block as it was (store.c).  Past IRC__MARKS
+ * new bits it sets no more: a use bit is a hint. */
+#define IRC__MARKS 8u
+typedef struct irc__marks {
+    uint32_t id[IRC__MARKS];
+    uint32_t n;
+} irc__marks;
+
 typedef struct irc__query {
     float p[3];
     float n[3];
@@ -71,6 +80,7 @@ typedef struct irc__query {
     const uint32_t *hidden; /* records the lookup leaves out (cfg.
                                check_visibility): n_hidden ids, ascending */
     uint32_t n_hidden;
+    irc__marks *marks;      /* NULL: a lookup that cannot fail after it reads */
 } irc__query;
 
 /* A lookup's running sums live in the frame of the kind's find (4 floats

@@ -79,7 +79,6 @@ int irc__find_in_sight(irc__call *k, void *out, float *weight)
 {
     irc_cache *c = k->c;
     uint32_t ids[IRC__SIGHT_CAP], hidden[IRC__SIGHT_CAP], found, i, batch;
-    uint32_t rays0 = k->rays;
     float pos[IRC__SIGHT_CAP][3];
     int st;
     k->q.hidden = NULL;
@@ -94,7 +93,6 @@ int irc__find_in_sight(irc__call *k, void *out, float *weight)
     for (i = 0; i < found && st >= 0; i += batch)
         st = irc__sight_batch(k, ids + i, pos + i, found - i < batch ? found - i : batch,
                               hidden);
-    irc__count(c, IRC__C_RAYS, k->rays - rays0);
     if (st < 0)
         return st;
     irc__sort_ids(hidden, k->q.n_hidden);

@@ -43,6 +43,7 @@ static int irc__query_make(const irc_cache *c, const float p[3], const float n[3
         q->p[k] = p[k];
     q->hidden = NULL;
     q->n_hidden = 0;
+    q->marks = NULL;
     return IRC_OK;
 }
 
@@ -255,14 +256,31 @@ int irc__insert(irc_cache *c, const irc__kind *want, const void *rec)
 }
 
 /* CLOCK's use bit: set by lookups, only when not yet set (no write when the
- * line is shared). */
-static void irc__mark_used(irc_cache *c, uint32_t id)
+ * line is shared); with marks, remembered, or left unset past their room. */
+static void irc__mark_used(irc_cache *c, irc__marks *m, uint32_t id)
 {
     uint64_t *used = irc__used(c);
     if (used) {
         uint64_t *word = &used[id >> 6], bit = 1ull << (id & 63u);
-        if (!(c->port->load(word) & bit))
-            c->port->fetch_or(word, bit);
+        if (c->port->load(word) & bit)
+            return;
+        if (m && m->n == IRC__MARKS)
+            return;
+        if (!(c->port->fetch_or(word, bit) & bit) && m)
+            m->id[m->n++] = id;
+    }
+}
+
+/* A failed lookup-or-compute takes back the use bits its lookups set. */
+static void irc__unmark_used(irc_cache *c, const irc__marks *m)
+{
+    uint64_t *used = irc__used(c);
+    uint32_t i;
+    for (i = 0; used && i < m->n; i++) {
+        uint64_t *word = &used[m->id[i] >> 6], bit = 1ull << (m->id[i] & 63u), w;
+        do
+            w = c->port->load(word);
+        while (!c->port->cas(word, w, w & ~bit));
     }
 }
 
@@ -305,7 +323,7 @@ static void irc__visit(void *ud, uint32_t id)
     v->w += w;
     if (v->acc) {
         v->ops->accumulate(c, r, v->q, w, ni, v->acc);
-        irc__mark_used(v->c, id);
+        irc__mark_used(v->c, v->q->marks, id);
     } else {
         if (v->found < v->cap) {
             v->ids[v->found] = id;
@@ -389,42 +407,74 @@ static int irc__keep(irc_cache *c, const void *rec, void *out, float *weight)
     return st == IRC_ERR_FULL ? IRC_NOT_STORED : IRC_OK;
 }
 
+/* A lookup-or-compute's lookup: what it read, and the rays it cast to
+ * confirm its records, counted only if the call succeeds. */
+static int irc__lookup_first(irc__call *k, void *out, float *weight, uint32_t *rays)
+{
+    int st = irc__find_in_sight(k, out, weight);
+    *rays += k->rays;
+    return st;
+}
+
+static int irc__miss(irc_cache *c, irc__call *k, void *out, float *weight, void *host,
+                     uint32_t *rays)
+{
+    uint32_t t;
+    void *rec;
+    int st, waited = 0;
+    if ((st = irc__slot_claim(c, &t, &waited)) < 0)
+        return st;
+    /* While this thread waited, another may have stored a record here. */
+    k->rays = 0;
+    if (waited && (st = irc__lookup_first(k, out, weight, rays)) != IRC_MISS) {
+        irc__slot_release(c, t);
+        return st < 0 ? st : irc__count_lookup(c, st);
+    }
+    /* The record is built in the slot's tail and kept before the slot is
+     * given back. */
+    rec = irc__slot_record(c, t);
+    if ((st = irc__run_in(c, k, t, host, c->kind->compute, rec)) >= 0) {
+        *rays += k->rays;
+        k->rays = 0;
+        if ((st = irc__keep(c, rec, out, weight)) >= 0)
+            irc__count_compute(c, k, 1, waited);
+    }
+    irc__slot_release(c, t);
+    return st;
+}
+
 int irc__lookup_or_compute(irc_cache *c, const irc__kind *want, float footprint,
                            const float p[3], const float n[3], void *out, float *weight,
                            void *host)
 {
     irc__call k;
-    uint32_t t;
-    void *rec;
-    int st, waited = 0;
+    irc__marks marks;
+    uint32_t rays = 0;
+    int st;
     if ((st = irc__open(c, want, out, p, n, &k.q)) < 0)
         return st;
     if (!irc__finite(footprint))
         return IRC_ERR_NONFINITE;
     if (footprint < 0.0f)
         return IRC_ERR_RANGE;
+    marks.n = 0;
+    k.q.marks = &marks;
     k.footprint = footprint;
     k.c = c;
     k.host = host;
     k.rays = 0;
     k.sight = 0;
-    if ((st = irc__find_in_sight(&k, out, weight)) != IRC_MISS)
-        return irc__count_lookup(c, st);
-    if ((st = irc__slot_claim(c, &t, &waited)) < 0)
-        return st;
-    /* While this thread waited, another may have stored a record here. */
-    if (waited && (st = irc__find_in_sight(&k, out, weight)) != IRC_MISS) {
-        irc__slot_release(c, t);
-        return irc__count_lookup(c, st);
-    }
-    /* The record is built in the slot's tail and kept before the slot is
-     * given back. */
-    rec = irc__slot_record(c, t);
-    if ((st = irc__run_in(c, &k, t, host, c->kind->compute, rec)) >= 0) {
-        irc__count_compute(c, &k, 1, waited);
-        st = irc__keep(c, rec, out, weight);
-    }
-    irc__slot_release(c, t);
+    st = irc__lookup_first(&k, out, weight, &rays);
+    if (st == IRC_MISS)
+        st = irc__miss(c, &k, out, weight, host, &rays);
+    else if (st >= 0)
+        st = irc__count_lookup(c, st);
+    /* Nothing of a failed call stays in the block: not its use bits, nor
+     * its rays in the counters. */
+    if (st < 0)
+        irc__unmark_used(c, &marks);
+    else
+        irc__count(c, IRC__C_RAYS, rays);
     return st;
 }
 

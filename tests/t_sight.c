@@ -2,6 +2,7 @@
  * behind a wall stops serving the far side; one in sight serves as
  * before, for exactly one more ray; the callback's results are checked. */
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "irrcache.h"
@@ -167,6 +168,63 @@ TEST(test_sight_callback)
         CHECK(irc_cache_stats(c, &st) == IRC_OK && st.records == 1 && st.computes == 0 &&
                   rgb[0] == 7.0f && w == 7.0f,
               "case %d: %llu records, out touched", i, (unsigned long long)st.records);
+        block_free(&cfg);
+    }
+}
+
+/* A lookup-or-compute that fails after its lookup has read records or
+ * cast confirming rays leaves the block byte for byte as it was: the rays
+ * are not counted, the records' CLOCK bits are not left set (found by
+ * fuzz_callback and fuzz_api; their inputs are in both corpora as
+ * crash-failed-call-changed-block).
+ *   0: a record behind the wall, one confirming ray, then a compute whose
+ *      second ray fails;
+ *   1: a record whose gradient extrapolates past FLT_MAX at the query:
+ *      the lookup reads it (CLOCK on) and fails with IRC_ERR_NONFINITE.
+ * Without the undoing, case 0 counted the ray and case 1 left the bit. */
+TEST(test_sight_failure_unchanged)
+{
+    static const float n[3] = {0, 0, 1};
+    sight_host h;
+    irc_config cfg;
+    irc_cache *c;
+    unsigned char *before;
+    float rgb[3], w;
+    int i, st;
+    for (i = 0; i < 2; i++) {
+        memset(&h, 0, sizeof h);
+        c = sight_cache(&h, &cfg, i == 0 ? IRC_ON : IRC_OFF, 4);
+        CHECK(c != NULL, "init");
+        if (!c) return;
+        irc_fini(c); /* again, with CLOCK's bits, gradients, no lock */
+        cfg.port = &irc_port_none;
+        cfg.evict = IRC_EVICT_CLOCK;
+        cfg.features = IRC_FEATURE_TRANSLATION;
+        free(cfg.buffer);
+        c = block_cache(&cfg, 16, 0);
+        CHECK(c != NULL, "init");
+        if (!c) return;
+        if (i == 0) {
+            CHECK(put(c, -1.0f) == IRC_OK, "insert");
+            h.s.fail_every = 2;
+            h.s.fail_kind = FAIL_BAD_STATUS;
+        } else {
+            irc_record r;
+            disk_record(&r, 3.3e38f, 20.0f); /* the gradient packs to E/R */
+            r.p[0] = -1.0f;
+            r.grad_t[0][0] = r.grad_t[1][0] = r.grad_t[2][0] = 2e38f;
+            CHECK(irc_cache_insert(c, &r) == IRC_OK, "insert");
+        }
+        h.q[0] = 1.0f;
+        before = malloc(cfg.buffer_size);
+        CHECK(before != NULL, "malloc");
+        if (!before) return;
+        memcpy(before, cfg.buffer, cfg.buffer_size);
+        st = irc_cache_lookup_or_compute(c, h.q, n, rgb, &w, &h);
+        CHECK(st == (i == 0 ? IRC_ERR_CALLBACK : IRC_ERR_NONFINITE), "case %d: status %d", i, st);
+        CHECK(memcmp(before, cfg.buffer, cfg.buffer_size) == 0,
+              "case %d: the failed call changed the block", i);
+        free(before);
         block_free(&cfg);
     }
 }
