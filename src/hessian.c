@@ -107,12 +107,6 @@ static int irc__escaped_at(const irc__mesh *g, int64_t j, int64_t k)
     return !(g->s[j * g->n + k].d < HUGE_VALF);
 }
 
-static float irc__hess_facing(const irc__mesh *g, uint32_t i)
-{
-    const float *w = g->dirs + 3 * i, *nn = g->nrm + 3 * i;
-    return IRC_FABSF((float)w[0] * nn[0] + (float)w[1] * nn[1] + (float)w[2] * nn[2]);
-}
-
 /* A hit beside an escaped stratum lies inside a silhouette, nearer than
  * the silhouette itself when the blocker is curved: its depth is
  * extrapolated linearly in |n.w| to 0 from its inner neighbour (a smooth
@@ -134,8 +128,8 @@ static float irc__hess_silhouette(const irc__mesh *g, uint32_t j, uint32_t k, fl
             dout = g->s[o].d;
             if (!(dout < HUGE_VALF) || dout != dout)
                 return d;
-            fi = irc__hess_facing(g, i);
-            fo = irc__hess_facing(g, o);
+            fi = irc__facing(g->dirs, g->nrm, i);
+            fo = irc__facing(g->dirs, g->nrm, o);
             if (!(fo * fo >= 1.25f * fi * fi))
                 return d;
             d += fi * (d - dout) / (fo - fi);

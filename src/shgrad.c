@@ -26,13 +26,6 @@ static int irc__hit(const irc__sample *x)
     return x->d == x->d && x->d < HUGE_VALF;
 }
 
-/* |n.w| at sample i: 1 facing the ray, 0 grazing (a silhouette). */
-static float irc__shg_facing(const irc__grid *g, uint32_t i)
-{
-    const float *w = g->dir + 3 * i, *n = g->nrm + 3 * i;
-    return IRC_FABSF((float)w[0] * n[0] + (float)w[1] * n[1] + (float)w[2] * n[2]);
-}
-
 /* Whether neighbouring samples a and b lie on one continuous surface:
  * both hits, normals alike and facing the same way, and a depth change no
  * larger than a surface seen at that slant makes over the angle between
@@ -69,8 +62,8 @@ static float irc__silhouette_depth(const irc__grid *g, uint32_t i, int64_t o)
     float d = g->s[i].d, fi, fo, ds;
     if (o < 0 || !irc__continuous(g, i, (uint32_t)o))
         return d;
-    fi = irc__shg_facing(g, i);
-    fo = irc__shg_facing(g, (uint32_t)o);
+    fi = irc__facing(g->dir, g->nrm, i);
+    fo = irc__facing(g->dir, g->nrm, (uint32_t)o);
     if (!(fo * fo >= 1.25f * fi * fi) || !(g->s[o].d < d))
         return d;
     ds = d + fi * (d - g->s[o].d) / (fo - fi);
