@@ -271,10 +271,13 @@ int irc__check_normal(const float n[3], float unit[3]);
 int irc__config_resolve(const irc_config *in, irc_config *out);
 int irc__port_ok(const irc_port *p);
 
-/* store.c: the ids (and positions, pos not NULL) of up to cap records a
- * lookup at q would use; *found gets how many there are in all. */
-int irc__collect(irc_cache *c, const irc__query *q, uint32_t *ids, float (*pos)[3],
-                 uint32_t cap, uint32_t *found);
+/* store.c: the ids of up to cap records a lookup at q would use; *found
+ * gets how many there are in all. */
+int irc__collect(irc_cache *c, const irc__query *q, uint32_t *ids, uint32_t cap,
+                 uint32_t *found);
+/* store.c: the positions of records ids[0 .. n - 1], read as a lookup
+ * reads (under the read lock, or in a pass without). */
+int irc__positions(irc_cache *c, const uint32_t *ids, uint32_t n, float (*pos)[3]);
 /* slots.c: claim a scratch slot (waiting unless cfg.no_wait; IRC_OK or
  * IRC_ERR_BUSY; *waited set when it waited), and give it back zeroed. */
 int irc__slot_claim(irc_cache *c, uint32_t *t, int *waited);

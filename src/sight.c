@@ -31,17 +31,19 @@ static void irc__sort_ids(uint32_t *ids, uint32_t n)
     }
 }
 
-/* Casts rays from k->q.p toward pos[0 .. n-1] and appends the ids of the
- * hidden ones to hidden (k->q.n_hidden counts them).  Only status and
- * dist of the hits are read. */
-static int irc__sight_batch(irc__call *k, const uint32_t *ids, float (*pos)[3], uint32_t n,
-                            uint32_t *hidden)
+/* Casts rays from k->q.p toward the records ids[first .. first + n - 1]
+ * and moves the ids of the hidden ones to the front of ids, in place (k->
+ * q.n_hidden counts them; none is written past the one being read).  Only
+ * status and dist of the hits are read. */
+static int irc__sight_batch(irc__call *k, uint32_t *ids, uint32_t first, uint32_t n)
 {
     irc_ray rays[IRC__SIGHT_BATCH];
     irc_hit hits[IRC__SIGHT_BATCH];
-    float len[IRC__SIGHT_BATCH];
+    float len[IRC__SIGHT_BATCH], pos[IRC__SIGHT_BATCH][3];
     uint32_t i, m = 0, at[IRC__SIGHT_BATCH];
     int j, st;
+    if ((st = irc__positions(k->c, ids + first, n, pos)) < 0)
+        return st;
     for (i = 0; i < n; i++) {
         float d[3], l;
         for (j = 0; j < 3; j++)
@@ -54,7 +56,7 @@ static int irc__sight_batch(irc__call *k, const uint32_t *ids, float (*pos)[3], 
             rays[m].dir[j] = d[j] / l;
         }
         len[m] = l;
-        at[m++] = i;
+        at[m++] = first + i;
     }
     if (m == 0)
         return IRC_OK;
@@ -70,7 +72,7 @@ static int irc__sight_batch(irc__call *k, const uint32_t *ids, float (*pos)[3], 
         if (h->status < IRC_RAY_HIT || h->status > IRC_RAY_FAILED)
             return IRC_ERR_CALLBACK;
         if (h->status == IRC_RAY_HIT && h->dist < IRC__SIGHT_SHORT * len[i])
-            hidden[k->q.n_hidden++] = ids[at[i]];
+            ids[k->q.n_hidden++] = ids[at[i]];
     }
     return IRC_OK;
 }
@@ -78,25 +80,23 @@ static int irc__sight_batch(irc__call *k, const uint32_t *ids, float (*pos)[3], 
 int irc__find_in_sight(irc__call *k, void *out, float *weight)
 {
     irc_cache *c = k->c;
-    uint32_t ids[IRC__SIGHT_CAP], hidden[IRC__SIGHT_CAP], found, i, batch;
-    float pos[IRC__SIGHT_CAP][3];
+    uint32_t ids[IRC__SIGHT_CAP], found, i, batch;
     int st;
     k->q.hidden = NULL;
     k->q.n_hidden = 0;
     if (!c->cfg.check_visibility || k->q.free)
         return c->kind->find(c, &k->q, out, weight);
-    if ((st = irc__collect(c, &k->q, ids, pos, IRC__SIGHT_CAP, &found)) < 0)
+    if ((st = irc__collect(c, &k->q, ids, IRC__SIGHT_CAP, &found)) < 0)
         return st;
     if (found > IRC__SIGHT_CAP)
         found = IRC__SIGHT_CAP;
     batch = c->cfg.max_batch < IRC__SIGHT_BATCH ? c->cfg.max_batch : IRC__SIGHT_BATCH;
     for (i = 0; i < found && st >= 0; i += batch)
-        st = irc__sight_batch(k, ids + i, pos + i, found - i < batch ? found - i : batch,
-                              hidden);
+        st = irc__sight_batch(k, ids, i, found - i < batch ? found - i : batch);
     if (st < 0)
         return st;
-    irc__sort_ids(hidden, k->q.n_hidden);
-    k->q.hidden = hidden;
+    irc__sort_ids(ids, k->q.n_hidden);
+    k->q.hidden = ids;
     st = c->kind->find(c, &k->q, out, weight);
     k->q.hidden = NULL;
     k->q.n_hidden = 0;

@@ -294,7 +294,6 @@ typedef struct irc__walk {
     void *acc;
     float w;
     uint32_t *ids, cap, found;
-    float (*pos)[3];         /* with ids: the records' positions */
 } irc__walk;
 
 static int irc__is_hidden(const irc__query *q, uint32_t id)
@@ -325,11 +324,8 @@ static void irc__visit(void *ud, uint32_t id)
         v->ops->accumulate(c, r, v->q, w, ni, v->acc);
         irc__mark_used(v->c, v->q->marks, id);
     } else {
-        if (v->found < v->cap) {
+        if (v->found < v->cap)
             v->ids[v->found] = id;
-            if (v->pos)
-                IRC_MEMCPY(v->pos[v->found], r->p, sizeof r->p);
-        }
         v->found++;
     }
 }
@@ -496,8 +492,8 @@ int irc__record_get(irc_cache *c, const irc__kind *want, uint32_t id, void *out)
     return st;
 }
 
-int irc__collect(irc_cache *c, const irc__query *q, uint32_t *ids, float (*pos)[3],
-                 uint32_t cap, uint32_t *found)
+int irc__collect(irc_cache *c, const irc__query *q, uint32_t *ids, uint32_t cap,
+                 uint32_t *found)
 {
     irc__walk v;
     int st;
@@ -507,10 +503,22 @@ int irc__collect(irc_cache *c, const irc__query *q, uint32_t *ids, float (*pos)[
     v.q = q;
     v.ids = ids;
     v.cap = cap;
-    v.pos = pos;
     if ((st = irc__walk_index(c, &v)) < 0)
         return st;
     *found = v.found;
+    return IRC_OK;
+}
+
+int irc__positions(irc_cache *c, const uint32_t *ids, uint32_t n, float (*pos)[3])
+{
+    int lock = !c->home->pass_open;
+    uint32_t i;
+    if (lock && irc__read_lock(c) < 0)
+        return IRC_ERR_PORT;
+    for (i = 0; i < n; i++)
+        IRC_MEMCPY(pos[i], irc__rec_at(c, ids[i])->p, sizeof pos[i]);
+    if (lock)
+        irc__read_unlock(c);
     return IRC_OK;
 }
 
@@ -523,7 +531,7 @@ int irc_cache_neighbours(irc_cache *c, const float p[3], const float n[3],
         return st;
     if (!count || (!ids && cap))
         return IRC_ERR_NULL;
-    return irc__collect(c, &q, ids, NULL, cap, count);
+    return irc__collect(c, &q, ids, cap, count);
 }
 
 int irc__write_lock_idle(irc_cache *c)
