@@ -18,7 +18,7 @@
 
 /* What a block must agree on to be re-attached (irc_attach): the layout's
  * version, pointer and size_t widths, byte order. */
-#define IRC__LAYOUT_VERSION 12u
+#define IRC__LAYOUT_VERSION 13u
 #define IRC__ABI                                                           \
     (IRC__LAYOUT_VERSION | (uint32_t)sizeof(void *) << 8 |                 \
      (uint32_t)sizeof(size_t) << 16 | (uint32_t)sizeof(double) << 24)
@@ -117,6 +117,17 @@ typedef struct irc__recpart {
     uint32_t lead, bytes;
 } irc__recpart;
 
+/* A scratch slot's working area, part by part in this order: the samples
+ * (at 0), one batch of rays and of hits; with translational or rotational
+ * gradients the inverse hit distances and five rows of boundary weights
+ * (gradient.c); with VISIBILITY, HESSIAN or SH each sample's direction and
+ * hit normal; with VISIBILITY the strata's edges and their crossings; with
+ * HESSIAN a depth per sample.  layout.c places them (a part a config does
+ * not use takes no room) and the block keeps each one's byte offset,
+ * irc_cache.soff[IRC__S_*] (estimator.h reads them). */
+enum { IRC__S_RAYS, IRC__S_INV, IRC__S_DIRS, IRC__S_NORMALS, IRC__S_EDGES, IRC__S_CROSS,
+       IRC__S_DEPTHS, IRC__S_COUNT };
+
 /* A record kind: what the store needs to check, pack, weigh and
  * accumulate one kind of record (kind_irr.c, kind_sh.c).  The public
  * structs differ (irc_record, irc_sh); the store sees them as void. */
@@ -183,6 +194,7 @@ struct irc_cache {
     size_t lock_bytes;       /* room reserved for the port's lock */
     size_t slot_bytes;       /* scratch bytes per thread slot */
     size_t slot_rec;         /* where in a slot its record lies */
+    size_t soff[IRC__S_COUNT];/* the slot's parts (IRC__S_*) */
     size_t total_bytes;      /* bytes of the block in use from the cache on */
     /* Offsets from the address of home. */
     size_t o_lock, o_scratch, o_records, o_ix, o_nodes, o_ctr,

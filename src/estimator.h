@@ -42,17 +42,6 @@ typedef struct irc__cross {
     int ok;                /* a silhouette (not a continuous surface) */
 } irc__cross;
 
-/* A thread's scratch slot: the samples (slot_samples of them), one batch of
- * rays and hits; with translational or rotational gradients an inverse hit
- * distance per stratum and five rows of boundary weights (gradient.c);
- * with IRC_FEATURE_VISIBILITY or SH each sample's direction and hit normal;
- * with VISIBILITY per stratum two edge indices and room for two crossings
- * (plus a spoke and a crossing per column). */
-static inline irc_ray *irc__slot_rays(const irc_cache *c, unsigned char *slot)
-{
-    return (irc_ray *)(void *)(slot + (size_t)c->slot_samples * sizeof(irc__sample));
-}
-
 /* The gradients' rows of per-column values are padded to a multiple of 4
  * plus 4, so that their loops run in blocks of four (which compilers turn
  * into vector operations) and column N can stand for column 0. */
@@ -76,43 +65,41 @@ static inline uint64_t irc__gscratch_floats(uint32_t strata, uint32_t nphi)
     return (uint64_t)strata + 5u * irc__pad4(nphi);
 }
 
+/* A slot's parts (cache.h, IRC__S_*), where layout.c placed them; s is
+ * the start of the slot's working area, where its samples lie. */
+static inline unsigned char *irc__slot_part(const irc_cache *c, const void *s, int part)
+{
+    return (unsigned char *)(uintptr_t)s + c->soff[part];
+}
+static inline irc_ray *irc__slot_rays(const irc_cache *c, unsigned char *slot)
+{
+    return (irc_ray *)(void *)irc__slot_part(c, slot, IRC__S_RAYS);
+}
 static inline float *irc__slot_inv(const irc_cache *c, const irc__sample *s)
 {
-    return (float *)(void *)((unsigned char *)(void *)(irc__sample *)s +
-                             (size_t)c->slot_samples * sizeof(irc__sample) +
-                             (size_t)c->cfg.max_batch * (sizeof(irc_ray) + sizeof(irc_hit)));
+    return (float *)(void *)irc__slot_part(c, s, IRC__S_INV);
 }
-
 static inline float *irc__slot_dirs(const irc_cache *c, const irc__sample *s)
 {
-    return irc__slot_inv(c, s) + (irc__has_gscratch(c->cfg.features)
-                                      ? irc__gscratch_floats(c->strata, c->cfg.strata_phi)
-                                      : 0u);
+    return (float *)(void *)irc__slot_part(c, s, IRC__S_DIRS);
 }
-
 static inline float *irc__slot_normals(const irc_cache *c, const irc__sample *s)
 {
-    return irc__slot_dirs(c, s) + 3u * c->slot_samples;
+    return (float *)(void *)irc__slot_part(c, s, IRC__S_NORMALS);
 }
-
-static inline int32_t *irc__slot_edges(const irc_cache *c, const irc__sample *s)
-{
-    return (int32_t *)(void *)(irc__slot_normals(c, s) + 3u * c->slot_samples);
-}
-
 /* Edges: H and V per stratum, then one zenith spoke per column; then the
  * crossings, one per edge at most. */
+static inline int32_t *irc__slot_edges(const irc_cache *c, const irc__sample *s)
+{
+    return (int32_t *)(void *)irc__slot_part(c, s, IRC__S_EDGES);
+}
 static inline irc__cross *irc__slot_cross(const irc_cache *c, const irc__sample *s)
 {
-    return (irc__cross *)(void *)(irc__slot_edges(c, s) + 2u * c->strata + c->cfg.strata_phi);
+    return (irc__cross *)(void *)irc__slot_part(c, s, IRC__S_CROSS);
 }
-
-/* With HESSIAN, a depth per stratum after everything else. */
 static inline float *irc__slot_depths(const irc_cache *c, const irc__sample *s)
 {
-    if (c->cfg.features & IRC_FEATURE_VISIBILITY)
-        return (float *)(void *)(irc__slot_cross(c, s) + 2u * c->strata + c->cfg.strata_phi);
-    return irc__slot_normals(c, s) + 3u * c->slot_samples;
+    return (float *)(void *)irc__slot_part(c, s, IRC__S_DEPTHS);
 }
 
 /* The sector (of 16, 22.5 degrees each, counter-clockwise from x) holding

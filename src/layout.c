@@ -20,6 +20,7 @@
 typedef struct irc__layout {
     uint64_t lock, scratch, records, ix, nodes, ctr, used, gtab, total;
     uint64_t slot_bytes, slot_rec, lock_bytes;
+    uint64_t soff[IRC__S_COUNT];
     uint32_t rec_size, off[IRC__P_COUNT], n_parts, node_cap, samples;
     irc__recpart parts[IRC__P_COUNT];
 } irc__layout;
@@ -57,30 +58,35 @@ static void irc__record_layout(const irc_config *cfg, irc__layout *l)
     }
 }
 
-/* A scratch slot (cache.h, irc__slot_rays and on). */
+/* A scratch slot's working area, its parts one after another (cache.h,
+ * IRC__S_*); returns its bytes. */
 static uint64_t irc__slot_layout(const irc_config *cfg, irc__layout *l)
 {
-    uint64_t geom = 0;
-    l->samples = cfg->strata_theta * cfg->strata_phi;
-    if (cfg->features & IRC_FEATURE_SH) {
-        l->samples *= 2u;
-        geom = (uint64_t)l->samples * 6u * sizeof(float);
-    }
+    const uint64_t strata = (uint64_t)cfg->strata_theta * cfg->strata_phi;
+    const int vis = (cfg->features & IRC_FEATURE_VISIBILITY) != 0;
+    uint64_t at, geom = (cfg->features & (IRC_FEATURE_VISIBILITY | IRC_FEATURE_SH |
+                                           IRC_FEATURE_HESSIAN)) != 0;
+    l->samples = (uint32_t)strata * (cfg->features & IRC_FEATURE_SH ? 2u : 1u);
+    at = (uint64_t)l->samples * sizeof(irc__sample);
+    l->soff[IRC__S_RAYS] = at;
+    at += (uint64_t)cfg->max_batch * (sizeof(irc_ray) + sizeof(irc_hit));
+    l->soff[IRC__S_INV] = at;
+    if (irc__has_gscratch(cfg->features))
+        at += irc__gscratch_floats((uint32_t)strata, cfg->strata_phi) * sizeof(float);
+    l->soff[IRC__S_DIRS] = at;
+    at += geom * l->samples * 3u * sizeof(float);
+    l->soff[IRC__S_NORMALS] = at;
+    at += geom * l->samples * 3u * sizeof(float);
+    l->soff[IRC__S_EDGES] = at;
+    if (vis)
+        at += (2u * strata + cfg->strata_phi) * sizeof(int32_t);
+    l->soff[IRC__S_CROSS] = at;
+    if (vis)
+        at += (2u * strata + cfg->strata_phi) * sizeof(irc__cross);
+    l->soff[IRC__S_DEPTHS] = at;
     if (cfg->features & IRC_FEATURE_HESSIAN)
-        geom = (uint64_t)l->samples * 6u * sizeof(float);
-    if (cfg->features & IRC_FEATURE_VISIBILITY)
-        geom = (uint64_t)l->samples * (6u * sizeof(float) + 2u * sizeof(int32_t) +
-                                       2u * sizeof(irc__cross)) +
-               (uint64_t)cfg->strata_phi * (sizeof(int32_t) + sizeof(irc__cross));
-    if (cfg->features & IRC_FEATURE_HESSIAN) /* irc__slot_depths */
-        geom += (uint64_t)l->samples * sizeof(float);
-    return irc__up((uint64_t)l->samples * sizeof(irc__sample) +
-                   (uint64_t)cfg->max_batch * (sizeof(irc_ray) + sizeof(irc_hit)) +
-                   (irc__has_gscratch(cfg->features)
-                        ? irc__gscratch_floats(cfg->strata_theta * cfg->strata_phi,
-                                               cfg->strata_phi) * sizeof(float)
-                        : 0u) +
-                   geom);
+        at += (uint64_t)l->samples * sizeof(float);
+    return irc__up(at);
 }
 
 /* In 64-bit arithmetic, so that a 32-bit size_t is checked, not wrapped. */
@@ -165,6 +171,7 @@ static void irc__port_name(const irc_port *port, char out[16])
 
 static void irc__set_parts(irc_cache *c, const irc__layout *l)
 {
+    int i;
     c->rec_size = l->rec_size;
     IRC_MEMCPY(c->off, l->off, sizeof c->off);
     IRC_MEMCPY(c->parts, l->parts, sizeof c->parts);
@@ -174,6 +181,8 @@ static void irc__set_parts(irc_cache *c, const irc__layout *l)
     c->lock_bytes = (size_t)l->lock_bytes;
     c->slot_bytes = (size_t)l->slot_bytes;
     c->slot_rec = (size_t)l->slot_rec;
+    for (i = 0; i < IRC__S_COUNT; i++)
+        c->soff[i] = (size_t)l->soff[i];
     c->total_bytes = (size_t)l->total;
     c->o_lock = (size_t)l->lock;
     c->o_scratch = (size_t)l->scratch;
@@ -262,9 +271,12 @@ static int irc__switch_back(uint32_t v, uint32_t *out)
     return v <= 1u;
 }
 
-static int irc__record_same(const irc_cache *a, const irc_cache *b)
+static int irc__tables_same(const irc_cache *a, const irc_cache *b)
 {
     uint32_t i;
+    for (i = 0; i < IRC__S_COUNT; i++)
+        if (a->soff[i] != b->soff[i])
+            return 0;
     for (i = 0; i < IRC__P_COUNT; i++) {
         const irc__recpart *p = &a->parts[i], *q = &b->parts[i];
         if (a->off[i] != b->off[i] || p->id != q->id || p->w1 != q->w1 || p->w2 != q->w2 ||
@@ -276,7 +288,7 @@ static int irc__record_same(const irc_cache *a, const irc_cache *b)
 
 static int irc__parts_same(const irc_cache *a, const irc_cache *b)
 {
-    return irc__record_same(a, b) && a->slot_samples == b->slot_samples &&
+    return irc__tables_same(a, b) && a->slot_samples == b->slot_samples &&
            a->node_cap == b->node_cap && a->lock_bytes == b->lock_bytes &&
            a->slot_bytes == b->slot_bytes && a->slot_rec == b->slot_rec &&
            a->total_bytes == b->total_bytes && a->o_lock == b->o_lock &&
