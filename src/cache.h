@@ -322,8 +322,8 @@ void irc__repair_locked(irc_cache *c);
  * query's sight when cfg.check_visibility asks (k->c, k->host set). */
 int irc__find_in_sight(irc__call *k, void *out, float *weight);
 
-/* store.c: the handle, scratch slots, insert and eviction, the lookup
- * driver, counters; every public call goes through it. */
+/* store.c: the handle, insert and eviction, the lookup driver; every
+ * public call goes through it. */
 int irc__enter(const irc_cache *c, const irc__kind *want);
 int irc__compute(irc_cache *c, const irc__kind *want, const float p[3], const float n[3],
                  void *out, void *host, int (*fn)(irc__call *k, void *out), int record);
@@ -349,6 +349,7 @@ int irc__lookup(irc_cache *c, const irc__kind *want, const irc__kind *ops, const
 int irc__lookup_or_compute(irc_cache *c, const irc__kind *want, float footprint, const float p[3],
                            const float n[3], void *out, float *weight, void *host);
 int irc__record_get(irc_cache *c, const irc__kind *want, uint32_t id, void *out);
+/* stats.c: adds v to counter which (IRC__C_*) in the caller's stripe. */
 void irc__count(irc_cache *c, int which, uint64_t v);
 
 #endif

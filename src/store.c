@@ -2,7 +2,7 @@
  * store.c -- the one record store behind every public call: the handle
  * check, scratch slots, insert with CLOCK eviction, the lookup driver
  * (index query, weighting, accumulation through the record kind's table),
- * lookup-or-compute, and the counters.  Lookups hold the port's read lock
+ * lookup-or-compute.  Lookups hold the port's read lock
  * (none in a fill pass); anything that changes records or the index holds
  * its write lock; the host's callback runs with no lock held.  Counters
  * are updated only once a call has succeeded, so a call that fails leaves
@@ -56,30 +56,6 @@ static int irc__open(const irc_cache *c, const irc__kind *want, const void *out,
     if (st < 0)
         return st;
     return out ? irc__query_make(c, p, n, q) : IRC_ERR_NULL;
-}
-
-/* The calling thread's stripe: its stack's address above 64 KiB
- * granules, hashed (threads' stacks lie megabytes apart; one thread's
- * calls stay within one granule or two). */
-static uint32_t irc__my_stripe(void)
-{
-    unsigned char here;
-    uint64_t a = (uint64_t)(uintptr_t)&here >> 16;
-    return (uint32_t)((a * 0x9e3779b97f4a7c15ull) >> 61) % IRC__STRIPES;
-}
-
-void irc__count(irc_cache *c, int which, uint64_t v)
-{
-    c->port->fetch_add(&irc__stripe(c, irc__my_stripe())[which], v);
-}
-
-static uint64_t irc__counter(const irc_cache *c, int which)
-{
-    uint64_t sum = 0;
-    uint32_t s;
-    for (s = 0; s < IRC__STRIPES; s++)
-        sum += c->port->load(&irc__stripe(c, s)[which]);
-    return sum;
 }
 
 /* Runs fn with slot t, which stays claimed. */
@@ -570,38 +546,5 @@ int irc_cache_clear(irc_cache *c)
         return st;
     irc__clear_locked(c);
     irc__write_unlock(c);
-    return IRC_OK;
-}
-
-int irc_cache_stats(irc_cache *c, irc_stats *out)
-{
-    int st = irc__enter(c, NULL);
-    if (st < 0)
-        return st;
-    if (!out)
-        return IRC_ERR_NULL;
-    if (irc__read_lock(c) < 0)
-        return IRC_ERR_PORT;
-    IRC_MEMSET(out, 0, sizeof *out);
-    out->records = c->home->count;
-    out->index_nodes = c->home->nodes_used;
-    irc__read_unlock(c);
-    out->capacity = c->capacity;
-    out->inserts = irc__counter(c, IRC__C_INSERTS);
-    out->evictions = irc__counter(c, IRC__C_EVICTIONS);
-    out->lookups = irc__counter(c, IRC__C_LOOKUPS);
-    out->hits = irc__counter(c, IRC__C_HITS);
-    out->computes = irc__counter(c, IRC__C_COMPUTES);
-    out->not_stored = irc__counter(c, IRC__C_NOT_STORED);
-    out->waits = irc__counter(c, IRC__C_WAITS);
-    out->rays = irc__counter(c, IRC__C_RAYS);
-    out->index_nodes_max = c->node_cap;
-    out->record_bytes = c->rec_size;
-    out->bytes_records = (size_t)c->capacity * c->rec_size;
-    out->bytes_index = (size_t)c->capacity * sizeof(irc__ixe) +
-                       (size_t)c->node_cap * sizeof(irc__node) +
-                       (c->o_used ? ((size_t)c->capacity + 63u) / 64u * 8u : 0u);
-    out->bytes_scratch = (size_t)c->cfg.threads * c->slot_bytes;
-    out->bytes_total = c->total_bytes;
     return IRC_OK;
 }
