@@ -150,6 +150,10 @@ typedef struct irc__kind {
     /* The parts a record of this resolved config carries, in order;
      * returns how many (<= IRC__P_COUNT). */
     uint32_t (*parts)(const irc_config *cfg, irc__recpart *out);
+    /* The kind's own config fields, defaults applied and checked, and its
+     * defaults for the irc_switch fields left at IRC_DEFAULT (config.c
+     * resolves the rest); IRC_OK or IRC_ERR_CONFIG. */
+    int (*resolve)(irc_config *cfg);
 } irc__kind;
 
 /* The block stores which kind it holds by number (a pointer to the table

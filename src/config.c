@@ -7,8 +7,6 @@
 #define IRC__DEF_ACCURACY 0.2f
 #define IRC__DEF_THETA 16u
 #define IRC__DEF_PHI 64u
-#define IRC__DEF_BANDS 3u
-#define IRC__DEF_POWER 2.0f
 /* A record's reach a R in pixels at its point, from the _px call's
  * footprint (pbrt-v2's minimum and maximum pixel spacings). */
 #define IRC__DEF_MIN_PIXELS 2.5f
@@ -57,8 +55,8 @@ uint32_t irc__kind_id_of(uint32_t features)
     return irc__kind_of(features) == &irc__kind_irr ? IRC__KIND_IRR : IRC__KIND_SH;
 }
 
-/* Which kind of record, and its fields: SH excludes the irradiance
- * gradients, and sh_* fields mean nothing without it. */
+/* Which kind of record: SH excludes the irradiance gradients.  The kind
+ * resolves its own fields (irc__kind.resolve). */
 static int irc__features_resolve(irc_config *out)
 {
     const uint32_t irr = IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION |
@@ -81,17 +79,6 @@ static int irc__features_resolve(irc_config *out)
         out->features |= IRC_FEATURE_SH;
     if ((out->features & sh) && (out->features & irr))
         return IRC_ERR_CONFIG;
-    if (out->features & IRC_FEATURE_SH) {
-        if (out->sh_bands == 0) out->sh_bands = IRC__DEF_BANDS;
-        if (out->sh_channels == 0) out->sh_channels = 3u;
-        if (out->sh_power == 0.0f) out->sh_power = IRC__DEF_POWER;
-        if (out->sh_bands > IRC_SH_MAX_BANDS ||
-            (out->sh_channels != 1u && out->sh_channels != 3u) ||
-            !(out->sh_power > 0.0f && out->sh_power <= 16.0f))
-            return IRC_ERR_CONFIG;
-    } else if (out->sh_bands || out->sh_channels || out->sh_power != 0.0f) {
-        return IRC_ERR_CONFIG;
-    }
     return IRC_OK;
 }
 
@@ -141,20 +128,19 @@ static int irc__sampling_resolve(irc_config *out)
     return IRC_OK;
 }
 
-/* The irc_switch fields, resolved to 0 (off) or 1 (on): neighbour
- * clamping paid for irradiance records on the real scenes and was never
- * measured for SH ones; the leak guard paid only between rooms. */
+/* The irc_switch fields, resolved to 0 (off) or 1 (on), after the kind
+ * has set its defaults for those left at IRC_DEFAULT (the leak guard paid
+ * only between rooms: off for every kind). */
 static int irc__switches_resolve(irc_config *out)
 {
+    int st;
     if (out->clamp_neighbours > IRC_OFF || out->leak_guard > IRC_OFF ||
         out->check_visibility > IRC_OFF)
         return IRC_ERR_CONFIG;
-    if (out->clamp_neighbours == IRC_DEFAULT)
-        out->clamp_neighbours = (out->features & IRC_FEATURE_SH) ? IRC_OFF : IRC_ON;
+    if ((st = irc__kind_of(out->features)->resolve(out)) < 0)
+        return st;
     out->clamp_neighbours = out->clamp_neighbours == IRC_ON;
     out->leak_guard = out->leak_guard == IRC_ON;
-    if (out->check_visibility == IRC_DEFAULT)
-        out->check_visibility = (out->features & IRC_FEATURE_SH) ? IRC_OFF : IRC_ON;
     out->check_visibility = out->check_visibility == IRC_ON;
     return IRC_OK;
 }

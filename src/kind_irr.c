@@ -337,13 +337,26 @@ static uint32_t irc__irr_parts(const irc_config *cfg, irc__recpart *out)
     return n;
 }
 
+/* Neighbour clamping and confirming rays paid for irradiance records on
+ * the real scenes: on unless asked off.  The SH fields mean nothing here. */
+static int irc__irr_resolve(irc_config *cfg)
+{
+    if (cfg->sh_bands || cfg->sh_channels || cfg->sh_power != 0.0f)
+        return IRC_ERR_CONFIG;
+    if (cfg->clamp_neighbours == IRC_DEFAULT)
+        cfg->clamp_neighbours = IRC_ON;
+    if (cfg->check_visibility == IRC_DEFAULT)
+        cfg->check_visibility = IRC_ON;
+    return IRC_OK;
+}
+
 static int irc__irrg_find(irc_cache *c, const irc__query *q, void *out, float *weight);
 
 /* Only the lookup uses it: compute, pack and the rest are the kind's. */
 static const irc__kind irc__kind_irr_grad = {
     0, irc__irr_make, irc__irr_check,
     irc__irr_pack, irc__irr_unpack, irc__irr_weigh, irc__irrg_begin,
-    irc__irrg_accumulate, irc__irrg_finish, irc__irr_answer, irc__irrg_find, irc__irr_parts};
+    irc__irrg_accumulate, irc__irrg_finish, irc__irr_answer, irc__irrg_find, irc__irr_parts, irc__irr_resolve};
 
 static int irc__irrg_find(irc_cache *c, const irc__query *q, void *out, float *weight)
 {
@@ -355,7 +368,7 @@ static int irc__irrg_find(irc_cache *c, const irc__query *q, void *out, float *w
 const irc__kind irc__kind_irr = {
     0, irc__irr_make, irc__irr_check,
     irc__irr_pack, irc__irr_unpack, irc__irr_weigh, irc__irr_begin,
-    irc__irr_accumulate, irc__irr_finish, irc__irr_answer, irc__irr_find, irc__irr_parts};
+    irc__irr_accumulate, irc__irr_finish, irc__irr_answer, irc__irr_find, irc__irr_parts, irc__irr_resolve};
 
 int irc_record_compute(irc_cache *c, const float p[3], const float n[3], irc_record *out,
                        void *host)

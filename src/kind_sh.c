@@ -273,10 +273,28 @@ static uint32_t irc__sh_parts(const irc_config *cfg, irc__recpart *out)
     return n;
 }
 
+/* The SH fields' defaults: L = 3, RGB, the glossy lobe's power 2.  Neither
+ * neighbour clamping nor confirming rays was measured for SH records: off
+ * unless asked on. */
+static int irc__sh_resolve(irc_config *cfg)
+{
+    if (cfg->sh_bands == 0) cfg->sh_bands = 3u;
+    if (cfg->sh_channels == 0) cfg->sh_channels = 3u;
+    if (cfg->sh_power == 0.0f) cfg->sh_power = 2.0f;
+    if (cfg->sh_bands > IRC_SH_MAX_BANDS || (cfg->sh_channels != 1u && cfg->sh_channels != 3u) ||
+        !(cfg->sh_power > 0.0f && cfg->sh_power <= 16.0f))
+        return IRC_ERR_CONFIG;
+    if (cfg->clamp_neighbours == IRC_DEFAULT)
+        cfg->clamp_neighbours = IRC_OFF;
+    if (cfg->check_visibility == IRC_DEFAULT)
+        cfg->check_visibility = IRC_OFF;
+    return IRC_OK;
+}
+
 const irc__kind irc__kind_sh = {
     1, irc__sh_compute, irc__sh_check,
     irc__sh_pack, irc__sh_unpack, irc__sh_weigh, irc__sh_begin,
-    irc__sh_gather, irc__sh_end, irc__sh_answer, irc__sh_find, irc__sh_parts};
+    irc__sh_gather, irc__sh_end, irc__sh_answer, irc__sh_find, irc__sh_parts, irc__sh_resolve};
 
 int irc_sh_compute(irc_cache *c, const float p[3], const float n[3], irc_sh *out, void *host)
 {
