@@ -44,6 +44,8 @@ typedef struct posix_lock {
     uint64_t readers[POSIX_READERS];
 } posix_lock;
 
+/* An owner is a process id; kill(pid, 0) tells whether it still runs
+ * (EPERM: it does, as another user's). */
 static uint64_t posix_owner(void) { return (uint64_t)getpid(); }
 static int posix_owner_alive(uint64_t tok)
 {
