@@ -216,8 +216,8 @@ struct irc_cache {
     double root_c[3];        /* the root cube: centre exact in double */
     double root_h;           /* half its edge, a power of two */
     /* Atomic. */
-    uint64_t pending;        /* records deferred by the open pass (some may
-                                not have found a slot) */
+    uint64_t pending;        /* slots the open pass has reserved (never past
+                                its room) */
     uint64_t packed;         /* of those, records whole in their slots */
     uint64_t torn;           /* slots being written (repair.c): two ids + 1,
                                 low and high word, 0 = none */

@@ -342,7 +342,8 @@ static int irc__header_sane(const irc_config *cfg, const irc_cache *h)
         return 0;
     return h->count <= h->capacity && h->nodes_used >= 1u && h->nodes_used <= h->node_cap &&
            h->hand < h->capacity && h->depth <= IRC__LEVELS && h->root_set <= 1u &&
-           h->pass_open <= 1u && h->pass_base <= h->capacity && h->packed <= h->capacity &&
+           h->pass_open <= 1u && h->pass_base <= h->capacity && h->pending <= h->capacity - h->pass_base &&
+           h->packed <= h->pending &&
            (uint32_t)h->torn <= h->capacity && (uint32_t)(h->torn >> 32) <= h->capacity &&
            h->writing <= 1u &&
            irc__finite_d(h->root_c[0]) && irc__finite_d(h->root_c[1]) &&

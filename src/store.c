@@ -179,9 +179,17 @@ static void irc__pack_at(irc_cache *c, const void *rec, const float un[3], uint3
  * see): without a free slot the record is not stored. */
 static int irc__defer(irc_cache *c, const void *rec, const float un[3])
 {
-    uint64_t k = c->port->fetch_add(&c->home->pending, 1);
-    if (k >= (uint64_t)(c->capacity - c->home->pass_base))
-        return IRC_ERR_FULL;
+    const uint64_t room = (uint64_t)(c->capacity - c->home->pass_base);
+    uint64_t k = c->port->load(&c->home->pending);
+    /* Reserved only when there is room: a refused record leaves the
+     * block as it was. */
+    for (;;) {
+        if (k >= room)
+            return IRC_ERR_FULL;
+        if (c->port->cas(&c->home->pending, k, k + 1))
+            break;
+        k = c->port->load(&c->home->pending);
+    }
     irc__pack_at(c, rec, un, c->home->pass_base + (uint32_t)k);
     c->port->fetch_add(&c->home->packed, 1);
     return IRC_OK;

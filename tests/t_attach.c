@@ -104,10 +104,10 @@ TEST(test_attach_bit_flips)
 }
 
 /* A block copied while a pass is open in which more records were made
- * than there was room for (the pass counts every attempt): a valid block,
- * which attach refused (found by fuzz_api; its input is in the corpus as
- * crash-pass-pending-over-capacity).  The copy attaches, and its pass
- * ends with the records that found room. */
+ * than there was room for: a valid block, which attach refused when the
+ * pass still counted every attempt past its room (found by fuzz_api; its
+ * input is in the corpus as crash-pass-pending-over-capacity).  The copy
+ * attaches, and its pass ends with the records that found room. */
 TEST(test_attach_open_pass_overfull)
 {
     tscene s;

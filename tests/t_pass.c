@@ -188,6 +188,22 @@ TEST(test_pass_full)
         not_stored += r == IRC_NOT_STORED;
     }
     CHECK(ok == 7 && not_stored == 3, "%d stored, %d not", ok, not_stored);
+    {
+        /* An insert that finds no room in the pass fails and changes
+         * nothing (it counted its attempt in the block: fuzz_api, corpus
+         * crash-pass-insert-full). */
+        irc_record r;
+        unsigned char *copy = malloc(cfg.buffer_size);
+        disk_record(&r, 1.0f, 1.0f);
+        CHECK(copy != NULL, "malloc");
+        if (copy) {
+            memcpy(copy, cfg.buffer, cfg.buffer_size);
+            CHECK(irc_cache_insert(c, &r) == IRC_ERR_FULL &&
+                      memcmp(copy, cfg.buffer, cfg.buffer_size) == 0,
+                  "a full pass's insert changed the block");
+            free(copy);
+        }
+    }
     CHECK(irc_pass_end(c, &added) == IRC_OK && added == 7, "added %u", (unsigned)added);
     CHECK(irc_cache_stats(c, &st) == IRC_OK && st.records == 12 && st.evictions == 0 &&
               st.not_stored == 3,
