@@ -56,7 +56,7 @@ static void irc__grad_unpack(const irc__grad *in, const float t1[3], const float
  * radius.  Returns 0, or -1 when the axis has no tangent direction. */
 static int irc__ellipse(const irc_record *r, const float un[3], float *q, float axis[3])
 {
-    float len;
+    float len, m = 0.0f;
     int k;
     *q = 1.0f;
     axis[0] = axis[1] = axis[2] = 0.0f;
@@ -65,13 +65,23 @@ static int irc__ellipse(const irc_record *r, const float un[3], float *q, float 
     *q = (float)r->minor_radius / r->radius;
     if (*q < 1.0f / IRC_ANISOTROPY)
         *q = 1.0f / IRC_ANISOTROPY;
-    for (k = 0; k < 3; k++)
+    for (k = 0; k < 3; k++) {
         axis[k] = r->axis[k];
+        if (IRC_FABSF(axis[k]) > m)
+            m = IRC_FABSF(axis[k]);
+    }
+    /* An axis whose squared length would overflow or underflow float is
+     * scaled to a largest component of 1 first; any other is left as it
+     * is, so its record is the same bits as before. */
+    if (m > 1e18f || (m < 1e-18f && m > 0.0f))
+        for (k = 0; k < 3; k++)
+            axis[k] /= m;
+    m = IRC_FABSF(axis[0]) + IRC_FABSF(axis[1]) + IRC_FABSF(axis[2]);
     len = irc__dot3(axis, un);
     for (k = 0; k < 3; k++)
         axis[k] -= len * un[k];
     len = IRC_SQRTF(irc__dot3(axis, axis));
-    if (!(len > 1e-6f * (IRC_FABSF(r->axis[0]) + IRC_FABSF(r->axis[1]) + IRC_FABSF(r->axis[2]))))
+    if (!(len > 1e-6f * m))
         return -1;
     for (k = 0; k < 3; k++)
         axis[k] /= len;

@@ -360,6 +360,39 @@ TEST(test_ellipse_records)
     block_free(&cfg);
 }
 
+/* An axis of any finite length is a direction: near FLT_MAX its squared
+ * length overflowed, and the packed axis came from 0/0 (a UBSan report in
+ * the octahedral code; fuzz_api, corpus crash-ellipse-huge-axis); near
+ * FLT_MIN it underflowed and the record was refused. */
+TEST(test_ellipse_axis_range)
+{
+    /* in the plane: x, x, y (the fuzzer's: its square overflowed) */
+    static const float axes[3][3] = {{3e38f, 0.0f, 3e38f}, {1e-38f, 0.0f, 1e-38f},
+                                     {2.0f, 1.18e38f, 0.0f}};
+    static const float want[3][2] = {{1.0f, 0.0f}, {1.0f, 0.0f}, {0.0f, 1.0f}};
+    tscene s;
+    irc_config cfg;
+    irc_cache *c;
+    irc_record r, back;
+    int k;
+    c = hand_cache(&s, &cfg, IRC_FEATURE_TRANSLATION | IRC_FEATURE_HESSIAN, &r, 1.0f, 1.0f);
+    CHECK(c != NULL, "init");
+    if (!c) return;
+    r.minor_radius = 0.25f;
+    for (k = 0; k < 3; k++) {
+        int got;
+        r.p[0] = 3.0f * (float)k;
+        memcpy(r.axis, axes[k], sizeof r.axis);
+        got = irc_cache_insert(c, &r);
+        memset(&back, 0, sizeof back);
+        CHECK(got == IRC_OK && irc_cache_record(c, (uint32_t)k, &back) == IRC_OK &&
+                  fabs(back.axis[0] - want[k][0]) < 1e-3f && fabs(back.axis[1] - want[k][1]) < 1e-3f,
+              "axis %g %g %g: status %d, read back %g %g %g", axes[k][0], axes[k][1], axes[k][2],
+              got, back.axis[0], back.axis[1], back.axis[2]);
+    }
+    block_free(&cfg);
+}
+
 /* The leak guard by hand: irc__sector against atan2 away from sector
  * edges; a record (R 1, a 0.5: reach 0.5, n = z so t1 = x) whose sectors
  * 15, 0 and 1 (-22.5 to 45 degrees) say geometry at 5/15 of the reach
