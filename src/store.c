@@ -365,10 +365,17 @@ int irc__lookup(irc_cache *c, const irc__kind *want, const irc__kind *ops, const
                 const float n[3], void *out, float *weight)
 {
     irc__query q;
+    irc__marks marks;
     int st = irc__open(c, want, out, p, n, &q);
     if (st < 0)
         return st;
-    return irc__count_lookup(c, ops->find(c, &q, out, weight));
+    marks.n = 0;
+    q.marks = &marks;
+    /* A lookup that read records and then failed (its answer past float)
+     * takes its use bits back. */
+    if ((st = ops->find(c, &q, out, weight)) < 0)
+        irc__unmark_used(c, &marks);
+    return irc__count_lookup(c, st);
 }
 
 /* The end of a miss: the computed record offered to the pool.  A full

@@ -180,7 +180,9 @@ TEST(test_sight_callback)
  *   0: a record behind the wall, one confirming ray, then a compute whose
  *      second ray fails;
  *   1: a record whose gradient extrapolates past FLT_MAX at the query:
- *      the lookup reads it (CLOCK on) and fails with IRC_ERR_NONFINITE.
+ *      the lookup reads it (CLOCK on) and fails with IRC_ERR_NONFINITE;
+ *      so does a plain lookup there (fuzz_api on an SH cache, corpus
+ *      crash-failed-lookup-use-bits).
  * Without the undoing, case 0 counted the ray and case 1 left the bit. */
 TEST(test_sight_failure_unchanged)
 {
@@ -224,6 +226,11 @@ TEST(test_sight_failure_unchanged)
         CHECK(st == (i == 0 ? IRC_ERR_CALLBACK : IRC_ERR_NONFINITE), "case %d: status %d", i, st);
         CHECK(memcmp(before, cfg.buffer, cfg.buffer_size) == 0,
               "case %d: the failed call changed the block", i);
+        if (i == 1) { /* the plain lookup reads and fails the same way */
+            st = irc_cache_lookup(c, h.q, n, rgb, &w);
+            CHECK(st == IRC_ERR_NONFINITE && memcmp(before, cfg.buffer, cfg.buffer_size) == 0,
+                  "a failed plain lookup changed the block (status %d)", st);
+        }
         free(before);
         block_free(&cfg);
     }
