@@ -34,7 +34,7 @@ static void irc__le_put(unsigned char *dst, uint64_t v, unsigned width)
         dst[i] = (unsigned char)(v >> (8 * i));
 }
 
-static uint64_t irc__le_get(const unsigned char *src, unsigned width)
+uint64_t irc__le_get(const unsigned char *src, unsigned width)
 {
     uint64_t v = 0;
     unsigned i;

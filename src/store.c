@@ -415,17 +415,15 @@ static int irc__miss(irc_cache *c, irc__call *k, void *out, float *weight, void 
     k->rays = 0;
     if (waited && (st = irc__lookup_first(k, out, weight, rays)) != IRC_MISS) {
         irc__slot_release(c, t);
-        return st < 0 ? st : irc__count_lookup(c, st);
+        return irc__count_lookup(c, st);
     }
     /* The record is built in the slot's tail and kept before the slot is
-     * given back. */
+     * given back; its rays are counted with it, the lookups' by the
+     * caller. */
     rec = irc__slot_record(c, t);
-    if ((st = irc__run_in(c, k, t, host, c->kind->compute, rec)) >= 0) {
-        *rays += k->rays;
-        k->rays = 0;
-        if ((st = irc__keep(c, rec, out, weight)) >= 0)
-            irc__count_compute(c, k, 1, waited);
-    }
+    if ((st = irc__run_in(c, k, t, host, c->kind->compute, rec)) >= 0 &&
+        (st = irc__keep(c, rec, out, weight)) >= 0)
+        irc__count_compute(c, k, 1, waited);
     irc__slot_release(c, t);
     return st;
 }
@@ -452,10 +450,7 @@ int irc__lookup_or_compute(irc_cache *c, const irc__kind *want, float footprint,
     k.rays = 0;
     k.sight = 0;
     st = irc__lookup_first(&k, out, weight, &rays);
-    if (st == IRC_MISS)
-        st = irc__miss(c, &k, out, weight, host, &rays);
-    else if (st >= 0)
-        st = irc__count_lookup(c, st);
+    st = st == IRC_MISS ? irc__miss(c, &k, out, weight, host, &rays) : irc__count_lookup(c, st);
     /* Nothing of a failed call stays in the block: not its use bits, nor
      * its rays in the counters. */
     if (st < 0)

@@ -8,6 +8,7 @@
  */
 #include "cache.h"
 #include "index.h"
+#include "snapshot.h"
 
 int irc__rec_head_sane(const irc_cache *c, const irc__rec *r)
 {
@@ -20,14 +21,9 @@ int irc__rec_head_sane(const irc_cache *c, const irc__rec *r)
  * (little-endian bits). */
 static float irc__float_at(const unsigned char *b, int le)
 {
+    const uint32_t u = (uint32_t)(le ? irc__le_get(b, 4) : irc__native_get(b, 4));
     float f;
-    if (le) {
-        uint32_t u = (uint32_t)b[0] | (uint32_t)b[1] << 8 | (uint32_t)b[2] << 16 |
-                     (uint32_t)b[3] << 24;
-        IRC_MEMCPY(&f, &u, 4);
-    } else {
-        IRC_MEMCPY(&f, b, 4);
-    }
+    IRC_MEMCPY(&f, &u, 4);
     return f;
 }
 
