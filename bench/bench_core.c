@@ -70,7 +70,7 @@ static double record_cost(uint32_t features, uint32_t m, uint32_t n, double seco
     irc_footprint(&cfg, 16, &bytes);
     cfg.buffer = malloc(bytes);
     cfg.buffer_size = bytes;
-    cfg.sh_bands = (features & IRC_FEATURE_SH) ? 3u : 0u;
+    cfg.sh.bands = (features & IRC_FEATURE_SH) ? 3u : 0u;
     irc_init(&cfg, 16, &c);
     t0 = bench_now();
     do {

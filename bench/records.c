@@ -65,7 +65,7 @@ int main(int argc, char **argv)
     cfg.strata_theta = argc == 5 ? (uint32_t)atol(argv[3]) : 16u;
     cfg.strata_phi = argc == 5 ? (uint32_t)atol(argv[4]) : 64u;
     cfg.max_batch = 256;
-    cfg.sh_bands = (cfg.features & IRC_FEATURE_SH) ? 3u : 0u;
+    cfg.sh.bands = (cfg.features & IRC_FEATURE_SH) ? 3u : 0u;
     if (irc_footprint(&cfg, 16, &bytes) != IRC_OK)
         return 1;
     cfg.buffer = malloc(bytes);

@@ -26,11 +26,11 @@ typedef struct render_opts {
     uint32_t sh_bands;    /* cache with SH: L (0: the library's default) */
     float accuracy;       /* cache: a */
     uint32_t strata_m, strata_n;
-    uint32_t supersamples; /* cache: irc_config.supersamples */
+    uint32_t supersamples; /* cache: irc_config.irr.supersamples */
     uint32_t max_records;
     float min_radius, max_radius; /* max < 0: 0.1 x the diagonal of what
                                      the camera sees; 0: the library's */
-    int leak_guard;       /* cache: irc_config.leak_guard (an irc_switch) */
+    int leak_guard;       /* cache: irc_config.irr.leak_guard (an irc_switch) */
     float min_pixels, max_pixels; /* cache: irc_config's screen-space bounds
                                      on records made for camera rays */
     int clamp_neighbours; /* cache: irc_config.clamp_neighbours (an irc_switch) */

@@ -228,7 +228,7 @@ static int cost(const scene *s)
                     cfg.features = g ? IRC_FEATURE_SH_GRADIENT : IRC_FEATURE_SH;
                     cfg.strata_theta = strata[i][0];
                     cfg.strata_phi = strata[i][1];
-                    cfg.sh_bands = bands[j];
+                    cfg.sh.bands = bands[j];
                     irc_footprint(&cfg, 4, &bytes);
                     block = malloc(bytes);
                     cfg.buffer = block;

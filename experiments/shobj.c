@@ -88,12 +88,12 @@ irc_cache *sh_env_cache(sh_env *e, uint32_t features, uint32_t m, uint32_t n, vo
     cfg.features = features;
     cfg.strata_theta = m;
     cfg.strata_phi = n;
-    cfg.sh_bands = SHOBJ_BANDS;
+    cfg.sh.bands = SHOBJ_BANDS;
     cfg.accuracy = 10.0f;
     cfg.min_radius = e->min_radius;
     cfg.max_radius = 11.0f;
     cfg.seed = e->seed;
-    cfg.sh_power = e->power;
+    cfg.sh.power = e->power;
     if (irc_footprint(&cfg, 64, &bytes) < 0 || !(*block = malloc(bytes)))
         return NULL;
     cfg.buffer = *block;

@@ -84,7 +84,7 @@ static void read_config(fuzz_in *in, irc_config *cfg, host *h, uint32_t *cap)
     k = fz_u8(in);
     cfg->min_pixels = k & 1 ? fz_float(in) : 0.0f;
     cfg->max_pixels = k & 2 ? fz_float(in) : 0.0f;
-    cfg->leak_guard = (uint32_t)(k >> 2) % 4u;
+    cfg->irr.leak_guard = (uint32_t)(k >> 2) % 4u;
     cfg->clamp_neighbours = (uint32_t)(k >> 4) & 3u;
     cfg->strata_theta = (s & 31) == 31 ? 256u : strata[s & 15][0];
     cfg->strata_phi = (s & 31) == 31 ? 256u : strata[s & 15][1];
@@ -102,9 +102,9 @@ static void read_config(fuzz_in *in, irc_config *cfg, host *h, uint32_t *cap)
     h->fail_every = fz_u8(in) % 5;
     h->calls = 0;
     if (cfg->features & (IRC_FEATURE_SH | IRC_FEATURE_SH_GRADIENT)) {
-        cfg->sh_bands = fz_u8(in) % 7u;
-        cfg->sh_channels = fz_u8(in) % 4u;
-        cfg->sh_power = fz_u8(in) & 1 ? fz_float(in) : 0.0f;
+        cfg->sh.bands = fz_u8(in) % 7u;
+        cfg->sh.channels = fz_u8(in) % 4u;
+        cfg->sh.power = fz_u8(in) & 1 ? fz_float(in) : 0.0f;
     }
 }
 

@@ -36,8 +36,8 @@ static void config(uint8_t pick, irc_config *cfg)
     cfg->strata_theta = 2;
     cfg->strata_phi = 8;
     if (cfg->features & IRC_FEATURE_SH) {
-        cfg->sh_bands = 2;
-        cfg->sh_channels = 1;
+        cfg->sh.bands = 2;
+        cfg->sh.channels = 1;
     }
 }
 

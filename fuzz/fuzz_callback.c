@@ -119,7 +119,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     cfg.strata_theta = strata[(s >> 3) & 7][0];
     cfg.strata_phi = strata[(s >> 3) & 7][1];
     cfg.max_batch = 1 + fz_u8(&in) % 64;
-    cfg.sh_bands = (cfg.features & 8) ? 1 + fz_u8(&in) % 5 : 0;
+    cfg.sh.bands = (cfg.features & 8) ? 1 + fz_u8(&in) % 5 : 0;
     cfg.port = &irc_port_none;
     cfg.seed = fz_u8(&in);
     read_host(&in, &h);

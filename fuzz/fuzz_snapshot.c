@@ -50,12 +50,12 @@ static void config(uint8_t pick, irc_config *cfg)
     cfg->trace = no_trace;
     cfg->port = &irc_port_none;
     cfg->features = feats[pick & 3];
-    cfg->leak_guard = (pick & 3) != 0 ? IRC_ON : IRC_OFF;
+    cfg->irr.leak_guard = (pick & 3) != 0 ? IRC_ON : IRC_OFF;
     cfg->strata_theta = 4;
     cfg->strata_phi = 8;
     if (cfg->features & IRC_FEATURE_SH) {
-        cfg->sh_bands = 2;
-        cfg->sh_channels = 1;
+        cfg->sh.bands = 2;
+        cfg->sh.channels = 1;
     }
 }
 

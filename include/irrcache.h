@@ -428,20 +428,6 @@ typedef struct irc_config {
     uint32_t strata_theta;   /* M rows in theta, 1..1024 (default 16) */
     uint32_t strata_phi;     /* N columns in phi, 1..4096 (default 64);
                                 M * N <= IRC_MAX_STRATA */
-    uint32_t supersamples;   /* irradiance records: after the M x N rays,
-                                this many more, one a stratum, into the
-                                strata around which the radiance changes
-                                most (the spread of the four neighbours'
-                                samples: Radiance's ambient super-samples,
-                                -as); such a stratum's radiance is then the
-                                mean of its two samples and its distance
-                                the nearer, and the gradients read those.
-                                Unbiased: a stratum's own sample never
-                                chooses it.  0..M N (default 0: none; on
-                                the Sponza atrium 12 x 40 strata + 32 cut
-                                the error 0.0510 -> 0.0478 for 6% more
-                                rays); not with VISIBILITY (its
-                                silhouettes are the first rays') */
     uint32_t threads;        /* scratch slots: how many record computations
                                 may run at once, 1..64 (default 1).  Each
                                 costs irc_stats.bytes_scratch / threads.  A
@@ -464,12 +450,6 @@ typedef struct irc_config {
                                 Sponza atrium it cut the worst pixel 4x and
                                 the pixels that leak 3x for 1.5x the
                                 records), off for SH records */
-    uint32_t leak_guard;     /* an irc_switch: irradiance records keep a
-                                leak guard (irc_record.leak_guard, 8 bytes)
-                                against light through thin walls between
-                                spaces lit differently.  Default off: on
-                                the Sponza atrium it made 1.6x the records
-                                for the same error */
     uint32_t check_visibility; /* an irc_switch: confirming rays (V-Ray's
                                 "check sample visibility").  The
                                 lookup_or_compute calls cast one ray from
@@ -487,13 +467,39 @@ typedef struct irc_config {
                                 -> 2.8x brute force; atrium 4.7x -> 5.3x;
                                 the Cornell box, where nothing hides,
                                 6.1x -> 5.1x), off for SH records */
-    uint32_t sh_bands;       /* SH records: L, bands 0..L-1, L*L coefficients
-                                per channel; 1..IRC_SH_MAX_BANDS (default 3) */
-    uint32_t sh_channels;    /* SH records: 3 (RGB, default) or 1 (the hit's
+    /* Fields of one record kind: a kind's own, zero for its defaults,
+     * and all zero in a config of the other kind (else IRC_ERR_CONFIG). */
+    struct irc_config_irr {  /* irradiance records */
+        uint32_t supersamples; /* after the M x N rays, this many more, one a
+                                stratum, into the strata around which the
+                                radiance changes most (the spread of the
+                                four neighbours' samples: Radiance's
+                                ambient super-samples, -as); such a
+                                stratum's radiance is then the mean of its
+                                two samples and its distance the nearer,
+                                and the gradients read those.  Unbiased: a
+                                stratum's own sample never chooses it.
+                                0..M N (default 0: none; on the Sponza
+                                atrium 12 x 40 strata + 32 cut the error
+                                0.0510 -> 0.0478 for 6% more rays); not
+                                with VISIBILITY (its silhouettes are the
+                                first rays') */
+        uint32_t leak_guard; /* an irc_switch: records keep a leak guard
+                                (irc_record.leak_guard, 8 bytes) against
+                                light through thin walls between spaces
+                                lit differently.  Default off: on the
+                                Sponza atrium it made 1.6x the records for
+                                the same error */
+    } irr;
+    struct irc_config_sh {   /* SH records (IRC_FEATURE_SH) */
+        uint32_t bands;      /* L, bands 0..L-1, L*L coefficients per
+                                channel; 1..IRC_SH_MAX_BANDS (default 3) */
+        uint32_t channels;   /* 3 (RGB, default) or 1 (the hit's
                                 radiance[0] only) */
-    float sh_power;          /* SH records at free points: the exponent b of
-                                the weight (R_j/|p - p_j|)^b; (0, 16]
+        float power;         /* at free points: the exponent b of the
+                                weight (R_j/|p - p_j|)^b; (0, 16]
                                 (default 2) */
+    } sh;
     uint64_t seed;           /* mixed into every record's random numbers */
     const irc_port *port;    /* locks and atomics (default irc_port_default) */
     void *buffer;            /* the caller's block, any alignment; the library
@@ -704,7 +710,7 @@ typedef struct irc_record {
                             centres, exceeds 1 (a straight wall's inverse
                             distance is a cosine; v = 15 counts as 1/30).
                             Set by compute; a host's record may carry 0
-                            (no guard).  Stored when cfg.leak_guard is IRC_ON
+                            (no guard).  Stored when cfg.irr.leak_guard is IRC_ON
                             (8 bytes) */
     uint32_t features;   /* which gradients are valid */
     uint32_t rays;       /* rays cast, and how many were usable: */
@@ -990,7 +996,7 @@ IRC_API int irc_pass_end(irc_cache *cache, uint32_t *added);
  *     hemispheres, twice the rays), as at an object's centre; lookups with
  *     n NULL see free-point records only, accept those with
  *     |p - p_j| < accuracy * R_j and weigh them (R_j/|p - p_j|)^b, b =
- *     cfg.sh_power (Eq. 16, made scale-free by R_j; capped at 1e6).
+ *     cfg.sh.power (Eq. 16, made scale-free by R_j; capped at 1e6).
  * Strata are M x N of equal solid angle (cos theta uniform, not cosine
  * weighted): 2 pi/(M N) steradians each.  R_j is the harmonic mean hit
  * distance, clamped by |c_0|/|grad c_0| per channel (with gradients) and by

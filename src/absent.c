@@ -6,8 +6,16 @@
  * or not compiled at all; nothing else of the library names them.
  */
 #include "cache.h"
+#include "estimator.h"
+#include "shrec.h"
 
 #ifdef IRC_NO_SH
+/* The SH kind's features alone, so that a config or a block asking for
+ * them is unsupported rather than wrong (kinds.c); nothing reaches its
+ * operations. */
+const irc__kind irc__kind_sh = {IRC__KIND_SH_ID, IRC_FEATURE_SH | IRC_FEATURE_SH_GRADIENT,
+                                IRC_FEATURE_SH | IRC_FEATURE_SH_GRADIENT};
+
 /* As on an irradiance cache: no cache of this build holds SH records. */
 static int irc__no_sh(const irc_cache *c)
 {

@@ -9,6 +9,30 @@
 
 #include "cache.h"
 #include "sampler.h"
+
+/* The irradiance record kind (kind_irr.c): its number in a block, and its
+ * record's parts (kind.h) in their order. */
+#define IRC__KIND_IRR_ID 1u
+extern const irc__kind irc__kind_irr;
+enum { IRC__P_GRAD_T, IRC__P_GRAD_R, IRC__P_ELLIPSE, IRC__P_GUARD };
+
+/* A gradient in the record's tangent frame (t1, t2 of the decoded normal),
+ * one 2D vector per channel as int16 mantissas, each channel with its own
+ * power-of-two scale 2^ex[c], so a dim channel keeps its relative
+ * precision beside a bright one: 16 bytes. */
+typedef struct irc__grad {
+    int16_t g[6];    /* g[2c] along t1, g[2c+1] along t2 */
+    int8_t ex[3];
+    uint8_t unused;
+} irc__grad;
+
+/* An anisotropic record's ellipse (caches with IRC_FEATURE_HESSIAN): the
+ * major axis, octahedral like the normal, and minor/major in (0, 1]; the
+ * head's r is the major radius, so the index needs nothing else: 8 bytes. */
+typedef struct irc__aniso {
+    uint32_t axis;
+    float q;
+} irc__aniso;
 /* hessian.c */
 void irc__hessian(const irc_cache *c, const irc__sample *s, const float *dirs,
                   const float n[3], float h[3][6]);
@@ -48,14 +72,6 @@ typedef struct irc__cross {
 static inline uint32_t irc__pad4(uint32_t nphi)
 {
     return (nphi + 3u) / 4u * 4u + 4u;
-}
-
-/* Whether a cache's slots carry the gradients' scratch: irradiance records
- * with a translational or rotational gradient. */
-static inline int irc__has_gscratch(uint32_t features)
-{
-    return !(features & IRC_FEATURE_SH) &&
-           (features & (IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION));
 }
 
 /* Slot floats the gradients need: the strata's inverse distances and five

@@ -210,7 +210,7 @@ static void irc__irr_unpack(const irc_cache *c, const void *src, void *rec)
 static int irc__irr_weigh(const irc_cache *c, const irc__rec *r, const irc__query *q,
                           float *w, float ni[3])
 {
-    return irc__weigh(c, r, q->p, q->n, w, ni);
+    return irc__weigh(c, r, q->p, q->n, 1, w, ni);
 }
 
 /* The accumulator: the weighted mean of E per channel so far and its
@@ -263,10 +263,12 @@ static void irc__irr_answer(const irc_cache *c, const void *rec, void *out)
     rgb[2] = r->e[2];
 }
 
+static const irc__acc irc__irr_lookup;
+
 static int irc__irr_find(irc_cache *c, const irc__query *q, void *out, float *weight)
 {
     float acc[4];
-    return irc__lookup_once(c, &irc__kind_irr, q, out, weight, acc);
+    return irc__lookup_once(c, &irc__irr_lookup, q, out, weight, acc);
 }
 
 /* The gradient lookup: the same records and weights; its accumulator is
@@ -342,43 +344,104 @@ static uint32_t irc__irr_parts(const irc_config *cfg, irc__recpart *out)
         out[n++] = grad_r;
     if (cfg->features & IRC_FEATURE_HESSIAN)
         out[n++] = ellipse;
-    if (cfg->leak_guard)
+    if (cfg->irr.leak_guard)
         out[n++] = guard;
     return n;
 }
 
+/* Its features: zero is the default, both gradients (every measured
+ * scene paid for them); bare records are asked for by name, alone.
+ * Visibility gradients are how the translational gradient is made. */
+static int irc__irr_features(irc_config *cfg)
+{
+    if (cfg->features == 0u)
+        cfg->features = IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION;
+    else if (cfg->features == IRC_FEATURE_NONE)
+        cfg->features = 0u;
+    else if (cfg->features & IRC_FEATURE_NONE)
+        return IRC_ERR_CONFIG;
+    if (cfg->features & IRC_FEATURE_VISIBILITY)
+        cfg->features |= IRC_FEATURE_TRANSLATION;
+    return IRC_OK;
+}
+
 /* Neighbour clamping and confirming rays paid for irradiance records on
- * the real scenes: on unless asked off.  The SH fields mean nothing here. */
+ * the real scenes: on unless asked off; the leak guard paid only between
+ * rooms: off.  Super-samples follow the first rays, which visibility
+ * gradients read as they were. */
 static int irc__irr_resolve(irc_config *cfg)
 {
-    if (cfg->sh_bands || cfg->sh_channels || cfg->sh_power != 0.0f)
+    const uint32_t strata = cfg->strata_theta * cfg->strata_phi;
+    if (irc__irr_features(cfg) < 0 || cfg->irr.leak_guard > IRC_OFF ||
+        cfg->irr.supersamples > strata ||
+        (cfg->irr.supersamples && (cfg->features & IRC_FEATURE_VISIBILITY)))
         return IRC_ERR_CONFIG;
     if (cfg->clamp_neighbours == IRC_DEFAULT)
         cfg->clamp_neighbours = IRC_ON;
     if (cfg->check_visibility == IRC_DEFAULT)
         cfg->check_visibility = IRC_ON;
+    cfg->irr.leak_guard = cfg->irr.leak_guard == IRC_ON;
     return IRC_OK;
+}
+
+/* The scratch the estimators read (kind.h, IRC__S_*): the gradients'
+ * inverse distances and rows (gradient.c); directions and hit normals for
+ * the visibility gradients and the Hessian; the strata's edges and their
+ * crossings (visibility.c); a depth per sample (hessian.c). */
+static void irc__irr_scratch(const irc_config *cfg, irc__scratch *s)
+{
+    const uint32_t f = cfg->features, strata = cfg->strata_theta * cfg->strata_phi;
+    const uint64_t edges = 2u * (uint64_t)strata + cfg->strata_phi;
+    s->samples = strata;
+    s->keep_geom = (f & (IRC_FEATURE_VISIBILITY | IRC_FEATURE_HESSIAN)) != 0;
+    if (f & (IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION))
+        s->bytes[IRC__S_INV] = irc__gscratch_floats(strata, cfg->strata_phi) * sizeof(float);
+    if (s->keep_geom)
+        s->bytes[IRC__S_DIRS] = s->bytes[IRC__S_NORMALS] = (uint64_t)strata * 3u * sizeof(float);
+    if (f & IRC_FEATURE_VISIBILITY) {
+        s->bytes[IRC__S_EDGES] = edges * sizeof(int32_t);
+        s->bytes[IRC__S_CROSS] = edges * sizeof(irc__cross);
+    }
+    if (f & IRC_FEATURE_HESSIAN)
+        s->bytes[IRC__S_DEPTHS] = (uint64_t)strata * sizeof(float);
 }
 
 static int irc__irrg_find(irc_cache *c, const irc__query *q, void *out, float *weight);
 
-/* Only the lookup uses it: compute, pack and the rest are the kind's. */
-static const irc__kind irc__kind_irr_grad = {
-    0, irc__irr_make, irc__irr_check,
-    irc__irr_pack, irc__irr_unpack, irc__irr_weigh, irc__irrg_begin,
-    irc__irrg_accumulate, irc__irrg_finish, irc__irr_answer, irc__irrg_find, irc__irr_parts, irc__irr_resolve};
+/* Only irc_cache_lookup_gradient uses it: the kind's records, summed with
+ * their gradients' extrapolation. */
+static const irc__acc irc__irr_grad_lookup = {
+    irc__irr_weigh, irc__irrg_begin, irc__irrg_accumulate, irc__irrg_finish, irc__irrg_find};
 
 static int irc__irrg_find(irc_cache *c, const irc__query *q, void *out, float *weight)
 {
     irc__grad_acc acc;
     acc.grad = ((irc__grad_out *)out)->grad;
-    return irc__lookup_once(c, &irc__kind_irr_grad, q, out, weight, &acc);
+    return irc__lookup_once(c, &irc__irr_grad_lookup, q, out, weight, &acc);
 }
 
+static const irc__acc irc__irr_lookup = {
+    irc__irr_weigh, irc__irr_begin, irc__irr_accumulate, irc__irr_finish, irc__irr_find};
+
+/* The bits this build leaves out (util.h). */
+#if defined(IRC_NO_VISIBILITY) && defined(IRC_NO_HESSIAN)
+#define IRC__IRR_UNBUILT (IRC_FEATURE_VISIBILITY | IRC_FEATURE_HESSIAN)
+#elif defined(IRC_NO_VISIBILITY)
+#define IRC__IRR_UNBUILT IRC_FEATURE_VISIBILITY
+#elif defined(IRC_NO_HESSIAN)
+#define IRC__IRR_UNBUILT IRC_FEATURE_HESSIAN
+#else
+#define IRC__IRR_UNBUILT 0u
+#endif
+
 const irc__kind irc__kind_irr = {
-    0, irc__irr_make, irc__irr_check,
-    irc__irr_pack, irc__irr_unpack, irc__irr_weigh, irc__irr_begin,
-    irc__irr_accumulate, irc__irr_finish, irc__irr_answer, irc__irr_find, irc__irr_parts, irc__irr_resolve};
+    IRC__KIND_IRR_ID,
+    IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION | IRC_FEATURE_VISIBILITY |
+        IRC_FEATURE_HESSIAN | IRC_FEATURE_NONE,
+    IRC__IRR_UNBUILT, 0, 0, (uint32_t)sizeof(irc_record),
+    (uint32_t)offsetof(irc_config, irr), (uint32_t)sizeof(struct irc_config_irr), {0, 0},
+    irc__irr_resolve, irc__irr_parts, irc__irr_scratch, irc__irr_make, irc__irr_check,
+    irc__irr_pack, irc__irr_unpack, irc__irr_answer, &irc__irr_lookup};
 
 int irc_record_compute(irc_cache *c, const float p[3], const float n[3], irc_record *out,
                        void *host)
@@ -394,7 +457,7 @@ int irc_cache_insert(irc_cache *c, const irc_record *rec)
 int irc_cache_lookup(irc_cache *c, const float p[3], const float n[3], float rgb[3],
                      float *weight)
 {
-    return irc__lookup(c, &irc__kind_irr, &irc__kind_irr, p, n, rgb, weight);
+    return irc__lookup(c, &irc__kind_irr, &irc__irr_lookup, p, n, rgb, weight);
 }
 
 int irc_cache_lookup_gradient(irc_cache *c, const float p[3], const float n[3], float rgb[3],
@@ -403,7 +466,7 @@ int irc_cache_lookup_gradient(irc_cache *c, const float p[3], const float n[3], 
     irc__grad_out o;
     o.rgb = rgb;
     o.grad = grad;
-    return irc__lookup(c, &irc__kind_irr, &irc__kind_irr_grad, p, n, rgb && grad ? &o : NULL,
+    return irc__lookup(c, &irc__kind_irr, &irc__irr_grad_lookup, p, n, rgb && grad ? &o : NULL,
                        weight);
 }
 

@@ -21,16 +21,16 @@ static void irc__sh_finish(const irc_cache *c, const irc__shsum *a, irc_sh *out)
     const float dw = 2.0f * IRC_PI / c->strata * ((float)a->total / a->used);
     float hm = a->inv_d > 0.0f ? a->used / a->inv_d : HUGE_VALF, r = hm;
     uint32_t ch, i, k;
-    out->bands = c->cfg.sh_bands;
-    out->channels = c->sh_ch;
+    out->bands = c->cfg.sh.bands;
+    out->channels = IRC__SH_CH(c);
     out->features = c->cfg.features;
     out->rays = a->total;
     out->rays_used = a->used;
     for (ch = 0; ch < 3; ch++)
         out->e[ch] = (float)(dw * a->e[ch]);
-    for (ch = 0; ch < c->sh_ch; ch++) {
+    for (ch = 0; ch < IRC__SH_CH(c); ch++) {
         float len;
-        for (i = 0; i < c->sh_n; i++) {
+        for (i = 0; i < IRC__SH_N(c); i++) {
             out->c[ch][i] = (float)(dw * a->c[ch][i]);
             for (k = 0; k < 3; k++)
                 out->grad[ch][i][k] = (float)(dw * a->g[ch][3 * i + k]);
@@ -58,12 +58,12 @@ static int irc__sh_check(const irc_cache *c, const void *rec, float un[3])
     if ((r->n[0] != 0.0f || r->n[1] != 0.0f || r->n[2] != 0.0f) &&
         (st = irc__check_normal(r->n, un)) < 0)
         return st;
-    if (r->bands != c->cfg.sh_bands || r->channels != c->sh_ch)
+    if (r->bands != c->cfg.sh.bands || r->channels != IRC__SH_CH(c))
         return IRC_ERR_RANGE;
     if (!irc__finite3(r->e) || !irc__finite(r->radius))
         return IRC_ERR_NONFINITE;
-    for (ch = 0; ch < c->sh_ch; ch++)
-        for (i = 0; i < c->sh_n; i++)
+    for (ch = 0; ch < IRC__SH_CH(c); ch++)
+        for (i = 0; i < IRC__SH_N(c); i++)
             if (!irc__finite(r->c[ch][i]) || !irc__finite3(r->grad[ch][i]))
                 return IRC_ERR_NONFINITE;
     return r->radius > 0.0f && r->e[0] >= 0.0f && r->e[1] >= 0.0f && r->e[2] >= 0.0f
@@ -85,8 +85,8 @@ static void irc__sh_pack(const irc_cache *c, const void *rec, const float un[3],
     }
     r->r = in->radius > IRC__CAP ? IRC__CAP : in->radius;
     r->n = un[0] == 0.0f && un[1] == 0.0f && un[2] == 0.0f ? IRC__FREE : irc__oct_encode(un);
-    for (ch = 0; ch < c->sh_ch; ch++)
-        for (i = 0; i < c->sh_n; i++) {
+    for (ch = 0; ch < IRC__SH_CH(c); ch++)
+        for (i = 0; i < IRC__SH_N(c); i++) {
             *cf++ = in->c[ch][i];
             if (gf)
                 for (k = 0; k < 3; k++)
@@ -110,11 +110,11 @@ static void irc__sh_unpack(const irc_cache *c, const void *rec, void *dst)
     if (r->n != IRC__FREE)
         irc__oct_decode(r->n, out->n);
     out->radius = r->r;
-    out->bands = c->cfg.sh_bands;
-    out->channels = c->sh_ch;
+    out->bands = c->cfg.sh.bands;
+    out->channels = IRC__SH_CH(c);
     out->features = c->cfg.features;
-    for (ch = 0; ch < c->sh_ch; ch++)
-        for (i = 0; i < c->sh_n; i++) {
+    for (ch = 0; ch < IRC__SH_CH(c); ch++)
+        for (i = 0; i < IRC__SH_N(c); i++) {
             out->c[ch][i] = *cf++;
             if (gf)
                 for (k = 0; k < 3; k++)
@@ -130,13 +130,13 @@ static int irc__sh_weigh(const irc_cache *c, const irc__rec *r, const irc__query
     float dx = (float)q->p[0] - r->p[0], dy = (float)q->p[1] - r->p[1],
            dz = (float)q->p[2] - r->p[2], d, ra = (float)c->cfg.accuracy * r->r;
     if (!q->free)
-        return irc__weigh(c, r, q->p, q->n, w, ni);
+        return irc__weigh(c, r, q->p, q->n, 0, w, ni);
     if (r->n != IRC__FREE)
         return 0;
     d = IRC_SQRTF(dx * dx + dy * dy + dz * dz);
     if (!(d < ra || d == 0.0f)) /* its own point always (irc__within_reach) */
         return 0;
-    *w = d * IRC__SH_W_MAX > r->r ? IRC_POWF(r->r / d, c->cfg.sh_power) : IRC__SH_W_MAX;
+    *w = d * IRC__SH_W_MAX > r->r ? IRC_POWF(r->r / d, c->cfg.sh.power) : IRC__SH_W_MAX;
     if (*w > IRC__SH_W_MAX)
         *w = IRC__SH_W_MAX;
     return 1;
@@ -168,8 +168,8 @@ static void irc__sh_gather(const irc_cache *c, const irc__rec *r, const irc__que
         d[k] = (float)q->p[k] - r->p[k];
         a->e[k] += w * r->e[k];
     }
-    for (ch = 0; ch < c->sh_ch; ch++)
-        for (i = 0; i < c->sh_n; i++) {
+    for (ch = 0; ch < IRC__SH_CH(c); ch++)
+        for (i = 0; i < IRC__SH_N(c); i++) {
             float v = *cf++;
             if (gf) {
                 for (k = 0; k < 3; k++) {
@@ -186,8 +186,8 @@ static void irc__sh_blank(const irc_cache *c, const irc__query *q, irc_sh *out)
 {
     uint32_t k;
     IRC_MEMSET(out, 0, sizeof *out);
-    out->bands = c->cfg.sh_bands;
-    out->channels = c->sh_ch;
+    out->bands = c->cfg.sh.bands;
+    out->channels = IRC__SH_CH(c);
     out->features = c->cfg.features;
     for (k = 0; k < 3; k++) {
         out->p[k] = q->p[k];
@@ -208,8 +208,8 @@ static int irc__sh_end(const irc_cache *c, const irc__query *q, const void *acc,
     for (k = 0; k < 3; k++)
         out->e[k] = (float)(a->e[k] / w);
     st = irc__finite3(out->e) ? IRC_OK : IRC_ERR_NONFINITE;
-    for (ch = 0; ch < c->sh_ch; ch++)
-        for (i = 0; i < c->sh_n; i++) {
+    for (ch = 0; ch < IRC__SH_CH(c); ch++)
+        for (i = 0; i < IRC__SH_N(c); i++) {
             out->c[ch][i] = (float)(a->c[ch][i] / w);
             for (k = 0; k < 3; k++)
                 out->grad[ch][i][k] = (float)(a->g[ch][i][k] / w);
@@ -246,17 +246,19 @@ static int irc__sh_compute(irc__call *k, void *rec)
     return irc__sh_check(c, out, un);
 }
 
+static const irc__acc irc__sh_lookup;
+
 static int irc__sh_find(irc_cache *c, const irc__query *q, void *out, float *weight)
 {
     irc__sh_acc acc;
-    return irc__lookup_once(c, &irc__kind_sh, q, out, weight, &acc);
+    return irc__lookup_once(c, &irc__sh_lookup, q, out, weight, &acc);
 }
 
 /* An SH record's parts: the coefficients c[channel][i], then with
  * SH_GRADIENT their gradients grad[channel][i][x, y, z], floats. */
 static uint32_t irc__sh_parts(const irc_config *cfg, irc__recpart *out)
 {
-    const uint32_t k = cfg->sh_bands * cfg->sh_bands * cfg->sh_channels;
+    const uint32_t k = cfg->sh.bands * cfg->sh.bands * cfg->sh.channels;
     irc__recpart p;
     uint32_t n = 0;
     p.w1 = p.w2 = 4;
@@ -278,11 +280,13 @@ static uint32_t irc__sh_parts(const irc_config *cfg, irc__recpart *out)
  * unless asked on. */
 static int irc__sh_resolve(irc_config *cfg)
 {
-    if (cfg->sh_bands == 0) cfg->sh_bands = 3u;
-    if (cfg->sh_channels == 0) cfg->sh_channels = 3u;
-    if (cfg->sh_power == 0.0f) cfg->sh_power = 2.0f;
-    if (cfg->sh_bands > IRC_SH_MAX_BANDS || (cfg->sh_channels != 1u && cfg->sh_channels != 3u) ||
-        !(cfg->sh_power > 0.0f && cfg->sh_power <= 16.0f))
+    if (cfg->features & IRC_FEATURE_SH_GRADIENT)
+        cfg->features |= IRC_FEATURE_SH;
+    if (cfg->sh.bands == 0) cfg->sh.bands = 3u;
+    if (cfg->sh.channels == 0) cfg->sh.channels = 3u;
+    if (cfg->sh.power == 0.0f) cfg->sh.power = 2.0f;
+    if (cfg->sh.bands > IRC_SH_MAX_BANDS || (cfg->sh.channels != 1u && cfg->sh.channels != 3u) ||
+        !(cfg->sh.power > 0.0f && cfg->sh.power <= 16.0f))
         return IRC_ERR_CONFIG;
     if (cfg->clamp_neighbours == IRC_DEFAULT)
         cfg->clamp_neighbours = IRC_OFF;
@@ -291,10 +295,25 @@ static int irc__sh_resolve(irc_config *cfg)
     return IRC_OK;
 }
 
+/* Free points sample two hemispheres (the sphere); the estimator reads
+ * each sample's direction and hit normal. */
+static void irc__sh_scratch(const irc_config *cfg, irc__scratch *s)
+{
+    s->samples = 2u * cfg->strata_theta * cfg->strata_phi;
+    s->keep_geom = 1;
+    s->bytes[IRC__S_DIRS] = s->bytes[IRC__S_NORMALS] = (uint64_t)s->samples * 3u * sizeof(float);
+}
+
+static const irc__acc irc__sh_lookup = {
+    irc__sh_weigh, irc__sh_begin, irc__sh_gather, irc__sh_end, irc__sh_find};
+
 const irc__kind irc__kind_sh = {
-    1, irc__sh_compute, irc__sh_check,
-    irc__sh_pack, irc__sh_unpack, irc__sh_weigh, irc__sh_begin,
-    irc__sh_gather, irc__sh_end, irc__sh_answer, irc__sh_find, irc__sh_parts, irc__sh_resolve};
+    IRC__KIND_SH_ID, IRC_FEATURE_SH | IRC_FEATURE_SH_GRADIENT, 0u, 1, 1,
+    (uint32_t)sizeof(irc_sh), (uint32_t)offsetof(irc_config, sh),
+    (uint32_t)sizeof(struct irc_config_sh),
+    {(uint32_t)offsetof(irc_config, sh.bands), (uint32_t)offsetof(irc_config, sh.channels)},
+    irc__sh_resolve, irc__sh_parts, irc__sh_scratch, irc__sh_compute, irc__sh_check,
+    irc__sh_pack, irc__sh_unpack, irc__sh_answer, &irc__sh_lookup};
 
 int irc_sh_compute(irc_cache *c, const float p[3], const float n[3], irc_sh *out, void *host)
 {
@@ -309,7 +328,7 @@ int irc_sh_insert(irc_cache *c, const irc_sh *rec)
 int irc_sh_lookup(irc_cache *c, const float p[3], const float n[3], irc_sh *out,
                   float *weight)
 {
-    return irc__lookup(c, &irc__kind_sh, &irc__kind_sh, p, n, out, weight);
+    return irc__lookup(c, &irc__kind_sh, &irc__sh_lookup, p, n, out, weight);
 }
 
 int irc_sh_lookup_or_compute(irc_cache *c, const float p[3], const float n[3], irc_sh *out,
@@ -323,7 +342,7 @@ int irc_sh_record(irc_cache *c, uint32_t id, irc_sh *out)
     return irc__record_get(c, &irc__kind_sh, id, out);
 }
 
-#else /* IRC_NO_SH: the public calls are absent.c's */
+#else /* IRC_NO_SH: the public calls and the kind's table are absent.c's */
 
 typedef int irc__kind_sh_absent; /* ISO C wants something in a file */
 

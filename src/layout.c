@@ -21,8 +21,8 @@ typedef struct irc__layout {
     uint64_t lock, scratch, records, ix, nodes, ctr, used, gtab, total;
     uint64_t slot_bytes, slot_rec, lock_bytes;
     uint64_t soff[IRC__S_COUNT];
-    uint32_t rec_size, off[IRC__P_COUNT], n_parts, node_cap, samples;
-    irc__recpart parts[IRC__P_COUNT];
+    uint32_t rec_size, off[IRC__PARTS], n_parts, node_cap, samples, keep_geom;
+    irc__recpart parts[IRC__PARTS];
 } irc__layout;
 
 static uint64_t irc__up(uint64_t x)
@@ -45,60 +45,51 @@ static uint32_t irc__node_cap(uint32_t capacity)
 
 /* Record bytes: the 32-byte head, then the parts the kind lists, one
  * after another. */
-static void irc__record_layout(const irc_config *cfg, irc__layout *l)
+static void irc__record_layout(const irc_config *cfg, const irc__kind *k, irc__layout *l)
 {
     uint32_t i;
     IRC_MEMSET(l->off, 0, sizeof l->off);
     IRC_MEMSET(l->parts, 0, sizeof l->parts);
     l->rec_size = (uint32_t)sizeof(irc__rec);
-    l->n_parts = irc__kind_of(cfg->features)->parts(cfg, l->parts);
+    l->n_parts = k->parts(cfg, l->parts);
     for (i = 0; i < l->n_parts; i++) {
         l->off[l->parts[i].id] = l->rec_size;
         l->rec_size += l->parts[i].bytes;
     }
 }
 
-/* A scratch slot's working area, its parts one after another (cache.h,
- * IRC__S_*); returns its bytes. */
-static uint64_t irc__slot_layout(const irc_config *cfg, irc__layout *l)
+/* A scratch slot's working area, its parts one after another (kind.h,
+ * IRC__S_*): the samples, the sampler's batch of rays and hits, then what
+ * the kind asks for; returns its bytes. */
+static uint64_t irc__slot_layout(const irc_config *cfg, const irc__kind *k, irc__layout *l)
 {
-    const uint64_t strata = (uint64_t)cfg->strata_theta * cfg->strata_phi;
-    const int vis = (cfg->features & IRC_FEATURE_VISIBILITY) != 0;
-    uint64_t at, geom = (cfg->features & (IRC_FEATURE_VISIBILITY | IRC_FEATURE_SH |
-                                           IRC_FEATURE_HESSIAN)) != 0;
-    l->samples = (uint32_t)strata * (cfg->features & IRC_FEATURE_SH ? 2u : 1u);
-    at = (uint64_t)l->samples * sizeof(irc__sample);
-    l->soff[IRC__S_RAYS] = at;
-    at += (uint64_t)cfg->max_batch * (sizeof(irc_ray) + sizeof(irc_hit));
-    l->soff[IRC__S_INV] = at;
-    if (irc__has_gscratch(cfg->features))
-        at += irc__gscratch_floats((uint32_t)strata, cfg->strata_phi) * sizeof(float);
-    l->soff[IRC__S_DIRS] = at;
-    at += geom * l->samples * 3u * sizeof(float);
-    l->soff[IRC__S_NORMALS] = at;
-    at += geom * l->samples * 3u * sizeof(float);
-    l->soff[IRC__S_EDGES] = at;
-    if (vis)
-        at += (2u * strata + cfg->strata_phi) * sizeof(int32_t);
-    l->soff[IRC__S_CROSS] = at;
-    if (vis)
-        at += (2u * strata + cfg->strata_phi) * sizeof(irc__cross);
-    l->soff[IRC__S_DEPTHS] = at;
-    if (cfg->features & IRC_FEATURE_HESSIAN)
-        at += (uint64_t)l->samples * sizeof(float);
+    irc__scratch s;
+    uint64_t at;
+    int i;
+    IRC_MEMSET(&s, 0, sizeof s);
+    k->scratch(cfg, &s);
+    s.bytes[IRC__S_RAYS] = (uint64_t)cfg->max_batch * (sizeof(irc_ray) + sizeof(irc_hit));
+    l->samples = s.samples;
+    l->keep_geom = s.keep_geom;
+    at = (uint64_t)s.samples * sizeof(irc__sample);
+    for (i = 0; i < IRC__S_COUNT; i++) {
+        l->soff[i] = at;
+        at += s.bytes[i];
+    }
     return irc__up(at);
 }
 
 /* In 64-bit arithmetic, so that a 32-bit size_t is checked, not wrapped. */
 static void irc__layout_of(const irc_config *cfg, uint32_t capacity, irc__layout *l)
 {
+    const irc__kind *k = irc__kind_of(cfg->features);
     uint64_t at = irc__up(sizeof(irc_cache));
-    irc__record_layout(cfg, l);
+    irc__record_layout(cfg, k, l);
     /* The slot ends with the record a lookup-or-compute builds, of the
      * cache's kind: on the stack it would sit over the whole lookup. */
-    l->slot_bytes = irc__slot_layout(cfg, l);
+    l->slot_bytes = irc__slot_layout(cfg, k, l);
     l->slot_rec = l->slot_bytes;
-    l->slot_bytes += irc__up(cfg->features & IRC_FEATURE_SH ? sizeof(irc_sh) : sizeof(irc_record));
+    l->slot_bytes += irc__up(k->record_bytes);
     l->slot_bytes += IRC__ALIGN; /* the owner's head (cache.h irc__slot_owner) */
     l->node_cap = irc__node_cap(capacity);
     l->lock_bytes = irc__up(cfg->port->lock_size ? cfg->port->lock_size : 1);
@@ -155,7 +146,7 @@ static void irc__attach_pointers(irc_cache *c, const irc_config *cfg, const irc_
     c->cfg.port = c->port = port;
     c->cfg.buffer = cfg->buffer;
     c->cfg.buffer_size = cfg->buffer_size;
-    c->kind = irc__kind_of(c->cfg.features); /* without SH, irc__find refuses an SH block */
+    c->kind = irc__kind_by_id(c->kind_id); /* irc__find checked it */
     c->home = c;
 }
 
@@ -177,6 +168,7 @@ static void irc__set_parts(irc_cache *c, const irc__layout *l)
     IRC_MEMCPY(c->parts, l->parts, sizeof c->parts);
     c->n_parts = l->n_parts;
     c->slot_samples = l->samples;
+    c->keep_geom = l->keep_geom;
     c->node_cap = l->node_cap;
     c->lock_bytes = (size_t)l->lock_bytes;
     c->slot_bytes = (size_t)l->slot_bytes;
@@ -219,16 +211,10 @@ int irc_init(const irc_config *cfg, uint32_t max_records, irc_cache **out)
     c->abi = IRC__ABI;
     c->capacity = max_records;
     c->cfg = r;
-    c->kind_id = irc__kind_id_of(r.features);
+    c->kind_id = irc__kind_of(r.features)->id;
     irc__attach_pointers(c, cfg, r.port);
     irc__set_parts(c, &l);
     c->strata = r.strata_theta * r.strata_phi;
-    c->keep_geom =
-        (r.features & (IRC_FEATURE_VISIBILITY | IRC_FEATURE_SH | IRC_FEATURE_HESSIAN)) != 0;
-    if (r.features & IRC_FEATURE_SH) {
-        c->sh_n = r.sh_bands * r.sh_bands;
-        c->sh_ch = r.sh_channels;
-    }
     irc__port_name(c->port, c->port_name);
     irc__index_reset(c);
     irc__gtab_fill(c, irc__part(c, c->o_gtab));
@@ -249,10 +235,10 @@ static int irc__find(const irc_config *cfg, size_t *at, irc_cache *head)
     if (pad < 1 || pad > IRC__ALIGN || cfg->buffer_size < pad + sizeof *head)
         return cfg->buffer_size < IRC__ALIGN + sizeof *head ? IRC_ERR_NOMEM : IRC_ERR_CONFIG;
     IRC_MEMCPY(head, b + pad, sizeof *head);
-    if (head->magic != IRC__MAGIC || head->abi != IRC__ABI ||
-        (head->kind_id != IRC__KIND_IRR && head->kind_id != IRC__KIND_SH))
+    if (head->magic != IRC__MAGIC || head->abi != IRC__ABI || !irc__kind_by_id(head->kind_id))
         return IRC_ERR_CONFIG;
-    if (irc__features_built(head->cfg.features) < 0)
+    /* Other bad features are the header check's (corrupt). */
+    if (irc__kind_features(head->cfg.features) == IRC_ERR_UNSUPPORTED)
         return IRC_ERR_UNSUPPORTED;
     if (head->total_bytes + IRC__ALIGN > cfg->buffer_size)
         return IRC_ERR_NOMEM;
@@ -271,13 +257,21 @@ static int irc__switch_back(uint32_t v, uint32_t *out)
     return v <= 1u;
 }
 
+static int irc__same_bytes(const unsigned char *a, const unsigned char *b, uint32_t n)
+{
+    uint32_t i;
+    for (i = 0; i < n && a[i] == b[i]; i++)
+        ;
+    return i == n;
+}
+
 static int irc__tables_same(const irc_cache *a, const irc_cache *b)
 {
     uint32_t i;
     for (i = 0; i < IRC__S_COUNT; i++)
         if (a->soff[i] != b->soff[i])
             return 0;
-    for (i = 0; i < IRC__P_COUNT; i++) {
+    for (i = 0; i < IRC__PARTS; i++) {
         const irc__recpart *p = &a->parts[i], *q = &b->parts[i];
         if (a->off[i] != b->off[i] || p->id != q->id || p->w1 != q->w1 || p->w2 != q->w2 ||
             p->sane != q->sane || p->lead != q->lead || p->bytes != q->bytes)
@@ -289,6 +283,7 @@ static int irc__tables_same(const irc_cache *a, const irc_cache *b)
 static int irc__parts_same(const irc_cache *a, const irc_cache *b)
 {
     return irc__tables_same(a, b) && a->slot_samples == b->slot_samples &&
+           a->keep_geom == b->keep_geom &&
            a->node_cap == b->node_cap && a->lock_bytes == b->lock_bytes &&
            a->slot_bytes == b->slot_bytes && a->slot_rec == b->slot_rec &&
            a->total_bytes == b->total_bytes && a->o_lock == b->o_lock &&
@@ -307,11 +302,10 @@ static int irc__header_sane(const irc_config *cfg, const irc_cache *h)
     irc_config in = h->cfg, r;
     irc_cache e;
     irc__layout l;
-    const int sh = (h->cfg.features & IRC_FEATURE_SH) != 0;
+    const irc__kind *k = irc__kind_of(h->cfg.features);
     if (h->capacity == 0 || h->capacity > IRC_MAX_RECORDS || h->lock_bytes > 4096u ||
-        h->lock_bytes % IRC__ALIGN || h->kind_id != irc__kind_id_of(h->cfg.features) ||
+        h->lock_bytes % IRC__ALIGN || h->kind_id != k->id ||
         !irc__switch_back(h->cfg.clamp_neighbours, &in.clamp_neighbours) ||
-        !irc__switch_back(h->cfg.leak_guard, &in.leak_guard) ||
         !irc__switch_back(h->cfg.check_visibility, &in.check_visibility))
         return 0;
     if (in.features == 0) /* bare records, stored resolved */
@@ -325,20 +319,20 @@ static int irc__header_sane(const irc_config *cfg, const irc_cache *h)
     lockless.lock_size = h->lock_bytes;
     in.trace = cfg->trace;
     in.port = &lockless;
+    /* A kind's fields resolve to themselves (a switch of its own to 0 or
+     * 1, which is off by default or on). */
     if (irc__config_resolve(&in, &r) < 0 || r.features != h->cfg.features ||
         r.strata_theta != h->cfg.strata_theta || r.strata_phi != h->cfg.strata_phi ||
         r.threads != h->cfg.threads || r.max_batch != h->cfg.max_batch ||
-        r.sh_bands != h->cfg.sh_bands || r.sh_channels != h->cfg.sh_channels ||
+        !irc__same_bytes((const unsigned char *)&r + k->cfg_at,
+                         (const unsigned char *)&h->cfg + k->cfg_at, k->cfg_bytes) ||
         r.evict != h->cfg.evict || r.accuracy != h->cfg.accuracy)
         return 0;
     irc__layout_of(&r, h->capacity, &l);
     IRC_MEMSET(&e, 0, sizeof e);
     e.cfg = r;
     irc__set_parts(&e, &l);
-    if (!irc__parts_same(&e, h) || h->strata != r.strata_theta * r.strata_phi ||
-        h->keep_geom != ((r.features & (IRC_FEATURE_VISIBILITY | IRC_FEATURE_SH |
-                                        IRC_FEATURE_HESSIAN)) != 0) ||
-        h->sh_n != (sh ? r.sh_bands * r.sh_bands : 0u) || h->sh_ch != (sh ? r.sh_channels : 0u))
+    if (!irc__parts_same(&e, h) || h->strata != r.strata_theta * r.strata_phi)
         return 0;
     return h->count <= h->capacity && h->nodes_used >= 1u && h->nodes_used <= h->node_cap &&
            h->hand < h->capacity && h->depth <= IRC__LEVELS && h->root_set <= 1u &&

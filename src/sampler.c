@@ -127,7 +127,7 @@ static void irc__dirs_init(const irc_cache *c, const float n[3], const float t1[
     g->cb = (const float *)irc__gtab(c) + 2u * np;
     g->sb = g->cb + np;
     g->nphi = c->cfg.strata_phi;
-    g->uniform = (c->cfg.features & IRC_FEATURE_SH) != 0;
+    g->uniform = c->kind->uniform;
     g->rng = *rng;
 }
 
@@ -312,7 +312,7 @@ static uint32_t irc__ss_bin(float ct, float most)
 }
 
 /* The contrast above which (with the first `*room` strata of the bin at
- * it, in row order) cfg.supersamples strata lie: a histogram of the
+ * it, in row order) cfg.irr.supersamples strata lie: a histogram of the
  * contrasts over [0, the largest], so no per-stratum memory is needed. */
 static uint32_t irc__ss_threshold(const irc__sample *s, uint32_t m, uint32_t nphi,
                                   uint32_t want, float *top, uint32_t *room)
@@ -363,7 +363,7 @@ static int irc__ss_merge(irc__sample *s, const uint32_t *at, const irc_hit *hits
 }
 
 /* One more jittered ray (another random draw) into each of the
- * cfg.supersamples strata whose neighbours differ most.  The strata are
+ * cfg.irr.supersamples strata whose neighbours differ most.  The strata are
  * chosen first, all from the first samples (marked by their distance's
  * sign, the one bit a sample has spare), then sampled in batches.
  * Returns IRC_OK or a negative code (the callback's own). */
@@ -380,7 +380,7 @@ int irc__supersample(irc__call *k, const float n[3], const float t1[3], const fl
     irc__rng rng = irc__rng_for(k->q.p, nf, c->cfg.seed);
     irc__dirs g;
     int st;
-    bin = irc__ss_threshold(s, m, nphi, c->cfg.supersamples, &most, &room);
+    bin = irc__ss_threshold(s, m, nphi, c->cfg.irr.supersamples, &most, &room);
     if (!(most > 0.0f))
         return IRC_OK;
     for (i = 0; i < total; i++) {
@@ -419,7 +419,7 @@ int irc__hemisphere(irc__call *k, float t1[3], float t2[3])
     int st;
     irc__frame(k->q.n, t1, t2);
     st = irc__sample_hemisphere(k, k->q.n, t1, t2, 0, &used);
-    if (st == IRC_OK && k->c->cfg.supersamples)
+    if (st == IRC_OK && k->c->cfg.irr.supersamples)
         st = irc__supersample(k, k->q.n, t1, t2);
     return st;
 }

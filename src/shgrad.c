@@ -171,7 +171,7 @@ static void irc__edge_vector(const irc__grid *g, uint32_t k, const irc__shg_cell
 static void irc__sh_add(const irc_cache *c, irc__shsum *a, const irc__sample *x,
                         const float w[3], const float *n, const float e[3])
 {
-    const int nc = (int)c->sh_n, nch = (int)c->sh_ch, bands = (int)c->cfg.sh_bands;
+    const int nc = (int)IRC__SH_N(c), nch = (int)IRC__SH_CH(c), bands = (int)c->cfg.sh.bands;
     const int grad = c->off[IRC__P_SH_GRAD] != 0;
     float y[IRC__NC], gy[IRC__NC][3], v[3 * IRC__NC], id;
     int ch, i, k;

@@ -6,6 +6,17 @@
 #define IRC_SHREC_H
 
 #include "cache.h"
+
+/* The SH record kind (kind_sh.c, or absent.c's table when the build
+ * leaves it out): its number in a block, its record's parts in order. */
+#define IRC__KIND_SH_ID 2u
+extern const irc__kind irc__kind_sh;
+enum { IRC__P_SH, IRC__P_SH_GRAD };
+#define IRC__SH_MAX_BANDS 5
+#define IRC__NC (IRC__SH_MAX_BANDS * IRC__SH_MAX_BANDS)
+/* L * L coefficients and the channels of an SH cache's records. */
+#define IRC__SH_N(c) ((c)->cfg.sh.bands * (c)->cfg.sh.bands)
+#define IRC__SH_CH(c) ((c)->cfg.sh.channels)
 /* sh.c */
 void irc__sh_eval(int bands, const float s[3], float *y, float (*grad)[3]);
 

@@ -85,7 +85,7 @@ int irc__find_in_sight(irc__call *k, void *out, float *weight)
     k->q.hidden = NULL;
     k->q.n_hidden = 0;
     if (!c->cfg.check_visibility || k->q.free)
-        return c->kind->find(c, &k->q, out, weight);
+        return c->kind->lookup->find(c, &k->q, out, weight);
     if ((st = irc__collect(c, &k->q, ids, IRC__SIGHT_CAP, &found)) < 0)
         return st;
     if (found > IRC__SIGHT_CAP)
@@ -97,7 +97,7 @@ int irc__find_in_sight(irc__call *k, void *out, float *weight)
         return st;
     irc__sort_ids(ids, k->q.n_hidden);
     k->q.hidden = ids;
-    st = c->kind->find(c, &k->q, out, weight);
+    st = c->kind->lookup->find(c, &k->q, out, weight);
     k->q.hidden = NULL;
     k->q.n_hidden = 0;
     return st;

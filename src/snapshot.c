@@ -112,6 +112,16 @@ void irc__convert(const irc_cache *c, const unsigned char *src, unsigned char *d
     (void)irc__convert_part(c, src, dst, 0, c->rec_size, to_le);
 }
 
+/* The kind's config word w that the header keeps (irc__kind.snap_at). */
+static uint32_t irc__cfg_word(const irc_cache *c, int w)
+{
+    const uint32_t at = c->kind->snap_at[w];
+    uint32_t v = 0;
+    if (at)
+        IRC_MEMCPY(&v, (const unsigned char *)&c->cfg + at, sizeof v);
+    return v;
+}
+
 static void irc__header(const irc_cache *c, uint64_t fingerprint, unsigned char *h)
 {
     float a = c->cfg.accuracy;
@@ -124,8 +134,8 @@ static void irc__header(const irc_cache *c, uint64_t fingerprint, unsigned char 
     irc__le_put(h + 8, c->cfg.features, 4);
     irc__le_put(h + 12, c->home->count, 4);
     irc__le_put(h + 16, c->rec_size, 4);
-    irc__le_put(h + 20, c->sh_n ? c->cfg.sh_bands : 0u, 2);
-    irc__le_put(h + 22, c->sh_ch, 2);
+    irc__le_put(h + 20, irc__cfg_word(c, 0), 2);
+    irc__le_put(h + 22, irc__cfg_word(c, 1), 2);
     irc__le_put(h + 24, abits, 4);
     irc__le_put(h + 28, c->cfg.strata_theta, 4);
     irc__le_put(h + 32, c->cfg.strata_phi, 4);

@@ -10,7 +10,6 @@
  */
 #include "cache.h"
 #include "index.h"
-#include "weight.h"
 
 /* Every public call on a cache starts here: a live cache (IRC_ERR_CONFIG
  * for anything else), of the kind the call serves when want is set. */
@@ -272,7 +271,7 @@ static void irc__unmark_used(irc_cache *c, const irc__marks *m)
  * the kind accepts, accumulated (acc set) or collected as ids. */
 typedef struct irc__walk {
     irc_cache *c;
-    const irc__kind *ops;    /* the weight and accumulator: the cache's kind,
+    const irc__acc *ops;     /* the weight and accumulator: the cache's kind's,
                                 or a variant of it (a gradient lookup) */
     const irc__query *q;
     void *acc;
@@ -331,7 +330,7 @@ static int irc__walk_index(irc_cache *c, irc__walk *v)
     return IRC_OK;
 }
 
-int irc__lookup_once(irc_cache *c, const irc__kind *ops, const irc__query *q, void *out,
+int irc__lookup_once(irc_cache *c, const irc__acc *ops, const irc__query *q, void *out,
                      float *weight, void *acc)
 {
     irc__walk v;
@@ -361,7 +360,7 @@ static int irc__count_lookup(irc_cache *c, int st)
     return st;
 }
 
-int irc__lookup(irc_cache *c, const irc__kind *want, const irc__kind *ops, const float p[3],
+int irc__lookup(irc_cache *c, const irc__kind *want, const irc__acc *ops, const float p[3],
                 const float n[3], void *out, float *weight)
 {
     irc__query q;
@@ -485,7 +484,7 @@ int irc__collect(irc_cache *c, const irc__query *q, uint32_t *ids, uint32_t cap,
     int st;
     IRC_MEMSET(&v, 0, sizeof v);
     v.c = c;
-    v.ops = c->kind;
+    v.ops = c->kind->lookup;
     v.q = q;
     v.ids = ids;
     v.cap = cap;

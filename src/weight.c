@@ -3,6 +3,7 @@
  * value it extrapolates there.
  */
 #include "cache.h"
+#include "estimator.h"
 #include "sampler.h"
 #include "octa.h"
 #include "weight.h"
@@ -60,7 +61,7 @@ static int irc__guarded(const irc__rec *r, uint32_t off, const float ni[3], floa
  * when w > 1/a.  n must be unit length.  Returns 1 and sets *w and the
  * record's decoded normal ni when the record counts, else 0. */
 int irc__weigh(const irc_cache *c, const irc__rec *r, const float p[3],
-               const float n[3], float *w, float ni[3])
+               const float n[3], int shaped, float *w, float ni[3])
 {
     const float a = c->cfg.accuracy, rad = r->r;
     float dx = p[0] - r->p[0], dy = p[1] - r->p[1], dz = p[2] - r->p[2];
@@ -74,7 +75,7 @@ int irc__weigh(const irc_cache *c, const irc__rec *r, const float p[3],
     if (0.5f * (dx * (n[0] + ni[0]) + dy * (n[1] + ni[1]) + dz * (n[2] + ni[2])) <
         -IRC__BEHIND_TOL * rad)
         return 0;
-    if (c->off[IRC__P_ELLIPSE]) {
+    if (shaped && c->off[IRC__P_ELLIPSE]) {
         /* An ellipse (Schwarzhaupt et al. 2012): the distance along the
          * major axis u over R, the rest over the minor radius q R, so a
          * disk (q = 1) is the plain distance. */
@@ -91,7 +92,7 @@ int irc__weigh(const irc_cache *c, const irc__rec *r, const float p[3],
         }
     }
     e = IRC_SQRTF(d2) / rad;
-    if (c->off[IRC__P_GUARD] && irc__guarded(r, c->off[IRC__P_GUARD], ni, dx, dy, dz, e / a))
+    if (shaped && c->off[IRC__P_GUARD] && irc__guarded(r, c->off[IRC__P_GUARD], ni, dx, dy, dz, e / a))
         return 0;
     {
         /* sqrt(1 - n.n_i) as |n - n_i|/sqrt(2), equal for unit normals: in

@@ -38,15 +38,15 @@ TEST(test_config_checks)
     CASE(cfg.features = IRC_FEATURE_SH_GRADIENT, IRC_OK);
     CASE(cfg.features = IRC_FEATURE_SH | IRC_FEATURE_TRANSLATION, IRC_ERR_CONFIG);
     CASE(cfg.features = IRC_FEATURE_SH_GRADIENT | IRC_FEATURE_ROTATION, IRC_ERR_CONFIG);
-    CASE((cfg.features = IRC_FEATURE_SH, cfg.sh_bands = 6), IRC_ERR_CONFIG);
-    CASE((cfg.features = IRC_FEATURE_SH, cfg.sh_bands = 5), IRC_OK);
-    CASE((cfg.features = IRC_FEATURE_SH, cfg.sh_channels = 2), IRC_ERR_CONFIG);
-    CASE((cfg.features = IRC_FEATURE_SH, cfg.sh_channels = 1), IRC_OK);
-    CASE((cfg.features = IRC_FEATURE_SH, cfg.sh_power = -1.0f), IRC_ERR_CONFIG);
-    CASE((cfg.features = IRC_FEATURE_SH, cfg.sh_power = NAN), IRC_ERR_CONFIG);
-    CASE((cfg.features = IRC_FEATURE_SH, cfg.sh_power = 17.0f), IRC_ERR_CONFIG);
-    CASE(cfg.sh_bands = 3, IRC_ERR_CONFIG);
-    CASE(cfg.sh_power = 2.0f, IRC_ERR_CONFIG);
+    CASE((cfg.features = IRC_FEATURE_SH, cfg.sh.bands = 6), IRC_ERR_CONFIG);
+    CASE((cfg.features = IRC_FEATURE_SH, cfg.sh.bands = 5), IRC_OK);
+    CASE((cfg.features = IRC_FEATURE_SH, cfg.sh.channels = 2), IRC_ERR_CONFIG);
+    CASE((cfg.features = IRC_FEATURE_SH, cfg.sh.channels = 1), IRC_OK);
+    CASE((cfg.features = IRC_FEATURE_SH, cfg.sh.power = -1.0f), IRC_ERR_CONFIG);
+    CASE((cfg.features = IRC_FEATURE_SH, cfg.sh.power = NAN), IRC_ERR_CONFIG);
+    CASE((cfg.features = IRC_FEATURE_SH, cfg.sh.power = 17.0f), IRC_ERR_CONFIG);
+    CASE(cfg.sh.bands = 3, IRC_ERR_CONFIG);
+    CASE(cfg.sh.power = 2.0f, IRC_ERR_CONFIG);
     CASE(cfg.features = IRC_FEATURE_VISIBILITY, IRC_OK);
     CASE(cfg.features = 1u << 20, IRC_ERR_CONFIG);
     CASE(cfg.accuracy = -1.0f, IRC_ERR_CONFIG);
@@ -62,9 +62,9 @@ TEST(test_config_checks)
     CASE((cfg.min_pixels = 4.0f, cfg.max_pixels = 2.0f), IRC_ERR_CONFIG);
     CASE((cfg.min_pixels = 4.0f, cfg.max_pixels = 0.0f), IRC_OK);
     CASE((cfg.min_pixels = 2.5f, cfg.max_pixels = 15.0f), IRC_OK);
-    CASE(cfg.leak_guard = 3, IRC_ERR_CONFIG);
-    CASE(cfg.leak_guard = IRC_ON, IRC_OK);
-    CASE(cfg.leak_guard = IRC_OFF, IRC_OK);
+    CASE(cfg.irr.leak_guard = 3, IRC_ERR_CONFIG);
+    CASE(cfg.irr.leak_guard = IRC_ON, IRC_OK);
+    CASE(cfg.irr.leak_guard = IRC_OFF, IRC_OK);
     CASE(cfg.check_visibility = 3, IRC_ERR_CONFIG);
     CASE(cfg.check_visibility = IRC_ON, IRC_OK);
     CASE(cfg.clamp_neighbours = 3, IRC_ERR_CONFIG);
@@ -103,7 +103,7 @@ TEST(test_config_checks)
 
 /* A cache pays only for what it enables; the compile-time bound holds.
  * Bytes: 32 head, 16 per gradient, 8 for the Hessian's ellipse, 8 for the
- * leak guard with cfg.leak_guard. */
+ * leak guard with cfg.irr.leak_guard. */
 TEST(test_footprints)
 {
     static const uint32_t feats[] = {
@@ -119,7 +119,7 @@ TEST(test_footprints)
         irc_config cfg = scene_config(&sky, feats[i], 8, 16);
         irc_cache *c;
         irc_stats st;
-        cfg.leak_guard = noguard[i] ? IRC_OFF : IRC_ON;
+        cfg.irr.leak_guard = noguard[i] ? IRC_OFF : IRC_ON;
         c = block_cache(&cfg, 1000, 0);
         CHECK(c && irc_cache_stats(c, &st) == IRC_OK, "stats");
         CHECK(st.record_bytes == want[i], "record bytes %zu, want %zu", st.record_bytes, want[i]);

@@ -252,7 +252,7 @@ static irc_cache *hand_cache(tscene *s, irc_config *cfg, uint32_t features, irc_
     scene_init(s);
     *cfg = scene_config(s, features, 4, 4);
     cfg->accuracy = 0.5f;
-    cfg->leak_guard = 1; /* kept for the guard's test; the others' records carry none */
+    cfg->irr.leak_guard = 1; /* kept for the guard's test; the others' records carry none */
     c = block_cache(cfg, 8, 0);
     disk_record(r, e, rad);
     return c;

@@ -120,7 +120,7 @@ static uint32_t compare(irc_cache *c, uint32_t queries, int decades, unsigned lo
             float ni[3], dx = p[0] - px[i], dy = p[1] - py[i], dz = p[2] - pz[i];
             if (dx * dx + dy * dy + dz * dz > r2[i])
                 continue;
-            if (irc__weigh(c, irc__rec_at(c, i), p, n, &w, ni)) {
+            if (irc__weigh(c, irc__rec_at(c, i), p, n, 1, &w, ni)) {
                 if (ns < 4096)
                     scan[ns] = i;
                 ns++;
@@ -259,7 +259,7 @@ TEST(test_index_clamped)
 
 /* A record's bytes and CLOCK bit, to follow it across renumbering. */
 typedef struct held {
-    unsigned char b[IRC__REC_MAX];
+    unsigned char b[32u + 25u * 3u * 4u * 4u]; /* the largest: SH, L = 5, RGB, gradients */
     int used;
 } held;
 

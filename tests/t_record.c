@@ -110,7 +110,7 @@ TEST(test_strata_directions)
             scene_init(&s);
             cfg = scene_config(&s, sh ? IRC_FEATURE_SH : 0u, strata[i][0], strata[i][1]);
             cfg.trace = log_dirs;
-            cfg.sh_bands = sh ? 3u : 0u;
+            cfg.sh.bands = sh ? 3u : 0u;
             memset(&g, 0, sizeof g);
             g.m = strata[i][0];
             g.n = strata[i][1];
@@ -211,7 +211,7 @@ TEST(test_supersample)
     for (k = 0; k < 2; k++) {
         irc_config cfg = scene_config(&s, IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION, 8, 32);
         irc_cache *c;
-        cfg.supersamples = k ? 64u : 0u;
+        cfg.irr.supersamples = k ? 64u : 0u;
         c = block_cache(&cfg, 16, 0);
         CHECK(c != NULL, "init");
         if (!c) return;
@@ -244,9 +244,9 @@ TEST(test_supersample)
             ge[k] += gl > 0.2 ? dl / gl : 0.0;
         }
         if (k) {
-            cfg.supersamples = 257u;
+            cfg.irr.supersamples = 257u;
             CHECK(irc_footprint(&cfg, 16, &cfg.buffer_size) == IRC_ERR_CONFIG, "257 of 256");
-            cfg.supersamples = 1u;
+            cfg.irr.supersamples = 1u;
             cfg.features = IRC_FEATURE_VISIBILITY;
             CHECK(irc_footprint(&cfg, 16, &cfg.buffer_size) == IRC_ERR_CONFIG, "with visibility");
             cfg.features = IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION;

@@ -119,7 +119,7 @@ static irc_config sh_config(tscene *s, uint32_t features, uint32_t m, uint32_t n
                             uint32_t bands)
 {
     irc_config cfg = scene_config(s, features, m, n);
-    cfg.sh_bands = bands;
+    cfg.sh.bands = bands;
     return cfg;
 }
 
@@ -554,7 +554,7 @@ TEST(test_sh_lookup_by_hand)
     scene_init(&s);
     cfg = sh_config(&s, IRC_FEATURE_SH_GRADIENT, 4, 8, 2);
     cfg.accuracy = 1.0f;
-    cfg.sh_power = 3.0f;
+    cfg.sh.power = 3.0f;
     c = block_cache(&cfg, 8, 0);
     CHECK(c != NULL, "init");
     rec[0] = hand_record(0, 0, 0, 1.0f, 1, 1.0f);
@@ -680,7 +680,7 @@ TEST(test_sh_footprint)
                 irc_config cfg = sh_config(&s, g ? IRC_FEATURE_SH_GRADIENT : IRC_FEATURE_SH, 4, 8, l);
                 irc_cache *c;
                 irc_stats st;
-                cfg.sh_channels = ch;
+                cfg.sh.channels = ch;
                 c = block_cache(&cfg, 4, 0);
                 CHECK(c && irc_cache_stats(c, &st) == IRC_OK, "stats");
                 if (c)

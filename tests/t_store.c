@@ -45,8 +45,8 @@ TEST(test_footprint_bounds)
                                 cfg.threads = threads[ti];
                                 cfg.max_batch = batches[bi];
                                 if (sh) {
-                                    cfg.sh_bands = bands;
-                                    cfg.sh_channels = ch;
+                                    cfg.sh.bands = bands;
+                                    cfg.sh.channels = ch;
                                 }
                                 if (irc_footprint(&cfg, recs[ri], &need) != IRC_OK)
                                     continue;
