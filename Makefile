@@ -107,7 +107,7 @@ $(LIBSO): $(LIBSO_REAL)
 TEST_SRC = tests/main.c tests/harness.c tests/scenes.c tests/t_record.c tests/t_lookup.c \
            tests/t_index.c tests/t_api.c tests/t_threads.c tests/t_visibility.c tests/t_sight.c tests/t_attach.c tests/t_sh.c \
            tests/t_shrec.c tests/t_hard.c tests/t_store.c tests/t_embed.c tests/t_hessian.c \
-           tests/t_snapshot.c tests/t_pass.c tests/t_share.c tests/t_kill.c
+           tests/t_snapshot.c tests/t_pass.c tests/t_share.c tests/t_kill.c tests/kind_occ.c
 # The tests exercise every threaded port; the library holds one of them.
 TEST_PORTS = $(filter-out $(PORT),posix c11)
 TEST_PORT_OBJ = $(TEST_PORTS:%=$(BUILD)/tests/port_%.o)
@@ -122,8 +122,15 @@ $(BUILD)/tests/port_c11.o: port/c11/irc_port.c include/irrcache.h
 	@mkdir -p $(dir $@)
 	$(CC) $(subst -std=c99,-std=c11,$(CFLAGS_LIB)) -c $< -o $@
 
-$(BUILD)/irc_tests: $(TEST_SRC) tests/test.h tests/scenes.h tests/share.h $(LIBA) $(TEST_PORT_OBJ)
-	$(CC) $(TEST_CFLAGS) $(OPT) $(CFLAGS) $(TEST_SRC) $(TEST_PORT_OBJ) $(LIBA) -o $@ -lm -lpthread
+# A record kind of the tests' own (tests/kind_occ.c): the registry
+# compiled again with it listed, linked before the library's.
+TEST_KINDS = $(BUILD)/tests/kinds.o
+$(BUILD)/tests/kinds.o: src/kinds.c src/kind.h include/irrcache.h
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_LIB) -DIRC_KIND_EXTRA=irc__kind_occ -c $< -o $@
+
+$(BUILD)/irc_tests: $(TEST_SRC) tests/test.h tests/scenes.h tests/share.h $(LIBA) $(TEST_PORT_OBJ) $(TEST_KINDS)
+	$(CC) $(TEST_CFLAGS) $(OPT) $(CFLAGS) $(TEST_SRC) $(TEST_PORT_OBJ) $(TEST_KINDS) $(LIBA) -o $@ -lm -lpthread
 
 test:
 	WERROR=-Werror sh tests/run.sh

@@ -327,7 +327,7 @@ int irc__irr_compute(irc__call *k, void *rec)
     float t1[3], t2[3], gvis[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
     const int vis = (c->cfg.features & IRC_FEATURE_VISIBILITY) != 0;
     int st;
-    if ((st = irc__hemisphere(k, t1, t2)) < 0)
+    if ((st = irc__hemisphere(k, t1, t2, k->c->cfg.irr.supersamples)) < 0)
         return st;
 #ifndef IRC_NO_VISIBILITY
     if (vis && (st = irc__grad_visibility(k, 0, gvis)) < 0)

@@ -362,12 +362,13 @@ static int irc__ss_merge(irc__sample *s, const uint32_t *at, const irc_hit *hits
     return IRC_OK;
 }
 
-/* One more jittered ray (another random draw) into each of the
- * cfg.irr.supersamples strata whose neighbours differ most.  The strata are
+/* One more jittered ray (another random draw) into each of the `extra`
+ * strata whose neighbours differ most.  The strata are
  * chosen first, all from the first samples (marked by their distance's
  * sign, the one bit a sample has spare), then sampled in batches.
  * Returns IRC_OK or a negative code (the callback's own). */
-int irc__supersample(irc__call *k, const float n[3], const float t1[3], const float t2[3])
+int irc__supersample(irc__call *k, const float n[3], const float t1[3], const float t2[3],
+                     uint32_t extra)
 {
     const irc_cache *c = k->c;
     irc__sample *s = (irc__sample *)(void *)k->slot;
@@ -380,7 +381,7 @@ int irc__supersample(irc__call *k, const float n[3], const float t1[3], const fl
     irc__rng rng = irc__rng_for(k->q.p, nf, c->cfg.seed);
     irc__dirs g;
     int st;
-    bin = irc__ss_threshold(s, m, nphi, c->cfg.irr.supersamples, &most, &room);
+    bin = irc__ss_threshold(s, m, nphi, extra, &most, &room);
     if (!(most > 0.0f))
         return IRC_OK;
     for (i = 0; i < total; i++) {
@@ -413,13 +414,13 @@ int irc__supersample(irc__call *k, const float n[3], const float t1[3], const fl
     return IRC_OK;
 }
 
-int irc__hemisphere(irc__call *k, float t1[3], float t2[3])
+int irc__hemisphere(irc__call *k, float t1[3], float t2[3], uint32_t extra)
 {
     uint32_t used = 0;
     int st;
     irc__frame(k->q.n, t1, t2);
     st = irc__sample_hemisphere(k, k->q.n, t1, t2, 0, &used);
-    if (st == IRC_OK && k->c->cfg.irr.supersamples)
-        st = irc__supersample(k, k->q.n, t1, t2);
+    if (st == IRC_OK && extra)
+        st = irc__supersample(k, k->q.n, t1, t2, extra);
     return st;
 }

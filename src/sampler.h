@@ -21,11 +21,12 @@ void irc__frame(const float n[3], float t1[3], float t2[3]);
 int irc__cast(irc__call *k, irc_ray *rays, irc_hit *hits, uint32_t count);
 
 /* The hemisphere around the query's normal into the call's slot, with
- * super-samples if the config asks; t1, t2 get the strata's frame. */
-int irc__hemisphere(irc__call *k, float t1[3], float t2[3]);
+ * `extra` super-samples (irc__supersample); t1, t2 get the strata's frame. */
+int irc__hemisphere(irc__call *k, float t1[3], float t2[3], uint32_t extra);
 int irc__sample_hemisphere(irc__call *k, const float n[3], const float t1[3],
                            const float t2[3], uint32_t first, uint32_t *used);
-int irc__supersample(irc__call *k, const float n[3], const float t1[3], const float t2[3]);
+int irc__supersample(irc__call *k, const float n[3], const float t1[3], const float t2[3],
+                     uint32_t extra);
 
 /* |n.w| of sample i's hit, from the directions and hit normals a slot
  * keeps (3 floats each): 1 facing the ray, 0 grazing, a silhouette (the
