@@ -14,6 +14,7 @@
 #include "cache.h"
 #include "sampler.h"
 #include "estimator.h"
+#include "strata.h"
 
 #ifndef IRC_NO_HESSIAN
 
@@ -99,42 +100,36 @@ typedef struct irc__mesh {
     float far, fill, floor_l;
 } irc__mesh;
 
-static int irc__escaped_at(const irc__mesh *g, int64_t j, int64_t k)
+static irc__seen irc__hess_seen(const irc__mesh *g, uint32_t i)
 {
-    if (j < 0 || j >= (int64_t)g->m)
-        return 0;
-    k = (k + g->n) % g->n;
-    return !(g->s[j * g->n + k].d < HUGE_VALF);
+    irc__seen v;
+    v.w = g->dirs + 3u * i;
+    v.n = g->nrm + 3u * i;
+    v.d = g->s[i].d;
+    return v;
 }
 
 /* A hit beside an escaped stratum lies inside a silhouette, nearer than
- * the silhouette itself when the blocker is curved: its depth is
- * extrapolated linearly in |n.w| to 0 from its inner neighbour (a smooth
- * blocker's depth and facing both go as sqrt of the angle to the
- * silhouette), but only when the facing falls as fast as that (the SH
- * estimator's rule, shgrad.c); a polygon's edge keeps its depth. */
+ * the silhouette itself when the blocker is curved: its depth is the one
+ * strata.c's rule gives from its inner neighbour, across from the escaped
+ * one; a polygon's edge keeps its depth. */
 static float irc__hess_silhouette(const irc__mesh *g, uint32_t j, uint32_t k, float d)
 {
     static const int dj[4] = {0, 0, 1, -1}, dk[4] = {1, -1, 0, 0};
     int q;
-    for (q = 0; q < 4; q++)
-        if (irc__escaped_at(g, (int64_t)j + dj[q], (int64_t)k + dk[q])) {
-            int64_t ij = (int64_t)j - dj[q], ik = ((int64_t)k - dk[q] + g->n) % g->n;
-            uint32_t i = j * g->n + k, o;
-            float fi, fo, dout;
-            if (ij < 0 || ij >= (int64_t)g->m)
+    for (q = 0; q < 4; q++) {
+        const int64_t out = irc__strata_at(g->m, g->n, (int64_t)j + dj[q], (int64_t)k + dk[q]);
+        if (out >= 0 && !(g->s[out].d < HUGE_VALF)) {
+            const int64_t in = irc__strata_at(g->m, g->n, (int64_t)j - dj[q], (int64_t)k - dk[q]);
+            const irc__seen e = irc__hess_seen(g, j * g->n + k);
+            irc__seen inner;
+            if (in < 0)
                 return d;
-            o = (uint32_t)(ij * g->n + ik);
-            dout = g->s[o].d;
-            if (!(dout < HUGE_VALF) || dout != dout)
-                return d;
-            fi = irc__facing(g->dirs, g->nrm, i);
-            fo = irc__facing(g->dirs, g->nrm, o);
-            if (!(fo * fo >= 1.25f * fi * fi))
-                return d;
-            d += fi * (d - dout) / (fo - fi);
+            inner = irc__hess_seen(g, (uint32_t)in);
+            (void)irc__silhouette_depth(&e, &inner, &d);
             return d;
         }
+    }
     return d;
 }
 
@@ -152,8 +147,7 @@ static void irc__depths(const irc__mesh *g)
             else if (!(d < HUGE_VALF))
                 d = g->far;
             else {
-                float x = irc__hess_silhouette(g, j, k, d);
-                d = x < d ? d : x > 2.0f * d ? 2.0f * d : x;
+                d = irc__hess_silhouette(g, j, k, d);
             }
             g->depth[j * g->n + k] = (float)d;
         }

@@ -28,13 +28,4 @@ int irc__sample_hemisphere(irc__call *k, const float n[3], const float t1[3],
 int irc__supersample(irc__call *k, const float n[3], const float t1[3], const float t2[3],
                      uint32_t extra);
 
-/* |n.w| of sample i's hit, from the directions and hit normals a slot
- * keeps (3 floats each): 1 facing the ray, 0 grazing, a silhouette (the
- * Hessian's and the SH gradient's silhouette rules). */
-static inline float irc__facing(const float *dirs, const float *nrm, uint32_t i)
-{
-    const float *w = dirs + 3 * i, *n = nrm + 3 * i;
-    return IRC_FABSF(w[0] * n[0] + w[1] * n[1] + w[2] * n[2]);
-}
-
 #endif

@@ -7,6 +7,7 @@
 #include "cache.h"
 #include "sampler.h"
 #include "shrec.h"
+#include "strata.h"
 #include "estimator.h"
 
 #ifndef IRC_NO_SH
@@ -26,48 +27,33 @@ static int irc__hit(const irc__sample *x)
     return x->d == x->d && x->d < HUGE_VALF;
 }
 
-/* Whether neighbouring samples a and b lie on one continuous surface:
- * both hits, normals alike and facing the same way, and a depth change no
- * larger than a surface seen at that slant makes over the angle between
- * them (twice over). */
-static int irc__continuous(const irc__grid *g, uint32_t a, uint32_t b)
+static irc__seen irc__shg_seen(const irc__grid *g, uint32_t i)
 {
-    const float *wa = g->dir + 3 * a, *wb = g->dir + 3 * b;
-    const float *na = g->nrm + 3 * a, *nb = g->nrm + 3 * b;
-    float sa, sb, dw, da = g->s[a].d, db = g->s[b].d, big, slant;
-    int k;
-    if (!irc__hit(&g->s[a]) || !irc__hit(&g->s[b]))
-        return 0;
-    sa = (float)na[0] * wa[0] + (float)na[1] * wa[1] + (float)na[2] * wa[2];
-    sb = (float)nb[0] * wb[0] + (float)nb[1] * wb[1] + (float)nb[2] * wb[2];
-    if ((sa < 0.0f) != (sb < 0.0f) ||
-        (float)na[0] * nb[0] + (float)na[1] * nb[1] + (float)na[2] * nb[2] < 0.5f)
-        return 0;
-    for (dw = 0.0f, k = 0; k < 3; k++)
-        dw += ((float)wa[k] - wb[k]) * ((float)wa[k] - wb[k]);
-    big = da > db ? da : db;
-    slant = IRC_FABSF(sa) > IRC_FABSF(sb) ? IRC_FABSF(sa) : IRC_FABSF(sb);
-    return IRC_FABSF(da - db) * slant <= 2.0f * IRC_SQRTF(dw) * big;
+    irc__seen v;
+    v.w = g->dir + 3u * i;
+    v.n = g->nrm + 3u * i;
+    v.d = g->s[i].d;
+    return v;
+}
+
+static int irc__shg_continuous(const irc__grid *g, uint32_t a, uint32_t b)
+{
+    const irc__seen va = irc__shg_seen(g, a), vb = irc__shg_seen(g, b);
+    return irc__continuous(&va, &vb);
 }
 
 /* The depth where the surface of sample i ends, past i on the side away
- * from its neighbour o.  At a smooth silhouette |n.w| falls to 0 there and
- * both |n.w|^2 and the depth's shortfall from the silhouette's depth go
- * as the angle to it, so when |n.w|^2, extrapolated from o through i,
- * reaches 0 within one stratum past i, the depth is extrapolated linearly
- * in |n.w| to |n.w| = 0.  Otherwise (an edge of the surface itself, a
- * polygon's outline) the edge's depth is i's. */
-static float irc__silhouette_depth(const irc__grid *g, uint32_t i, int64_t o)
+ * from its neighbour o (strata.c's rule; without o, i's own). */
+static float irc__shg_silhouette(const irc__grid *g, uint32_t i, int64_t o)
 {
-    float d = g->s[i].d, fi, fo, ds;
-    if (o < 0 || !irc__continuous(g, i, (uint32_t)o))
-        return d;
-    fi = irc__facing(g->dir, g->nrm, i);
-    fo = irc__facing(g->dir, g->nrm, (uint32_t)o);
-    if (!(fo * fo >= 1.25f * fi * fi) || !(g->s[o].d < d))
-        return d;
-    ds = d + fi * (d - g->s[o].d) / (fo - fi);
-    return ds < 2.0f * d ? ds : 2.0f * d;
+    const irc__seen e = irc__shg_seen(g, i);
+    irc__seen in;
+    float d;
+    if (o < 0)
+        return e.d;
+    in = irc__shg_seen(g, (uint32_t)o);
+    (void)irc__silhouette_depth(&e, &in, &d);
+    return d;
 }
 
 /* The singular part of Eq. 11: with dA = dw r^2/(n.w) (Eq. 13) the term
@@ -79,7 +65,8 @@ static float irc__silhouette_depth(const irc__grid *g, uint32_t i, int64_t o)
  * and unit normal, shared by the two samples (their L y_i is applied by
  * the caller).  An edge across a silhouette is no difference of one
  * surface: the nearer side's 1/r runs on to the silhouette's depth
- * (irc__silhouette_depth), the farther side's surface continues behind.
+s
+ * (irc__shg_silhouette), the farther side's surface continues behind.
  * w_out gets the vector for sample i. */
 static void irc__shg_edge(const irc__grid *g, uint32_t i, int64_t o, int64_t back,
                       float len, const float nu[3], float w_out[3])
@@ -88,12 +75,12 @@ static void irc__shg_edge(const irc__grid *g, uint32_t i, int64_t o, int64_t bac
     int c;
     if (o < 0 || !irc__hit(&g->s[i]) || g->s[o].d != g->s[o].d)
         return;
-    if (irc__continuous(g, i, (uint32_t)o))
+    if (irc__shg_continuous(g, i, (uint32_t)o))
         f = 0.5f * (1.0f / g->s[o].d - 1.0f / g->s[i].d);
     else if (!(g->s[o].d > g->s[i].d))
         return;
     else
-        f = 1.0f / irc__silhouette_depth(g, i, back) - 1.0f / g->s[i].d;
+        f = 1.0f / irc__shg_silhouette(g, i, back) - 1.0f / g->s[i].d;
     k = f * len;
     for (c = 0; c < 3; c++)
         w_out[c] += k * nu[c];

@@ -31,6 +31,7 @@
 #include "cache.h"
 #include "sampler.h"
 #include "estimator.h"
+#include "strata.h"
 
 #ifndef IRC_NO_VISIBILITY
 
@@ -41,7 +42,8 @@
 #endif
 #define IRC__DEPTH_JUMP 1.25f  /* a depth ratio above this may be an edge */
 #define IRC__CONTINUOUS 0.02f  /* final brackets closer than this are one surface */
-#define IRC__SMOOTH 0.2f       /* |n.w| below this: a smooth silhouette */
+#define IRC__SMOOTH 0.2f       /* |n.w| below this: the blocker's own normal at a
+                                  silhouette is the edge's (irc__segment) */
 
 static int irc__escaped(const irc__sample *a)
 {
@@ -175,38 +177,35 @@ static void irc__narrow(irc__cross *x, const irc_ray *r, const irc_hit *h, int n
     }
 }
 
-/* Where the silhouette lies in a crossing's final bracket, and its depth.
- * At a smooth blocker the depth falls short of the silhouette's as D_s -
- * c sqrt(eps) and |n.w| goes as sqrt(eps), eps the angle inside it, so the
- * depth is linear in |n.w| and |n.w|^2 linear in the angle: the last two
- * blocker-side hits extrapolate both to |n.w| = 0, which a wide bracket
- * (few rounds) needs; the depth may grow by half at most.  A surface is
- * taken as curved there when its normal turns faster than the view
- * between the two hits (a flat face seen edge-on has small |n.w| too, but
- * a fixed normal).  Otherwise the bracket's middle and the blocker's hit
- * depth. */
+/* Where the silhouette lies in a crossing's final bracket, and its depth:
+ * at a smooth blocker (strata.c's rule, from the last two blocker-side
+ * hits) the depth extrapolated to |n.w| = 0, and the direction where
+ * |n.w|^2, linear in the angle there, reaches 0, which a wide bracket
+ * (few rounds) needs.  Otherwise the bracket's middle and the blocker's
+ * hit depth. */
 static void irc__silhouette(irc__cross *x)
 {
-    float nw = 0.0f, np = 0.0f, ab = 0.0f, pa = 0.0f, dn = 0.0f, t;
+    float nw, np, ab = 0.0f, pa = 0.0f, t;
+    irc__seen e, in;
     int k;
     irc__mid(x->wa, x->wb, x->ws);
     x->ds = x->da;
     if (x->dp != x->dp)
         return;
-    for (k = 0; k < 3; k++) {
-        nw += (float)x->na[k] * x->wa[k];
-        np += (float)x->np[k] * x->wp[k];
-        ab += ((float)x->wb[k] - x->wa[k]) * ((float)x->wb[k] - x->wa[k]);
-        pa += ((float)x->wa[k] - x->wp[k]) * ((float)x->wa[k] - x->wp[k]);
-        dn += ((float)x->na[k] - x->np[k]) * ((float)x->na[k] - x->np[k]);
-    }
-    nw = IRC_FABSF(nw);
-    np = IRC_FABSF(np);
-    if (!(nw < IRC__SMOOTH) || !(np > nw) || !(x->dp < x->da) || !(dn > pa))
+    e.w = x->wa;
+    e.n = x->na;
+    e.d = x->da;
+    in.w = x->wp;
+    in.n = x->np;
+    in.d = x->dp;
+    if (!irc__silhouette_depth(&e, &in, &x->ds))
         return;
-    x->ds = (float)(x->da + (x->da - x->dp) * nw / (np - nw));
-    if (x->ds > 1.5f * x->da)
-        x->ds = 1.5f * x->da;
+    for (k = 0; k < 3; k++) {
+        ab += (x->wb[k] - x->wa[k]) * (x->wb[k] - x->wa[k]);
+        pa += (x->wa[k] - x->wp[k]) * (x->wa[k] - x->wp[k]);
+    }
+    nw = irc__facing(x->wa, x->na);
+    np = irc__facing(x->wp, x->np);
     /* nw^2 = K (eps_s - eps), eps along wp -> wa -> wb (chords for angles) */
     t = nw * nw * IRC_SQRTF(pa) / (np * np - nw * nw);
     if (t > IRC_SQRTF(ab))
