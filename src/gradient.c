@@ -38,10 +38,10 @@ void irc__gtab_fill(const irc_cache *c, void *tab)
     uint32_t j, k;
     for (k = 0; k <= nphi; k++) {
         float phc = 2.0f * IRC_PI * (k + 0.5f) / nphi, phb = 2.0f * IRC_PI * (k % nphi) / nphi;
-        col[k] = (float)IRC_COSF(phc);
-        col[np + k] = (float)IRC_SINF(phc);
-        col[2 * np + k] = (float)IRC_COSF(phb);
-        col[3 * np + k] = (float)IRC_SINF(phb);
+        col[k] = IRC_COSF(phc);
+        col[np + k] = IRC_SINF(phc);
+        col[2 * np + k] = IRC_COSF(phb);
+        col[3 * np + k] = IRC_SINF(phb);
     }
     for (j = 0; j < m; j++) {
         /* Translational (Krivanek et al. 2005, stratified form): the
@@ -139,7 +139,7 @@ static void irc__row_weights(const irc_cache *c, const irc__vis_edges *v, uint32
     const uint32_t nphi = c->cfg.strata_phi;
     const float *rw = irc__gtab_rows(c);
     const float *ia = inv + j * nphi, *ib = j ? ia - nphi : ia;
-    const float U = j ? (float)rw[3 * j] : 0.0f, V = (float)rw[3 * j + 1];
+    const float U = j ? rw[3 * j] : 0.0f, V = rw[3 * j + 1];
     uint32_t k;
     int q;
     for (k = 0; k + 4 <= nphi; k += 4) {
@@ -296,7 +296,7 @@ void irc__gradients(const irc_cache *c, const irc__sample *s, const float mean[3
     float tr[3][2] = {{0, 0}, {0, 0}, {0, 0}}, ro[3][2] = {{0, 0}, {0, 0}, {0, 0}};
     irc__vis_edges v = {NULL, NULL, NULL};
     irc__row_sums o;
-    const float ref[4] = {(float)mean[0], (float)mean[1], (float)mean[2], 0.0f};
+    const float ref[4] = {mean[0], mean[1], mean[2], 0.0f};
     uint32_t j;
     int ch, i;
     if (c->cfg.features & IRC_FEATURE_VISIBILITY) {

@@ -149,7 +149,7 @@ static void irc__depths(const irc__mesh *g)
             else {
                 d = irc__hess_silhouette(g, j, k, d);
             }
-            g->depth[j * g->n + k] = (float)d;
+            g->depth[j * g->n + k] = d;
         }
 }
 
@@ -245,7 +245,7 @@ void irc__hessian(const irc_cache *c, const irc__sample *s, const float *dirs,
             inv += 1.0f / s[i].d;
             hits++;
         }
-        mean += ((float)s[i].l[0] + s[i].l[1] + s[i].l[2]) / 3.0f;
+        mean += (s[i].l[0] + s[i].l[1] + s[i].l[2]) / 3.0f;
     }
     if (hits == 0 || m < 2 || nphi < 3)
         return;

@@ -62,7 +62,7 @@ static void irc__hessian_radii(const irc_cache *c, const irc__sample *s, const f
     for (ch = 0; ch < 3; ch++) {
         float l0, l1, w[2];
         for (i = 0; i < 6; i++)
-            out->hessian[ch][i] = (float)h[ch][i];
+            out->hessian[ch][i] = h[ch][i];
         irc__tangent_hessian(h[ch], t1, t2, &tq[ch][0], &tq[ch][1], &tq[ch][2]);
         irc__eigen2(tq[ch][0], tq[ch][1], tq[ch][2], &l0, &l1, w);
         if (out->e[ch] > 0.0f && IRC_FABSF(l0) / out->e[ch] > best) {
@@ -178,7 +178,7 @@ static uint64_t irc__leak_guard(const irc_cache *c, const irc__sample *s, const 
         near[i] = 1.0f;
     if (rec->minor_radius < rec->radius) {
         float a3[3] = {rec->axis[0], rec->axis[1], rec->axis[2]};
-        q = (float)rec->minor_radius / rec->radius;
+        q = rec->minor_radius / rec->radius;
         ax[0] = irc__dot3(a3, o1);
         ax[1] = irc__dot3(a3, o2);
     }
@@ -257,11 +257,11 @@ static void irc__radii(const irc_cache *c, const irc__sample *s, const float n[3
         if (rad[k] > c->cfg.max_radius) rad[k] = c->cfg.max_radius;
         if (rad[k] < FLT_MIN) rad[k] = FLT_MIN;
     }
-    out->radius = (float)rad[1];
-    out->minor_radius = (float)rad[0];
+    out->radius = rad[1];
+    out->minor_radius = rad[0];
     if (out->minor_radius < out->radius)
         for (k = 0; k < 3; k++)
-            out->axis[k] = (float)axis[k];
+            out->axis[k] = axis[k];
     else
         out->minor_radius = out->radius;
 }
@@ -304,17 +304,17 @@ static IRC__NOINLINE void irc__record_build(const irc_cache *c, const irc__sampl
             if (len > 0.0f && out->e[ch] / len < r)
                 r = out->e[ch] / len;
             for (k = 0; k < 3; k++)
-                out->grad_t[ch][k] = (float)g[ch][k];
+                out->grad_t[ch][k] = g[ch][k];
         }
     }
     if (f & IRC_FEATURE_ROTATION)
         for (ch = 0; ch < 3; ch++)
             for (k = 0; k < 3; k++)
-                out->grad_r[ch][k] = (float)gr[ch][k];
+                out->grad_r[ch][k] = gr[ch][k];
     irc__radii(c, s, n, t1, t2, r, far, fp, out);
     if (c->off[IRC__P_GUARD])
         out->leak_guard = irc__leak_guard(c, s, n, t1, t2, out);
-    out->mean_dist = (float)hm;
+    out->mean_dist = hm;
     out->features = c->cfg.features;
     out->rays = total;
     out->rays_used = used;

@@ -62,7 +62,7 @@ static int irc__ellipse(const irc_record *r, const float un[3], float *q, float 
     axis[0] = axis[1] = axis[2] = 0.0f;
     if (!(r->minor_radius > 0.0f) || !(r->minor_radius < r->radius))
         return 0;
-    *q = (float)r->minor_radius / r->radius;
+    *q = r->minor_radius / r->radius;
     if (*q < 1.0f / IRC_ANISOTROPY)
         *q = 1.0f / IRC_ANISOTROPY;
     for (k = 0; k < 3; k++) {
@@ -162,7 +162,7 @@ static void irc__irr_pack(const irc_cache *c, const void *rec, const float un[3]
         q = 1.0f;
     else {
         irc__aniso *a = (irc__aniso *)(void *)(b + c->off[IRC__P_ELLIPSE]);
-        a->q = (float)q;
+        a->q = q;
         a->axis = q < 1.0f ? irc__oct_encode(axis) : 0u;
     }
     if (c->off[IRC__P_GUARD])

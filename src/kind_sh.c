@@ -44,7 +44,7 @@ static void irc__sh_finish(const irc_cache *c, const irc__shsum *a, irc_sh *out)
     if (r < c->cfg.min_radius) r = c->cfg.min_radius;
     if (r > c->cfg.max_radius) r = c->cfg.max_radius;
     if (r < FLT_MIN) r = FLT_MIN;
-    out->radius = (float)r;
+    out->radius = r;
 }
 
 static int irc__sh_check(const irc_cache *c, const void *rec, float un[3])
@@ -127,8 +127,8 @@ static void irc__sh_unpack(const irc_cache *c, const void *rec, void *dst)
 static int irc__sh_weigh(const irc_cache *c, const irc__rec *r, const irc__query *q,
                          float *w, float ni[3])
 {
-    float dx = (float)q->p[0] - r->p[0], dy = (float)q->p[1] - r->p[1],
-           dz = (float)q->p[2] - r->p[2], d, ra = (float)c->cfg.accuracy * r->r;
+    float dx = q->p[0] - r->p[0], dy = q->p[1] - r->p[1],
+           dz = q->p[2] - r->p[2], d, ra = c->cfg.accuracy * r->r;
     if (!q->free)
         return irc__weigh(c, r, q->p, q->n, 0, w, ni);
     if (r->n != IRC__FREE)
@@ -165,7 +165,7 @@ static void irc__sh_gather(const irc_cache *c, const irc__rec *r, const irc__que
     uint32_t ch, i, k;
     (void)ni;
     for (k = 0; k < 3; k++) {
-        d[k] = (float)q->p[k] - r->p[k];
+        d[k] = q->p[k] - r->p[k];
         a->e[k] += w * r->e[k];
     }
     for (ch = 0; ch < IRC__SH_CH(c); ch++)

@@ -15,7 +15,7 @@ static int irc__occlusion(irc__call *k, void *dst)
     int st, i;
     if ((st = irc__hemisphere(k, t1, t2, k->c->cfg.irr.supersamples)) < 0)
         return st;
-    out->visible = (float)irc__net_visibility(k->c, (const irc__sample *)(void *)k->slot);
+    out->visible = irc__net_visibility(k->c, (const irc__sample *)(void *)k->slot);
     if ((st = irc__grad_visibility(k, 1, g)) < 0)
         return st;
     for (i = 0; i < 3; i++)

@@ -118,9 +118,9 @@ static void irc__dirs_init(const irc_cache *c, const float n[3], const float t1[
     const uint32_t np = irc__pad4(c->cfg.strata_phi);
     int i;
     for (i = 0; i < 3; i++) {
-        g->t1[i] = (float)t1[i];
-        g->t2[i] = (float)t2[i];
-        g->n[i] = (float)n[i];
+        g->t1[i] = t1[i];
+        g->t2[i] = t2[i];
+        g->n[i] = n[i];
     }
     g->inv_m = (float)(1.0f / c->cfg.strata_theta);
     g->dphi = (float)(2.0f * IRC_PI / c->cfg.strata_phi);
@@ -192,7 +192,7 @@ static void irc__keep_geometry(const irc_cache *c, const irc__sample *s, uint32_
         f[0] = h->normal[0]; f[1] = h->normal[1]; f[2] = h->normal[2];
         irc__check_normal(f, v);
         for (k = 0; k < 3; k++)
-            nn[k] = (float)v[k];
+            nn[k] = v[k];
     }
 }
 
@@ -244,7 +244,7 @@ int irc__sample_hemisphere(irc__call *k, const float n[3], const float t1[3],
     uint32_t s0, i, good = 0, j = 0, col = 0;
     int st;
 
-    nf[0] = (float)n[0]; nf[1] = (float)n[1]; nf[2] = (float)n[2];
+    nf[0] = n[0]; nf[1] = n[1]; nf[2] = n[2];
     rng = irc__rng_for(k->q.p, nf, c->cfg.seed);
     irc__dirs_init(c, n, t1, t2, &rng, &g);
     for (s0 = 0; s0 < total; s0 += batch) {

@@ -223,7 +223,7 @@ static int irc__sh_convolve(const irc_sh *sh, const float r[3], float s, int rad
                 sum[ch] += a * sh->c[ch][l * l + l + m] * y[l * l + l + m];
     }
     for (ch = 0; ch < 3; ch++)
-        rgb[ch] = (float)sum[sh->channels == 3 ? ch : 0];
+        rgb[ch] = sum[sh->channels == 3 ? ch : 0];
     return IRC_OK;
 }
 

@@ -134,8 +134,8 @@ static void irc__clamp_visit(void *ud, uint32_t id)
 {
     irc__near *k = (irc__near *)ud;
     irc__rec *j = irc__rec_at(k->c, id);
-    float dx = (float)j->p[0] - k->r->p[0], dy = (float)j->p[1] - k->r->p[1],
-           dz = (float)j->p[2] - k->r->p[2], d = IRC_SQRTF(dx * dx + dy * dy + dz * dz);
+    float dx = j->p[0] - k->r->p[0], dy = j->p[1] - k->r->p[1],
+           dz = j->p[2] - k->r->p[2], d = IRC_SQRTF(dx * dx + dy * dy + dz * dz);
     if (!k->back && d < k->r->r && j->r + d < k->r->r)
         k->r->r = (float)(j->r + d);
     else if (k->back && d < j->r && k->r->r + d < j->r)
@@ -344,7 +344,7 @@ int irc__lookup_once(irc_cache *c, const irc__acc *ops, const irc__query *q, voi
     if ((st = irc__walk_index(c, &v)) < 0)
         return st;
     if (weight)
-        *weight = (float)v.w;
+        *weight = v.w;
     return ops->finish(c, q, acc, v.w, out);
 }
 

@@ -150,7 +150,7 @@ static void irc__mid(const float a[3], const float b[3], float out[3])
  * being sky, within four times the blocker's depth). */
 static void irc__narrow(irc__cross *x, const irc_ray *r, const irc_hit *h, int netvis)
 {
-    float lim = x->dfar < HUGE_VALF ? IRC_SQRTF((float)x->dnear * x->dfar) : 4.0f * x->dnear;
+    float lim = x->dfar < HUGE_VALF ? IRC_SQRTF(x->dnear * x->dfar) : 4.0f * x->dnear;
     int k;
     if (h->status == IRC_RAY_FAILED)
         return;
@@ -165,7 +165,7 @@ static void irc__narrow(irc__cross *x, const irc_ray *r, const irc_hit *h, int n
         for (k = 0; k < 3; k++) {
             x->wa[k] = r->dir[k];
             x->la[k] = netvis ? 0.0f : h->radiance[k];
-            x->na[k] = (float)v[k];
+            x->na[k] = v[k];
         }
         x->da = h->dist;
     } else {
@@ -213,7 +213,7 @@ static void irc__silhouette(irc__cross *x)
     {
         float w[3];
         for (k = 0; k < 3; k++)
-            w[k] = (float)(x->wa[k] + ((float)x->wb[k] - x->wa[k]) * t / IRC_SQRTF(ab));
+            w[k] = (float)(x->wa[k] + (x->wb[k] - x->wa[k]) * t / IRC_SQRTF(ab));
         irc__mid(w, w, x->ws);
     }
 }
@@ -278,13 +278,13 @@ static void irc__end_of(const irc__cross *c, const float n[3], int netvis, irc__
         xf[k] = c->ws[k];
     for (k = 0; k < 3; k++) {
         o->x[k] = xf[k];
-        o->e[k] = (float)c->wb[k] - c->wa[k];
-        nx += (float)c->na[k] * xf[k];
+        o->e[k] = c->wb[k] - c->wa[k];
+        nx += c->na[k] * xf[k];
     }
     /* Irradiance weighs by cos(theta); net visibility (Eq. 47) does not. */
     cs = netvis ? 1.0f : irc__dot3(o->x, n);
     for (k = 0; k < 3; k++)
-        o->q[k] = ((float)c->lb[k] - c->la[k]) * (cs > 0.0f ? cs : 0.0f) / c->ds;
+        o->q[k] = (c->lb[k] - c->la[k]) * (cs > 0.0f ? cs : 0.0f) / c->ds;
     o->smooth = IRC_FABSF(nx) < IRC__SMOOTH;
     for (k = 0; k < 3; k++) {
         o->nu[k] = c->na[k] - nx * o->x[k];
@@ -417,7 +417,7 @@ static int irc__zenith(irc__call *call, irc__sample *out, float dir[3], float nr
         float v[3];
         irc__check_normal(h->normal, v);
         for (k = 0; k < 3; k++)
-            nrm[k] = (float)v[k];
+            nrm[k] = v[k];
     }
     return IRC_OK;
 }

@@ -86,7 +86,7 @@ int irc__weigh(const irc_cache *c, const irc__rec *r, const float p[3],
             float du;
             irc__oct_decode(an->axis, u);
             du = dx * u[0] + dy * u[1] + dz * u[2];
-            d2 = du * du + (d2 - du * du) / ((float)an->q * an->q);
+            d2 = du * du + (d2 - du * du) / (an->q * an->q);
             if (!(d2 < a * a * rad * rad || d2 == 0.0f))
                 return 0;
         }
@@ -141,9 +141,9 @@ void irc__extrapolate(const irc_cache *c, const irc__rec *r, const float ni[3],
     if (c->off[IRC__P_GRAD_T]) {
         const irc__grad *g = (const irc__grad *)(const void *)(b + c->off[IRC__P_GRAD_T]);
         float d[3], da, db;
-        d[0] = (float)p[0] - r->p[0];
-        d[1] = (float)p[1] - r->p[1];
-        d[2] = (float)p[2] - r->p[2];
+        d[0] = p[0] - r->p[0];
+        d[1] = p[1] - r->p[1];
+        d[2] = p[2] - r->p[2];
         da = irc__dot3(d, t1);
         db = irc__dot3(d, t2);
         for (ch = 0; ch < 3; ch++)
