@@ -51,6 +51,9 @@ LEAVE_OUT ?=
 LEFT_SH = src/kind_sh.c src/sh.c src/shgrad.c
 LEFT_VISIBILITY = src/visibility.c src/occlusion.c
 LEFT_HESSIAN = src/hessian.c
+LEFT_SIGHT = src/sight.c
+LEFT_SUPERSAMPLE =
+LEFT_GUARD =
 SRC := $(filter-out $(foreach x,$(LEAVE_OUT),$(LEFT_$(x))),$(SRC) src/absent.c)
 CFLAGS_LIB += $(foreach x,$(LEAVE_OUT),-DIRC_NO_$(x))
 # The chosen port, and the single-threaded one (it needs nothing).

@@ -34,7 +34,8 @@ ${CROSS}ar rcs $B/m4/libirrcache.a $B/m4/*.o
 mkdir -p $B/m4-irr
 for f in src/*.c port/none/irc_port.c port/irc_port_default.c; do
     ${CROSS}gcc -std=c99 -Iinclude -fno-math-errno $M4 -Os -ffunction-sections -fdata-sections \
-        -DIRC_NO_SH -DIRC_NO_VISIBILITY -DIRC_NO_HESSIAN -DIRC_PORT_DEFAULT=irc_port_none \
+        -DIRC_NO_SH -DIRC_NO_VISIBILITY -DIRC_NO_HESSIAN -DIRC_NO_SIGHT -DIRC_NO_SUPERSAMPLE \
+        -DIRC_NO_GUARD -DIRC_PORT_DEFAULT=irc_port_none \
         -c "$f" -o $B/m4-irr/$(basename "$f" .c).o
 done
 ${CROSS}ar rcs $B/m4-irr/libirrcache.a $B/m4-irr/*.o

@@ -13,8 +13,10 @@
 /* The SH kind's features alone, so that a config or a block asking for
  * them is unsupported rather than wrong (kinds.c); nothing reaches its
  * operations. */
-const irc__kind irc__kind_sh = {IRC__KIND_SH_ID, IRC_FEATURE_SH | IRC_FEATURE_SH_GRADIENT,
-                                IRC_FEATURE_SH | IRC_FEATURE_SH_GRADIENT};
+const irc__kind irc__kind_sh = {
+    IRC__KIND_SH_ID, IRC_FEATURE_SH | IRC_FEATURE_SH_GRADIENT,
+    IRC_FEATURE_SH | IRC_FEATURE_SH_GRADIENT, 0, 0, 0, 0, 0, {0, 0},
+    NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL};
 
 /* As on an irradiance cache: no cache of this build holds SH records. */
 static int irc__no_sh(const irc_cache *c)
@@ -84,6 +86,16 @@ int irc_occlusion_compute(irc_cache *c, const float p[3], const float n[3],
 }
 #endif
 
-#if !defined(IRC_NO_SH) && !defined(IRC_NO_VISIBILITY)
+#ifdef IRC_NO_SIGHT
+/* No confirming rays: no config asks for them (config.c). */
+int irc__find_in_sight(irc__call *k, void *out, float *weight)
+{
+    k->q.hidden = NULL;
+    k->q.n_hidden = 0;
+    return k->c->kind->lookup->find(k->c, &k->q, out, weight);
+}
+#endif
+
+#if !defined(IRC_NO_SH) && !defined(IRC_NO_VISIBILITY) && !defined(IRC_NO_SIGHT)
 typedef int irc__nothing_absent; /* ISO C wants something in a file */
 #endif

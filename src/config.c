@@ -72,6 +72,11 @@ static int irc__kind_resolve(const irc__kind *k, irc_config *out)
     int st;
     if (out->clamp_neighbours > IRC_OFF || out->check_visibility > IRC_OFF)
         return IRC_ERR_CONFIG;
+#ifdef IRC_NO_SIGHT /* confirming rays left out (util.h): off by default */
+    if (out->check_visibility == IRC_ON)
+        return IRC_ERR_UNSUPPORTED;
+    out->check_visibility = IRC_OFF;
+#endif
     if ((st = k->resolve(out)) < 0)
         return st;
     out->clamp_neighbours = out->clamp_neighbours == IRC_ON;

@@ -102,11 +102,7 @@ typedef struct irc__mesh {
 
 static irc__seen irc__hess_seen(const irc__mesh *g, uint32_t i)
 {
-    irc__seen v;
-    v.w = g->dirs + 3u * i;
-    v.n = g->nrm + 3u * i;
-    v.d = g->s[i].d;
-    return v;
+    return irc__seen_at(g->dirs, g->nrm, i, g->s[i].d);
 }
 
 /* A hit beside an escaped stratum lies inside a silhouette, nearer than

@@ -157,6 +157,7 @@ static float irc__split_sphere(const irc_cache *c, const irc__totals *t, float *
     return (float)t->hits / t->inv;
 }
 
+#ifndef IRC_NO_GUARD
 /* The leak guard (irc_record.leak_guard): per sector of the stored
  * normal's frame, the nearest hit seen at a grazing angle (rows with
  * sin^2 theta >= 1/2, cosine-weighted strata: a wall, not a ceiling), as
@@ -210,6 +211,8 @@ static uint64_t irc__leak_guard(const irc_cache *c, const irc__sample *s, const 
             mask |= (uint64_t)(15 - (int)IRC_FLOORF(15.0f * near[i])) << (4 * i);
     return mask;
 }
+
+#endif
 
 /* The record's radii: r (the split sphere, or E/|grad E|) for a disk, or
  * with HESSIAN the ellipse; then the screen-space bound (footprint fp) and
@@ -312,8 +315,10 @@ static IRC__NOINLINE void irc__record_build(const irc_cache *c, const irc__sampl
             for (k = 0; k < 3; k++)
                 out->grad_r[ch][k] = gr[ch][k];
     irc__radii(c, s, n, t1, t2, r, far, fp, out);
+#ifndef IRC_NO_GUARD /* else no record has a guard (kind_irr.c) */
     if (c->off[IRC__P_GUARD])
         out->leak_guard = irc__leak_guard(c, s, n, t1, t2, out);
+#endif
     out->mean_dist = hm;
     out->features = c->cfg.features;
     out->rays = total;

@@ -165,8 +165,10 @@ static void irc__irr_pack(const irc_cache *c, const void *rec, const float un[3]
         a->q = q;
         a->axis = q < 1.0f ? irc__oct_encode(axis) : 0u;
     }
+#ifndef IRC_NO_GUARD
     if (c->off[IRC__P_GUARD])
         IRC_MEMCPY(b + c->off[IRC__P_GUARD], &in->leak_guard, sizeof in->leak_guard);
+#endif
     if (c->off[IRC__P_GRAD_T]) {
         irc__grad_limit(in, r->r, q, axis, g);
         irc__grad_pack((const float(*)[3])g, t1, t2, (irc__grad *)(void *)(b + c->off[IRC__P_GRAD_T]));
@@ -195,8 +197,10 @@ static void irc__irr_unpack(const irc_cache *c, const void *src, void *rec)
             irc__oct_decode(a->axis, out->axis);
         }
     }
+#ifndef IRC_NO_GUARD
     if (c->off[IRC__P_GUARD])
         IRC_MEMCPY(&out->leak_guard, b + c->off[IRC__P_GUARD], sizeof out->leak_guard);
+#endif
     out->mean_dist = NAN; /* not stored */
     irc__oct_decode(r->n, out->n);
     irc__oct_frame(r->n, t1, t2);
@@ -372,6 +376,14 @@ static int irc__irr_features(irc_config *cfg)
 static int irc__irr_resolve(irc_config *cfg)
 {
     const uint32_t strata = cfg->strata_theta * cfg->strata_phi;
+#ifdef IRC_NO_SUPERSAMPLE
+    if (cfg->irr.supersamples)
+        return IRC_ERR_UNSUPPORTED;
+#endif
+#ifdef IRC_NO_GUARD
+    if (cfg->irr.leak_guard == IRC_ON)
+        return IRC_ERR_UNSUPPORTED;
+#endif
     if (irc__irr_features(cfg) < 0 || cfg->irr.leak_guard > IRC_OFF ||
         cfg->irr.supersamples > strata ||
         (cfg->irr.supersamples && (cfg->features & IRC_FEATURE_VISIBILITY)))

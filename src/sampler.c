@@ -274,6 +274,7 @@ int irc__sample_hemisphere(irc__call *k, const float n[3], const float t1[3],
     return good * 2u < total || good == 0 ? IRC_ERR_NOSAMPLES : IRC_OK;
 }
 
+#ifndef IRC_NO_SUPERSAMPLE
 /* How much the radiance changes around stratum i: the spread (largest
  * minus smallest, in the sum of the channels) of its four neighbours'
  * samples (the next and previous row and column, phi wrapping), its own
@@ -414,13 +415,19 @@ int irc__supersample(irc__call *k, const float n[3], const float t1[3], const fl
     return IRC_OK;
 }
 
+#endif /* IRC_NO_SUPERSAMPLE */
+
 int irc__hemisphere(irc__call *k, float t1[3], float t2[3], uint32_t extra)
 {
     uint32_t used = 0;
     int st;
     irc__frame(k->q.n, t1, t2);
     st = irc__sample_hemisphere(k, k->q.n, t1, t2, 0, &used);
+#ifndef IRC_NO_SUPERSAMPLE /* else no config asks for any (kind_irr.c) */
     if (st == IRC_OK && extra)
         st = irc__supersample(k, k->q.n, t1, t2, extra);
+#else
+    (void)extra;
+#endif
     return st;
 }

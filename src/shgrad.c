@@ -29,11 +29,7 @@ static int irc__hit(const irc__sample *x)
 
 static irc__seen irc__shg_seen(const irc__grid *g, uint32_t i)
 {
-    irc__seen v;
-    v.w = g->dir + 3u * i;
-    v.n = g->nrm + 3u * i;
-    v.d = g->s[i].d;
-    return v;
+    return irc__seen_at(g->dir, g->nrm, i, g->s[i].d);
 }
 
 static int irc__shg_continuous(const irc__grid *g, uint32_t a, uint32_t b)

@@ -11,6 +11,8 @@
 #include "cache.h"
 #include "sampler.h"
 
+#ifndef IRC_NO_SIGHT
+
 #define IRC__SIGHT_CAP 32u   /* records checked per lookup; more: unchecked */
 #define IRC__SIGHT_BATCH 8u  /* rays per callback call, at most */
 
@@ -102,3 +104,9 @@ int irc__find_in_sight(irc__call *k, void *out, float *weight)
     k->q.n_hidden = 0;
     return st;
 }
+
+#else /* IRC_NO_SIGHT: absent.c's plain find */
+
+typedef int irc__sight_absent; /* ISO C wants something in a file */
+
+#endif

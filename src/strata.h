@@ -27,6 +27,17 @@ typedef struct irc__seen {
     float d;
 } irc__seen;
 
+/* Sample i of a slot's directions and hit normals (3 floats each), at
+ * depth d. */
+static inline irc__seen irc__seen_at(const float *dirs, const float *nrm, uint32_t i, float d)
+{
+    irc__seen v;
+    v.w = dirs + 3u * i;
+    v.n = nrm + 3u * i;
+    v.d = d;
+    return v;
+}
+
 /* |n.w| of a hit: how squarely its surface faces the record. */
 static inline float irc__facing(const float w[3], const float n[3])
 {

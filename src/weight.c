@@ -15,6 +15,7 @@
 /* Cap on a weight: a query exactly on a record gives 1/0. */
 #define IRC__W_MAX 1e6f
 
+#ifndef IRC_NO_GUARD
 /* A guard nibble as the inverse of the distance it records, in reaches:
  * 0 for nothing seen, 15/(15 - v) else (v = 15, a hit at the record
  * itself, as 1/30 of the reach). */
@@ -57,6 +58,8 @@ static int irc__guarded(const irc__rec *r, uint32_t off, const float ni[3], floa
            1.0f;
 }
 
+#endif
+
 /* Ward-Heckbert weight w = 1 / (|p - p_i|/R_i + sqrt(1 - n.n_i)), accepted
  * when w > 1/a.  n must be unit length.  Returns 1 and sets *w and the
  * record's decoded normal ni when the record counts, else 0. */
@@ -92,8 +95,10 @@ int irc__weigh(const irc_cache *c, const irc__rec *r, const float p[3],
         }
     }
     e = IRC_SQRTF(d2) / rad;
+#ifndef IRC_NO_GUARD
     if (shaped && c->off[IRC__P_GUARD] && irc__guarded(r, c->off[IRC__P_GUARD], ni, dx, dy, dz, e / a))
         return 0;
+#endif
     {
         /* sqrt(1 - n.n_i) as |n - n_i|/sqrt(2), equal for unit normals: in
          * float, 1 - n.n_i of nearly equal normals is all rounding (an ulp

@@ -1,8 +1,9 @@
-/* switches.c -- the library built with IRC_NO_SH, IRC_NO_VISIBILITY and
- * IRC_NO_HESSIAN (src/util.h): what is left out is refused with
- * IRC_ERR_UNSUPPORTED, what is left in works.  Built and run by make test
- * (tests/run.sh, stage 1) against a library built with the three
- * switches; prints "N passed, N failed". */
+/* switches.c -- the library built with every IRC_NO_* switch (src/util.h:
+ * SH, VISIBILITY, HESSIAN, SIGHT, SUPERSAMPLE, GUARD): what is left out is
+ * refused with IRC_ERR_UNSUPPORTED, what is left in works, and a zeroed
+ * config gets the defaults this build has.  Built and run by make test
+ * (tests/run.sh, stage 1) against a library built with the switches;
+ * prints "N passed, N failed". */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -64,19 +65,42 @@ int main(void)
         check(irc_footprint(&cfg, 16, &need) == IRC_ERR_UNSUPPORTED,
               "footprint refuses a feature left out");
     }
-    cfg = config(IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION);
-    check(irc_footprint(&cfg, 16, &need) == IRC_OK, "footprint: trans + rot");
+    cfg = config(0);
+    cfg.check_visibility = IRC_ON;
+    check(irc_footprint(&cfg, 16, &need) == IRC_ERR_UNSUPPORTED, "confirming rays asked for");
+    cfg = config(0);
+    cfg.irr.supersamples = 4;
+    check(irc_footprint(&cfg, 16, &need) == IRC_ERR_UNSUPPORTED, "super-samples asked for");
+    cfg = config(0);
+    cfg.irr.leak_guard = IRC_ON;
+    check(irc_footprint(&cfg, 16, &need) == IRC_ERR_UNSUPPORTED, "a leak guard asked for");
+    cfg = config(0);
+    cfg.check_visibility = IRC_OFF;
+    cfg.irr.leak_guard = IRC_OFF;
+    check(irc_footprint(&cfg, 16, &need) == IRC_OK, "the three asked off");
+    /* A zeroed config: trans + rot, neighbour clamping, no confirming rays. */
+    cfg = config(0);
+    check(irc_footprint(&cfg, 16, &need) == IRC_OK, "footprint: the defaults");
     block = malloc(need);
     cfg.buffer = block;
     cfg.buffer_size = need;
     check(block && irc_init(&cfg, 16, &c) == IRC_OK, "init: trans + rot");
     if (!c)
         return 1;
-    check(irc_record_compute(c, p, n, &r, NULL) == IRC_OK && fabsf(r.e[0] - 3.14159265f) < 1e-5f,
-          "a record under the open sky: E = pi");
+    check(irc_record_compute(c, p, n, &r, NULL) == IRC_OK && fabsf(r.e[0] - 3.14159265f) < 1e-5f &&
+              r.features == (IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION) && r.leak_guard == 0,
+          "a record under the open sky: E = pi, both gradients, no guard");
     check(irc_cache_insert(c, &r) == IRC_OK &&
               irc_cache_lookup(c, p, n, rgb, &w) == IRC_OK && fabsf(rgb[0] - r.e[0]) < 1e-6f,
           "insert and lookup");
+    {
+        irc_stats st;
+        float q[3] = {0.05f, 0.0f, 0.0f};
+        check(irc_cache_lookup_or_compute(c, q, n, rgb, &w, NULL) == IRC_OK &&
+                  fabsf(rgb[0] - 3.14159265f) < 1e-5f && irc_cache_stats(c, &st) == IRC_OK &&
+                  st.rays == 128u && st.computes == 1u,
+              "lookup or compute: the record answers, no ray cast to confirm it");
+    }
     check(irc_sh_compute(c, p, n, &sh, NULL) == IRC_ERR_UNSUPPORTED &&
               irc_sh_lookup(c, p, n, &sh, &w) == IRC_ERR_UNSUPPORTED &&
               irc_sh_lookup_or_compute(c, p, n, &sh, &w, NULL) == IRC_ERR_UNSUPPORTED &&
