@@ -84,7 +84,10 @@ static void read_config(fuzz_in *in, irc_config *cfg, host *h, uint32_t *cap)
     k = fz_u8(in);
     cfg->min_pixels = k & 1 ? fz_float(in) : 0.0f;
     cfg->max_pixels = k & 2 ? fz_float(in) : 0.0f;
-    cfg->irr.leak_guard = (uint32_t)(k >> 2) % 4u;
+    /* The irradiance kind's field: set for SH records too in one input of
+     * four, where it must be refused. */
+    if (!(cfg->features & (IRC_FEATURE_SH | IRC_FEATURE_SH_GRADIENT)) || (k >> 6) == 3)
+        cfg->irr.leak_guard = (uint32_t)(k >> 2) % 4u;
     cfg->clamp_neighbours = (uint32_t)(k >> 4) & 3u;
     cfg->strata_theta = (s & 31) == 31 ? 256u : strata[s & 15][0];
     cfg->strata_phi = (s & 31) == 31 ? 256u : strata[s & 15][1];

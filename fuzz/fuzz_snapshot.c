@@ -50,7 +50,8 @@ static void config(uint8_t pick, irc_config *cfg)
     cfg->trace = no_trace;
     cfg->port = &irc_port_none;
     cfg->features = feats[pick & 3];
-    cfg->irr.leak_guard = (pick & 3) != 0 ? IRC_ON : IRC_OFF;
+    /* the irradiance kind's field; zero for SH records */
+    cfg->irr.leak_guard = (pick & 3) == 1 || (pick & 3) == 2 ? IRC_ON : 0u;
     cfg->strata_theta = 4;
     cfg->strata_phi = 8;
     if (cfg->features & IRC_FEATURE_SH) {

@@ -150,7 +150,9 @@ typedef enum irc_status {
                                  without VISIBILITY), or a config or block
                                  asking for what the library was built
                                  without (IRC_NO_SH, IRC_NO_VISIBILITY,
-                                 IRC_NO_HESSIAN: docs/PORTING.md); then
+                                 IRC_NO_HESSIAN, IRC_NO_SIGHT,
+                                 IRC_NO_SUPERSAMPLE, IRC_NO_GUARD:
+                                 docs/PORTING.md); then
                                  the SH calls, irc_sh_irradiance and
                                  irc_sh_glossy included, return it too */
     IRC_ERR_PORT = -11,       /* the port failed to initialise or take its
@@ -466,7 +468,9 @@ typedef struct irc_config {
                                 1.65 times the mean, leaks 40 -> 22, 2.4x
                                 -> 2.8x brute force; atrium 4.7x -> 5.3x;
                                 the Cornell box, where nothing hides,
-                                6.1x -> 5.1x), off for SH records */
+                                6.1x -> 5.1x), off for SH records; off
+                                and refused in a build without them
+                                (IRC_NO_SIGHT) */
     /* Fields of one record kind: a kind's own, zero for its defaults,
      * and all zero in a config of the other kind (else IRC_ERR_CONFIG). */
     struct irc_config_irr {  /* irradiance records */

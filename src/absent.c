@@ -1,9 +1,12 @@
 /*
- * absent.c -- the public calls of what a build leaves out (util.h's
- * IRC_NO_SH and IRC_NO_VISIBILITY, or make LEAVE_OUT=...): each answers
- * IRC_ERR_UNSUPPORTED, as on a cache whose features do not serve it, after
- * the handle checks every call makes.  The files left out are then empty
- * or not compiled at all; nothing else of the library names them.
+ * absent.c -- what stands in for the parts a build leaves out (util.h's
+ * IRC_NO_* switches, or make LEAVE_OUT=...): the public calls of SH records
+ * and of occlusion, each answering IRC_ERR_UNSUPPORTED, as on a cache
+ * whose features do not serve it, after the handle checks every call
+ * makes; the SH kind's table of features alone (kinds.c); without
+ * confirming rays, the plain find they would wrap.  The files left out are
+ * then empty or not compiled at all; nothing else of the library names
+ * them.
  */
 #include "cache.h"
 #include "estimator.h"
@@ -15,7 +18,8 @@
  * operations. */
 const irc__kind irc__kind_sh = {
     IRC__KIND_SH_ID, IRC_FEATURE_SH | IRC_FEATURE_SH_GRADIENT,
-    IRC_FEATURE_SH | IRC_FEATURE_SH_GRADIENT, 0, 0, 0, 0, 0, {0, 0},
+    IRC_FEATURE_SH | IRC_FEATURE_SH_GRADIENT, 0, 0, 0, (uint32_t)offsetof(irc_config, sh),
+    (uint32_t)sizeof(struct irc_config_sh), {0, 0},
     NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL};
 
 /* As on an irradiance cache: no cache of this build holds SH records. */

@@ -221,8 +221,9 @@ int irc__write_lock_idle(irc_cache *c);
  * joins the index, clamped by its neighbours if the config asks. */
 void irc__commit_locked(irc_cache *c, uint32_t id);
 
-/* A lookup weighs and accumulates with ops: the cache's kind (want), or a
- * table that shares its records and answers more (a gradient lookup). */
+/* A lookup weighs and accumulates with ops: the accumulator of the
+ * cache's kind (want->lookup), or one that answers more from the same
+ * records (a gradient lookup). */
 int irc__lookup_once(irc_cache *c, const irc__acc *ops, const irc__query *q, void *out,
                      float *weight, void *acc);
 int irc__lookup(irc_cache *c, const irc__kind *want, const irc__acc *ops, const float p[3],

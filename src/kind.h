@@ -2,7 +2,7 @@
  * kind.h -- what the store and a record kind agree on: the record's head,
  * a query, a computation in progress, a kind's table (its config, its
  * record's parts, its scratch, compute, check, pack, unpack, answer) and a
- * lookup accumulator's table (weigh, begin, accumulate, finish).  The
+ * lookup accumulator's table (weigh, begin, accumulate, finish, find).  The
  * kinds are listed in one place, kinds.c; the store reaches them only
  * through these tables.  A kind's own files: kind_irr.c and the irradiance
  * estimators (estimator.h), kind_sh.c and the SH estimator (shrec.h).
@@ -129,8 +129,8 @@ typedef struct irc__kind {
                                0: none), so that a snapshot names them */
     /* Its fields of the config, defaults applied and checked, and its
      * features' implications and defaults for the irc_switch fields left
-     * at IRC_DEFAULT (config.c resolves the rest); IRC_OK or
-     * IRC_ERR_CONFIG. */
+     * at IRC_DEFAULT (config.c resolves the rest); IRC_OK, IRC_ERR_CONFIG,
+     * or IRC_ERR_UNSUPPORTED for what this build leaves out. */
     int (*resolve)(irc_config *cfg);
     /* The parts a record of this resolved config carries, in order;
      * returns how many (<= IRC__PARTS). */

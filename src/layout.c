@@ -292,10 +292,25 @@ static int irc__parts_same(const irc_cache *a, const irc_cache *b)
            a->o_gtab == b->o_gtab;
 }
 
+/* The header's mutable fields in range. */
+static int irc__mutable_sane(const irc_cache *h)
+{
+    return h->count <= h->capacity && h->nodes_used >= 1u && h->nodes_used <= h->node_cap &&
+           h->hand < h->capacity && h->depth <= IRC__LEVELS && h->root_set <= 1u &&
+           h->pass_open <= 1u && h->pass_base <= h->capacity && h->pending <= h->capacity - h->pass_base &&
+           h->packed <= h->pending &&
+           (uint32_t)h->torn <= h->capacity && (uint32_t)(h->torn >> 32) <= h->capacity &&
+           h->writing <= 1u &&
+           irc__finite_d(h->root_c[0]) && irc__finite_d(h->root_c[1]) &&
+           irc__finite_d(h->root_c[2]) && h->root_h >= 0.0 && h->root_h <= 1e39;
+}
+
 /* Whether a block's header is one irc_init could have written: its
  * stored config resolves to itself, and every size and offset equals what
  * that config and capacity give; the mutable fields are in range.  The
- * switches are stored resolved (0 or 1) and read back as IRC_OFF / IRC_ON. */
+ * switches are stored resolved (0 or 1) and read back as IRC_OFF / IRC_ON.
+ * IRC_OK, IRC_ERR_CORRUPT, or IRC_ERR_UNSUPPORTED for a block asking for
+ * what this build leaves out. */
 static int irc__header_sane(const irc_config *cfg, const irc_cache *h)
 {
     irc_port lockless;
@@ -303,11 +318,12 @@ static int irc__header_sane(const irc_config *cfg, const irc_cache *h)
     irc_cache e;
     irc__layout l;
     const irc__kind *k = irc__kind_of(h->cfg.features);
+    int st;
     if (h->capacity == 0 || h->capacity > IRC_MAX_RECORDS || h->lock_bytes > 4096u ||
         h->lock_bytes % IRC__ALIGN || h->kind_id != k->id ||
         !irc__switch_back(h->cfg.clamp_neighbours, &in.clamp_neighbours) ||
         !irc__switch_back(h->cfg.check_visibility, &in.check_visibility))
-        return 0;
+        return IRC_ERR_CORRUPT;
     if (in.features == 0) /* bare records, stored resolved */
         in.features = IRC_FEATURE_NONE;
     if (in.min_pixels == 0.0f) /* no pixel bound, stored as 0 */
@@ -320,29 +336,26 @@ static int irc__header_sane(const irc_config *cfg, const irc_cache *h)
     in.trace = cfg->trace;
     in.port = &lockless;
     /* A kind's fields resolve to themselves (a switch of its own to 0 or
-     * 1, which is off by default or on). */
-    if (irc__config_resolve(&in, &r) < 0 || r.features != h->cfg.features ||
+     * 1, which is off by default or on).  What this build leaves out is
+     * named as such. */
+    if ((st = irc__config_resolve(&in, &r)) == IRC_ERR_UNSUPPORTED)
+        return st;
+    if (st < 0 || r.features != h->cfg.features ||
         r.strata_theta != h->cfg.strata_theta || r.strata_phi != h->cfg.strata_phi ||
         r.threads != h->cfg.threads || r.max_batch != h->cfg.max_batch ||
         !irc__same_bytes((const unsigned char *)&r + k->cfg_at,
                          (const unsigned char *)&h->cfg + k->cfg_at, k->cfg_bytes) ||
         r.evict != h->cfg.evict || r.accuracy != h->cfg.accuracy)
-        return 0;
+        return IRC_ERR_CORRUPT;
     irc__layout_of(&r, h->capacity, &l);
     IRC_MEMSET(&e, 0, sizeof e);
     e.cfg = r;
     irc__set_parts(&e, &l);
     if (!irc__parts_same(&e, h) || h->strata != r.strata_theta * r.strata_phi)
-        return 0;
-    return h->count <= h->capacity && h->nodes_used >= 1u && h->nodes_used <= h->node_cap &&
-           h->hand < h->capacity && h->depth <= IRC__LEVELS && h->root_set <= 1u &&
-           h->pass_open <= 1u && h->pass_base <= h->capacity && h->pending <= h->capacity - h->pass_base &&
-           h->packed <= h->pending &&
-           (uint32_t)h->torn <= h->capacity && (uint32_t)(h->torn >> 32) <= h->capacity &&
-           h->writing <= 1u &&
-           irc__finite_d(h->root_c[0]) && irc__finite_d(h->root_c[1]) &&
-           irc__finite_d(h->root_c[2]) && h->root_h >= 0.0 && h->root_h <= 1e39;
+        return IRC_ERR_CORRUPT;
+    return irc__mutable_sane(h) ? IRC_OK : IRC_ERR_CORRUPT;
 }
+
 
 /* Moves the cache from offset was to pad (its 64-byte boundary here) and
  * checks its records and index there, where they are aligned; a block
@@ -388,8 +401,8 @@ int irc_attach(const irc_config *cfg, irc_cache **out)
         return st;
     if (!irc__port_ok(port) || port->lock_size > head.lock_bytes)
         return IRC_ERR_CONFIG;
-    if (!irc__header_sane(cfg, &head))
-        return IRC_ERR_CORRUPT;
+    if ((st = irc__header_sane(cfg, &head)) < 0)
+        return st;
     head.port = port;
     pad = irc__pad(cfg->buffer);
     if ((st = irc__move_checked(cfg, &head, was, pad)) < 0)
@@ -448,8 +461,8 @@ int irc_join(const irc_config *cfg, void *view, size_t view_size, irc_cache **ou
     if (at != irc__pad(cfg->buffer) || !irc__port_ok(port) ||
         port->lock_size > head.lock_bytes || !irc__same_name(name, head.port_name))
         return IRC_ERR_CONFIG;
-    if (!irc__header_sane(cfg, &head))
-        return IRC_ERR_CORRUPT;
+    if ((st = irc__header_sane(cfg, &head)) < 0)
+        return st;
     home = (irc_cache *)(void *)((unsigned char *)cfg->buffer + at);
     IRC_MEMCPY(v, home, sizeof *v);
     irc__attach_pointers(v, cfg, port);

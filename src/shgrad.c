@@ -61,7 +61,6 @@ static float irc__shg_silhouette(const irc__grid *g, uint32_t i, int64_t o)
  * and unit normal, shared by the two samples (their L y_i is applied by
  * the caller).  An edge across a silhouette is no difference of one
  * surface: the nearer side's 1/r runs on to the silhouette's depth
-s
  * (irc__shg_silhouette), the farther side's surface continues behind.
  * w_out gets the vector for sample i. */
 static void irc__shg_edge(const irc__grid *g, uint32_t i, int64_t o, int64_t back,

@@ -49,7 +49,7 @@ int irc__silhouette_depth(const irc__seen *edge, const irc__seen *inner, float *
     }
     fe = irc__facing(edge->w, edge->n);
     fi = irc__facing(inner->w, inner->n);
-    if (!(dn > dw) || !(fi * fi >= 1.25f * fe * fe))
+    if (!(dn > dw) || !(fi > fe) || !(fi * fi >= 1.25f * fe * fe))
         return 0;
     ds = edge->d + fe * (edge->d - inner->d) / (fi - fe);
     *depth = ds < 1.5f * edge->d ? ds : 1.5f * edge->d;

@@ -355,14 +355,17 @@ TEST(test_kind_occ_snapshot_attach)
     at = cfg;
     at.buffer = moved + 1;
     at.buffer_size = size;
-    CHECK(irc_attach(&at, &e) == IRC_OK, "attach the moved block");
-    for (id = 0; id < 20; id++) {
+    e = NULL;
+    CHECK(irc_attach(&at, &e) == IRC_OK && e != NULL, "attach the moved block");
+    for (id = 0; e && id < 20; id++) {
         const float p[3] = {-1.2f + 0.11f * (float)id, 0.35f, 0.0f}, nz[3] = {0.0f, 0.0f, 1.0f};
         float a = -1.0f, b = -2.0f;
         int sa = occ_lookup(c, p, nz, &a, NULL), sb = occ_lookup(e, p, nz, &b, NULL);
-        CHECK(sa == sb && (sa != IRC_OK || a == b), "lookup %u: %g vs %g after attach", id, a, b);
+        CHECK(sa == IRC_OK && sb == IRC_OK && a == b, "lookup %u: %d %g vs %d %g after attach", id,
+              sa, a, sb, b);
     }
-    irc_fini(e);
+    if (e)
+        irc_fini(e);
     free(moved);
     free(snap);
     block_free(&other);

@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "irrcache.h"
+#include "cache.h" /* a block header poked on purpose: as a full build writes it */
 
 static int passed, failed;
 
@@ -113,6 +114,27 @@ int main(void)
     check(irc_sh_lookup(NULL, p, n, &sh, &w) == IRC_ERR_NULL, "an SH call on NULL: IRC_ERR_NULL");
     check(irc_occlusion_compute(c, p, n, &occ, NULL) == IRC_ERR_UNSUPPORTED,
           "occlusion: IRC_ERR_UNSUPPORTED");
+    {
+        /* The block as a full build would have made it, with confirming
+         * rays or a leak guard: this build names it unsupported, and
+         * leaves it as it was. */
+        irc_cache *d = NULL;
+        unsigned char *copy = malloc(need);
+        int st1, st2;
+        memcpy(copy, block, need);
+        c->cfg.check_visibility = 1;
+        st1 = irc_attach(&cfg, &d);
+        c->cfg.check_visibility = 0;
+        c->cfg.irr.leak_guard = 1;
+        st2 = irc_attach(&cfg, &d);
+        c->cfg.irr.leak_guard = 0;
+        check(st1 == IRC_ERR_UNSUPPORTED && st2 == IRC_ERR_UNSUPPORTED && d == NULL &&
+                  memcmp(copy, block, need) == 0,
+              "attach: a block with what this build leaves out is unsupported, left whole");
+        check(irc_attach(&cfg, &d) == IRC_OK && d != NULL, "attach: the block as it was");
+        c = d ? d : c;
+        free(copy);
+    }
     irc_fini(c);
     free(block);
     printf("%d passed, %d failed\n", passed, failed);

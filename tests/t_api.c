@@ -47,6 +47,9 @@ TEST(test_config_checks)
     CASE((cfg.features = IRC_FEATURE_SH, cfg.sh.power = 17.0f), IRC_ERR_CONFIG);
     CASE(cfg.sh.bands = 3, IRC_ERR_CONFIG);
     CASE(cfg.sh.power = 2.0f, IRC_ERR_CONFIG);
+    /* the irradiance kind's fields in an SH config */
+    CASE((cfg.features = IRC_FEATURE_SH, cfg.irr.leak_guard = IRC_OFF), IRC_ERR_CONFIG);
+    CASE((cfg.features = IRC_FEATURE_SH, cfg.irr.supersamples = 1), IRC_ERR_CONFIG);
     CASE(cfg.features = IRC_FEATURE_VISIBILITY, IRC_OK);
     CASE(cfg.features = 1u << 20, IRC_ERR_CONFIG);
     CASE(cfg.accuracy = -1.0f, IRC_ERR_CONFIG);
