@@ -144,6 +144,16 @@ typedef struct irc__kind {
     const irc__acc *lookup; /* its plain lookup's accumulator */
 } irc__kind;
 
+/* A kind's defaults for the irc_switch fields a config left at
+ * IRC_DEFAULT (IRC_ON or IRC_OFF each). */
+static inline void irc__switch_defaults(irc_config *cfg, uint32_t clamp, uint32_t sight)
+{
+    if (cfg->clamp_neighbours == IRC_DEFAULT)
+        cfg->clamp_neighbours = clamp;
+    if (cfg->check_visibility == IRC_DEFAULT)
+        cfg->check_visibility = sight;
+}
+
 /* kinds.c: the kinds this build has, and the one a config or a block
  * names (NULL: none). */
 const irc__kind *irc__kind_of(uint32_t features);

@@ -388,10 +388,7 @@ static int irc__irr_resolve(irc_config *cfg)
         cfg->irr.supersamples > strata ||
         (cfg->irr.supersamples && (cfg->features & IRC_FEATURE_VISIBILITY)))
         return IRC_ERR_CONFIG;
-    if (cfg->clamp_neighbours == IRC_DEFAULT)
-        cfg->clamp_neighbours = IRC_ON;
-    if (cfg->check_visibility == IRC_DEFAULT)
-        cfg->check_visibility = IRC_ON;
+    irc__switch_defaults(cfg, IRC_ON, IRC_ON);
     cfg->irr.leak_guard = cfg->irr.leak_guard == IRC_ON;
     return IRC_OK;
 }

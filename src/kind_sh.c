@@ -288,10 +288,7 @@ static int irc__sh_resolve(irc_config *cfg)
     if (cfg->sh.bands > IRC_SH_MAX_BANDS || (cfg->sh.channels != 1u && cfg->sh.channels != 3u) ||
         !(cfg->sh.power > 0.0f && cfg->sh.power <= 16.0f))
         return IRC_ERR_CONFIG;
-    if (cfg->clamp_neighbours == IRC_DEFAULT)
-        cfg->clamp_neighbours = IRC_OFF;
-    if (cfg->check_visibility == IRC_DEFAULT)
-        cfg->check_visibility = IRC_OFF;
+    irc__switch_defaults(cfg, IRC_OFF, IRC_OFF);
     return IRC_OK;
 }
 

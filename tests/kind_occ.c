@@ -162,10 +162,7 @@ static int occ_resolve(irc_config *cfg)
 {
     if (cfg->features != OCC_FEATURE)
         return IRC_ERR_CONFIG;
-    if (cfg->clamp_neighbours == IRC_DEFAULT)
-        cfg->clamp_neighbours = IRC_OFF;
-    if (cfg->check_visibility == IRC_DEFAULT)
-        cfg->check_visibility = IRC_OFF;
+    irc__switch_defaults(cfg, IRC_OFF, IRC_OFF);
     return IRC_OK;
 }
 
