@@ -969,7 +969,8 @@ IRC_API int irc_pass_begin(irc_cache *cache);
  * Closes the open pass: its records, sorted in merge's canonical order
  * (see irc_merge) with exact duplicates kept once, are inserted one by one
  * in that order (neighbour clamping, when on, applies in that order too)
- * and become visible.  Then every record of the cache is renumbered in the
+ * and become visible; the index is then built anew in an order that
+ * spreads its nodes over the scene (the same for the same records).  Then every record of the cache is renumbered in the
  * order lookups visit the index (depth first), which puts the records a
  * lookup reads side by side in memory: lookups answer bit for bit as
  * before, faster (bench/README.md, "Speed and memory"), but record ids change, and

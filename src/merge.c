@@ -110,8 +110,7 @@ int irc_merge(irc_cache *c, uint64_t fingerprint, const void *data, size_t size)
     irc__zero_slots(c, kept, n - kept);
     /* The index and CLOCK start over from the canonical order. */
     irc__forget_locked(c);
-    for (i = 0; i < kept; i++)
-        irc__index_insert(c, i);
+    irc__index_rebuild(c);
     irc__index_compact(c);
     irc__write_unlock(c);
     return IRC_OK;

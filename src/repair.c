@@ -75,8 +75,7 @@ void irc__repair_locked(irc_cache *c)
             h->count = last;
         }
     irc__forget_locked(c);
-    for (id = 0; id < h->count; id++)
-        irc__index_insert(c, id);
+    irc__index_rebuild(c);
     irc__index_compact(c);
     if (h->pass_open) {
         h->pass_base = h->count;

@@ -393,3 +393,85 @@ TEST(test_index_grow_faces)
           "%u entries in the index for %u records, %u not found", seen, (unsigned)st.records, lost);
     block_free(&cfg);
 }
+
+/* A record on one of the unit box's faces, radius log-uniform around the
+ * spacing of `count` records (bench/lookups.c's workload). */
+static void box_record(unsigned long long *st, uint32_t count, irc_record *r)
+{
+    const int f = (int)(xrand(st) * 6.0), ax = f / 2;
+    const double reach = sqrt(36.0 / (3.14159265 * count));
+    memset(r, 0, sizeof *r);
+    r->p[ax] = f % 2 ? 0.5f : -0.5f;
+    r->p[(ax + 1) % 3] = (float)(xrand(st) - 0.5);
+    r->p[(ax + 2) % 3] = (float)(xrand(st) - 0.5);
+    r->n[ax] = f % 2 ? 1.0f : -1.0f;
+    r->e[0] = r->e[1] = r->e[2] = 1.0f;
+    r->radius = (float)(reach / 0.2 * exp((xrand(st) - 0.5) * 1.4));
+}
+
+static void count_one(void *ud, uint32_t id)
+{
+    (void)id;
+    ++*(uint32_t *)ud;
+}
+
+/* Index entries 2,000 queries on the box scan. */
+static uint64_t scanned(irc_cache *c)
+{
+    unsigned long long st = 99;
+    uint64_t total = 0;
+    uint32_t i, passed = 0;
+    irc_record q;
+    for (i = 0; i < 2000; i++) {
+        box_record(&st, 1000, &q);
+        total += irc__index_query(c, q.p, count_one, &passed);
+    }
+    return total;
+}
+
+/* The bulk paths (a pass's end, a merge) index records that come in space
+ * order: inserted in that order they spent the node pool on the first
+ * part of the scene, and a lookup scanned up to 8x the entries of a
+ * random-order fill (compact.c, irc__index_rebuild).  Exactness is the
+ * other tests'; here the entries scanned, a count, not a time. */
+TEST(test_index_bulk_spread)
+{
+    const uint32_t n = 20000;
+    irc_config a = scene_config(&dummy, IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION, 4, 4), b, d;
+    a.clamp_neighbours = IRC_DEFAULT; /* on, as a renderer's cache has it */
+    b = a;
+    d = a;
+    irc_cache *ca = block_cache(&a, n, 0), *cb = block_cache(&b, n, 0), *cd = block_cache(&d, n, 0);
+    unsigned long long st = 7;
+    uint64_t free_fill, pass, merged;
+    size_t bytes = 0;
+    unsigned char *snap;
+    uint32_t i;
+    CHECK(ca && cb && cd, "three caches");
+    if (!ca || !cb || !cd)
+        return;
+    CHECK(irc_pass_begin(cb) == IRC_OK, "pass");
+    for (i = 0; i < n; i++) {
+        irc_record r;
+        box_record(&st, n, &r);
+        CHECK(irc_cache_insert(ca, &r) == IRC_OK && irc_cache_insert(cb, &r) == IRC_OK, "insert");
+    }
+    CHECK(irc_pass_end(cb, NULL) == IRC_OK, "pass end");
+    irc_snapshot_size(cb, &bytes);
+    snap = (unsigned char *)malloc(bytes);
+    CHECK(snap && irc_snapshot_write(cb, 1, snap, bytes, NULL, NULL, NULL) == IRC_OK &&
+              irc_merge(cd, 1, snap, bytes) == IRC_OK,
+          "the pass's records, in index order, merged into an empty cache");
+    free_fill = scanned(ca);
+    pass = scanned(cb);
+    merged = scanned(cd);
+    printf("  entries scanned a query: free fill %.1f, after a pass %.1f, after a merge %.1f\n",
+           free_fill / 2000.0, pass / 2000.0, merged / 2000.0);
+    CHECK(pass <= free_fill * 3 / 2 && merged <= free_fill * 3 / 2,
+          "a bulk index scans %llu and %llu entries where a random-order fill scans %llu",
+          (unsigned long long)pass, (unsigned long long)merged, (unsigned long long)free_fill);
+    free(snap);
+    block_free(&a);
+    block_free(&b);
+    block_free(&d);
+}
