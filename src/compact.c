@@ -153,13 +153,17 @@ void irc__index_compact(irc_cache *c)
  * splits over the scene: record k * 2654435761 mod n for k = 0 .. n - 1
  * (a prime above IRC_MAX_RECORDS, so every record once), the same order
  * for the same records whatever the threads. */
+void irc__index_clear(irc_cache *c)
+{
+    IRC_MEMSET(irc__ix(c), 0, (size_t)c->capacity * sizeof(irc__ixe));
+    IRC_MEMSET(irc__nodes(c), 0, (size_t)c->home->nodes_used * sizeof(irc__node));
+    irc__index_reset(c);
+}
+
 void irc__index_rebuild(irc_cache *c)
 {
     const uint32_t n = c->home->count;
     uint64_t k;
-    IRC_MEMSET(irc__ix(c), 0, (size_t)c->capacity * sizeof(irc__ixe));
-    IRC_MEMSET(irc__nodes(c), 0, (size_t)c->home->nodes_used * sizeof(irc__node));
-    irc__index_reset(c);
     for (k = 0; k < n; k++)
         irc__index_insert(c, (uint32_t)(k * 2654435761u % n));
 }

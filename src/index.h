@@ -45,7 +45,10 @@ void irc__index_reset(irc_cache *c);
 void irc__index_insert(irc_cache *c, uint32_t id);
 void irc__index_remove(irc_cache *c, uint32_t id);
 void irc__index_compact(irc_cache *c); /* compact.c */
-void irc__index_rebuild(irc_cache *c); /* compact.c */
+/* compact.c: the index emptied (records kept); the records [0, count)
+ * inserted into an empty index in a scattered order. */
+void irc__index_clear(irc_cache *c);
+void irc__index_rebuild(irc_cache *c);
 /* Returns the index entries it scanned (the work; tests check it). */
 uint32_t irc__index_query(const irc_cache *c, const float p[3], irc__visit_fn fn,
                           void *ud);

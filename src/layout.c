@@ -433,14 +433,6 @@ int irc_attach(const irc_config *cfg, irc_cache **out)
 typedef char irc__view_fits[sizeof(irc_cache) <= IRC_VIEW_BYTES ? 1 : -1];
 typedef char irc__stripe_fits[IRC__C_COUNT * sizeof(uint64_t) <= IRC__ALIGN ? 1 : -1];
 
-static int irc__same_name(const char a[16], const char b[16])
-{
-    int i;
-    for (i = 0; i < 16 && a[i] == b[i]; i++)
-        ;
-    return i == 16;
-}
-
 int irc_join(const irc_config *cfg, void *view, size_t view_size, irc_cache **out)
 {
     irc_cache head, *home, *v = (irc_cache *)view;
@@ -459,7 +451,7 @@ int irc_join(const irc_config *cfg, void *view, size_t view_size, irc_cache **ou
     /* A live block cannot move: this mapping must put the cache where the
      * others do, at the same offset from a 64-byte boundary. */
     if (at != irc__pad(cfg->buffer) || !irc__port_ok(port) ||
-        port->lock_size > head.lock_bytes || !irc__same_name(name, head.port_name))
+        port->lock_size > head.lock_bytes || !irc__same_bytes((const unsigned char *)name, (const unsigned char *)head.port_name, 16))
         return IRC_ERR_CONFIG;
     if ((st = irc__header_sane(cfg, &head)) < 0)
         return st;

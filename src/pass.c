@@ -62,8 +62,10 @@ int irc_pass_end(irc_cache *c, uint32_t *added)
     }
     /* Committed in canonical order (each one clamped by those before),
      * indexed in a scattered one (compact.c). */
-    if (kept)
+    if (kept) {
+        irc__index_clear(c);
         irc__index_rebuild(c);
+    }
     irc__index_compact(c);
     c->home->pass_open = 0;
     c->port->store(&c->home->pending, 0);

@@ -188,9 +188,7 @@ static void irc__keep_geometry(const irc_cache *c, const irc__sample *s, uint32_
         d[k] = dir[k];
     if (h->status == IRC_RAY_HIT) {
         float v[3];
-        float f[3];
-        f[0] = h->normal[0]; f[1] = h->normal[1]; f[2] = h->normal[2];
-        irc__check_normal(f, v);
+        irc__check_normal(h->normal, v);
         for (k = 0; k < 3; k++)
             nn[k] = v[k];
     }
@@ -240,12 +238,10 @@ int irc__sample_hemisphere(irc__call *k, const float n[3], const float t1[3],
     irc_hit *hits = (irc_hit *)(void *)(rays + batch);
     irc__rng rng;
     irc__dirs g;
-    float nf[3];
     uint32_t s0, i, good = 0, j = 0, col = 0;
     int st;
 
-    nf[0] = n[0]; nf[1] = n[1]; nf[2] = n[2];
-    rng = irc__rng_for(k->q.p, nf, c->cfg.seed);
+    rng = irc__rng_for(k->q.p, n, c->cfg.seed);
     irc__dirs_init(c, n, t1, t2, &rng, &g);
     for (s0 = 0; s0 < total; s0 += batch) {
         uint32_t cnt = total - s0 < batch ? total - s0 : batch;
@@ -378,8 +374,8 @@ int irc__supersample(irc__call *k, const float n[3], const float t1[3], const fl
     irc_ray *rays = irc__slot_rays(c, k->slot);
     irc_hit *hits = (irc_hit *)(void *)(rays + c->cfg.max_batch);
     uint32_t at[64], i, cnt = 0, room, bin;
-    float most, nf[3] = {n[0], n[1], n[2]};
-    irc__rng rng = irc__rng_for(k->q.p, nf, c->cfg.seed);
+    float most;
+    irc__rng rng = irc__rng_for(k->q.p, n, c->cfg.seed);
     irc__dirs g;
     int st;
     bin = irc__ss_threshold(s, m, nphi, extra, &most, &room);

@@ -532,11 +532,9 @@ int irc__write_lock_idle(irc_cache *c)
 void irc__forget_locked(irc_cache *c)
 {
     c->home->hand = 0;
-    IRC_MEMSET(irc__ix(c), 0, (size_t)c->capacity * sizeof(irc__ixe));
-    IRC_MEMSET(irc__nodes(c), 0, (size_t)c->home->nodes_used * sizeof(irc__node));
     if (c->o_used)
         IRC_MEMSET(irc__used(c), 0, ((size_t)c->capacity + 63u) / 64u * sizeof(uint64_t));
-    irc__index_reset(c);
+    irc__index_clear(c);
 }
 
 void irc__clear_locked(irc_cache *c)

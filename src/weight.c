@@ -35,7 +35,7 @@ static int irc__guarded(const irc__rec *r, uint32_t off, const float ni[3], floa
                         float dy, float dz, float t)
 {
     uint64_t g;
-    float nd[3], t1[3], t2[3], x, y, u, f;
+    float t1[3], t2[3], x, y, u, f;
     int i0;
     uint64_t top = 0;
     IRC_MEMCPY(&g, (const unsigned char *)r + off, sizeof g);
@@ -47,8 +47,7 @@ static int irc__guarded(const irc__rec *r, uint32_t off, const float ni[3], floa
             top = g >> (4 * i0) & 15u;
     if (t * irc__guard_inv(top, 0) <= 1.0f)
         return 0;
-    nd[0] = ni[0]; nd[1] = ni[1]; nd[2] = ni[2];
-    irc__frame(nd, t1, t2);
+    irc__frame(ni, t1, t2);
     x = dx * t1[0] + dy * t1[1] + dz * t1[2];
     y = dx * t2[0] + dy * t2[1] + dz * t2[2];
     u = IRC_ATAN2F(y, x) * (8.0f / IRC_PI) + 15.5f; /* sector centres at whole u */
@@ -135,14 +134,13 @@ void irc__extrapolate(const irc_cache *c, const irc__rec *r, const float ni[3],
                       const float p[3], const float n[3], float out[3])
 {
     const unsigned char *b = (const unsigned char *)r;
-    float t1[3], t2[3], nd[3];
+    float t1[3], t2[3];
     int ch;
     for (ch = 0; ch < 3; ch++)
         out[ch] = r->e[ch];
     if (!c->off[IRC__P_GRAD_T] && !c->off[IRC__P_GRAD_R])
         return;
-    nd[0] = ni[0]; nd[1] = ni[1]; nd[2] = ni[2];
-    irc__frame(nd, t1, t2);
+    irc__frame(ni, t1, t2);
     if (c->off[IRC__P_GRAD_T]) {
         const irc__grad *g = (const irc__grad *)(const void *)(b + c->off[IRC__P_GRAD_T]);
         float d[3], da, db;
@@ -156,9 +154,8 @@ void irc__extrapolate(const irc_cache *c, const irc__rec *r, const float ni[3],
     }
     if (c->off[IRC__P_GRAD_R]) {
         const irc__grad *g = (const irc__grad *)(const void *)(b + c->off[IRC__P_GRAD_R]);
-        float q[3], x[3], da, db;
-        q[0] = n[0]; q[1] = n[1]; q[2] = n[2];
-        irc__cross3(nd, q, x);
+        float x[3], da, db;
+        irc__cross3(ni, n, x);
         da = irc__dot3(x, t1);
         db = irc__dot3(x, t2);
         for (ch = 0; ch < 3; ch++)
@@ -179,10 +176,9 @@ void irc__extrapolate_grad(const irc_cache *c, const irc__rec *r, const float ni
                            const float val[3], float f, irc_gradient *g)
 {
     const unsigned char *b = (const unsigned char *)r;
-    float t1[3], t2[3], nd[3], v[3];
+    float t1[3], t2[3], v[3];
     int ch, k;
-    nd[0] = ni[0]; nd[1] = ni[1]; nd[2] = ni[2];
-    irc__frame(nd, t1, t2);
+    irc__frame(ni, t1, t2);
     for (ch = 0; ch < 3; ch++) {
         const int live = val[ch] > 0.0f;
         for (k = 0; k < 3; k++) {
@@ -196,7 +192,7 @@ void irc__extrapolate_grad(const irc_cache *c, const irc__rec *r, const float ni
                                                     ch, t1[k], t2[k])
                                     : 0.0f;
         for (k = 0; k < 3; k++) /* (v x n_i)[k] */
-            g->dn[ch][k] += f * (v[(k + 1) % 3] * nd[(k + 2) % 3] -
-                                 v[(k + 2) % 3] * nd[(k + 1) % 3] - g->dn[ch][k]);
+            g->dn[ch][k] += f * (v[(k + 1) % 3] * ni[(k + 2) % 3] -
+                                 v[(k + 2) % 3] * ni[(k + 1) % 3] - g->dn[ch][k]);
     }
 }
