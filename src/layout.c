@@ -451,7 +451,8 @@ int irc_join(const irc_config *cfg, void *view, size_t view_size, irc_cache **ou
     /* A live block cannot move: this mapping must put the cache where the
      * others do, at the same offset from a 64-byte boundary. */
     if (at != irc__pad(cfg->buffer) || !irc__port_ok(port) ||
-        port->lock_size > head.lock_bytes || !irc__same_bytes((const unsigned char *)name, (const unsigned char *)head.port_name, 16))
+        port->lock_size > head.lock_bytes ||
+        !irc__same_bytes((const unsigned char *)name, (const unsigned char *)head.port_name, 16))
         return IRC_ERR_CONFIG;
     if ((st = irc__header_sane(cfg, &head)) < 0)
         return st;
