@@ -96,16 +96,6 @@ static void irc__child_cube(const irc__cube *q, int oct, irc__cube *out)
         out->c[i] = q->c[i] + (oct >> i & 1 ? out->h : -out->h);
 }
 
-/* The inverse: the cube whose child oct is q, exact (centres lie on the
- * grid of their edge). */
-static void irc__parent_cube(irc__cube *q, int oct)
-{
-    int i;
-    for (i = 0; i < 3; i++)
-        q->c[i] -= oct >> i & 1 ? q->h : -q->h;
-    q->h *= 2.0;
-}
-
 /* Sets id's entry for the list of the node with cube q.  The position is
  * rounded to the nearest step (at most half a step off per axis) and the
  * reach up, so a query's test on entries (irc__scan) can only admit more
@@ -253,9 +243,10 @@ static void irc__root_fit(irc_cache *c, const double lo[3], const double hi[3])
             if (lo[i] < c->home->root_c[i] - c->home->root_h || hi[i] >= c->home->root_c[i] + c->home->root_h)
                 break;
         if (i == 3)
-            return;
+            break;
         c->home->root_h *= 2.0;
     }
+    IRC_ASSERT(irc__index_root_sane(c->home)); /* what the walk relies on */
 }
 
 /* Refits a leaf root to the positions it holds and p. */
@@ -317,6 +308,7 @@ static int irc__grow(irc_cache *c, const float p[3])
         }
     }
     was->head = keep;
+    IRC_ASSERT(irc__index_root_sane(c->home));
     return 1;
 }
 
@@ -394,187 +386,4 @@ void irc__index_remove(irc_cache *c, uint32_t id)
     IRC_ASSERT(found);
     (void)found;
     /* Reaches are left as they are: an upper bound stays exact. */
-}
-
-/* What a query asks for: records whose reach times scale may hold p, or,
- * with range >= 0, records within range of p. */
-typedef struct irc__probe {
-    const float *p;
-    int ranged;           /* range >= 0, tested once (a double comparison
-                             is a library call on a single-precision FPU) */
-    double range, scale;
-    irc__visit_fn fn;
-    void *ud;
-} irc__probe;
-
-/* The probe's point relative to cube q in units of its half edge, in
- * float: the one place a query needs the cube's exact centre (double),
- * once a node.  Beyond FLT_MAX half edges it is infinite, which every
- * test below reads as out of reach, as it is. */
-static void irc__rel(const irc__cube *q, const float p[3], float r[3])
-{
-    const double inv = 1.0 / q->h; /* a power of two: exact */
-    int i;
-    for (i = 0; i < 3; i++)
-        r[i] = (float)(((double)p[i] - q->c[i]) * inv);
-}
-
-/* Hands over the records of a list whose entries pass the probe's test in
- * the list's steps; r is the probe's point relative to the list's cube q
- * (irc__rel).  The test admits a superset of the exact one: the entry's
- * position is at most sqrt(3)/2 steps off (the 1 added to the bound); the
- * point's float roundings, in r and in (r + 1) 32767.5, are within 0.02
- * steps while |r| < 2 (the slack left by the 1), and relative ones beyond,
- * covered with the float rounding of the test itself by the 1e-5 relative
- * margin. */
-static uint32_t irc__scan(const irc_cache *c, uint32_t id, const irc__cube *q,
-                          const float r3[3], const irc__probe *pr)
-{
-    uint32_t n = 0;
-    const irc__ixe *ix = irc__ix(c);
-    const float b0 = (r3[0] + 1.0f) * 32767.5f, b1 = (r3[1] + 1.0f) * 32767.5f,
-                b2 = (r3[2] + 1.0f) * 32767.5f;
-    /* The bound is m rq + f steps: a reach times scale, or the range. */
-    const float m = pr->ranged ? 0.0f : (float)(pr->scale * (1.0 + 1e-5)),
-                f = pr->ranged ? (float)(pr->range * (32767.5 / q->h) * (1.0 + 1e-5)) + 1.0f
-                               : 1.0f;
-    for (; id != IRC__NIL; id = ix[id].next) {
-        const irc__ixe *e = &ix[id];
-        float dx = b0 - e->q[0], dy = b1 - e->q[1], dz = b2 - e->q[2];
-        float r = (float)e->rq * m + f;
-        n++;
-        if (dx * dx + dy * dy + dz * dz <= r * r || e->rq == IRC__IX_ANY)
-            pr->fn(pr->ud, id);
-    }
-    return n;
-}
-
-/* The children of node n (cube q) a probe must enter, as bits by octant:
- * those whose cube lies within the subtree's reach (or the range) of p (a
- * record lies inside its node's cube, the root's list excepted, which is
- * always scanned).  Distances are in units of the child's edge, in float:
- * the bound is widened by a relative 4e-6 (the roundings of the squares
- * and sums, about 1e-6) and 1e-6 of an edge (underflow of tiny terms), so
- * the test admits a superset of the exact one; a square too large for a
- * float rejects only a child beyond FLT_MAX edges, which no reach below
- * that passes either. */
-static unsigned irc__children(const irc_cache *c, const irc__node *n, const irc__cube *q,
-                              const float r3[3], const irc__probe *pr)
-{
-    const irc__node *ch = &irc__nodes(c)[n->child];
-    const double hc = 0.5 * q->h, unit = 1.0 / hc;
-    const float s = pr->ranged ? 0.0f : (float)(pr->scale * (1.0 + 4e-6) * unit),
-                fixed = pr->ranged ? (float)(pr->range * (1.0 + 4e-6) * unit) + 1e-6f
-                                          : 1e-6f;
-    float part[3][2], xy[4];
-    unsigned mask = 0;
-    int i;
-    /* Squared distance from p to each child's cube, axis by axis, in child
-     * edges from the centre: child bit k of axis i spans [-2, 0] (k = 0)
-     * or [0, 2].  With x's own rounding, x - 2 and -2 - x are within 6e-7
-     * edges while |x| < 4 (inside the 1e-6), relatively close beyond. */
-    for (i = 0; i < 3; i++) {
-        const float x = 2.0f * r3[i], lo = x > -2.0f - x ? x : -2.0f - x,
-                    hi = -x > x - 2.0f ? -x : x - 2.0f;
-        part[i][0] = lo > 0.0f ? lo * lo : 0.0f; /* outside [-2, 0] */
-        part[i][1] = hi > 0.0f ? hi * hi : 0.0f; /* outside [0, 2] */
-    }
-    /* By the octant's low two bits (x, y), then z added per child; an
-     * empty child's reach is -1, which its own test must not let by. */
-    xy[0] = part[0][0] + part[1][0];
-    xy[1] = part[0][1] + part[1][0];
-    xy[2] = part[0][0] + part[1][1];
-    xy[3] = part[0][1] + part[1][1];
-#define IRC__CHILD(o)                                                         \
-    do {                                                                      \
-        float r = ch[o].reach * s + fixed, d2 = xy[(o) & 3] + part[2][(o) >> 2]; \
-        mask |= ((unsigned)(ch[o].reach >= 0.0f) & (unsigned)(d2 <= r * r)) << (o); \
-    } while (0)
-    IRC__CHILD(0); IRC__CHILD(1); IRC__CHILD(2); IRC__CHILD(3);
-    IRC__CHILD(4); IRC__CHILD(5); IRC__CHILD(6); IRC__CHILD(7);
-#undef IRC__CHILD
-    return mask;
-}
-
-/* Depth first, children in octant order, each node's list before its
- * children's (the order lookups sum in), with an explicit stack: a level's
- * block of children, the children still to enter and the octant taken
- * (6 bytes a level, in three arrays: no padding on a lookup's stack), the
- * cube of the current node kept and restored on the way up by
- * irc__parent_cube. */
-static uint32_t irc__descend(const irc_cache *c, const irc__probe *pr)
-{
-    uint32_t scanned = 0;
-    uint32_t block[IRC__LEVELS + 1];
-    uint8_t mask[IRC__LEVELS + 1], octs[IRC__LEVELS + 1];
-    const irc__node *nodes = irc__nodes(c);
-    irc__cube q;
-    float r3[3];
-    int top = 0;
-    if (!c->home->root_set)
-        return 0;
-    irc__root_cube(c, &q);
-    irc__rel(&q, pr->p, r3);
-    if (nodes[0].head != IRC__NIL)
-        scanned += irc__scan(c, nodes[0].head, &q, r3, pr);
-    if (!nodes[0].child)
-        return scanned;
-    block[0] = nodes[0].child;
-    mask[0] = (uint8_t)irc__children(c, &nodes[0], &q, r3, pr);
-    for (;;) {
-        const irc__node *n;
-        irc__cube cq;
-        unsigned oct;
-        if (!mask[top]) {
-            if (top == 0)
-                return scanned;
-            top--;
-            irc__parent_cube(&q, (int)octs[top]);
-            continue;
-        }
-        for (oct = 0; !(mask[top] >> oct & 1u); oct++)
-            ;
-        mask[top] = (uint8_t)(mask[top] & ~(1u << oct));
-        n = &nodes[block[top] + oct];
-        irc__child_cube(&q, (int)oct, &cq);
-        if (n->head != IRC__NIL || n->child)
-            irc__rel(&cq, pr->p, r3);
-        if (n->head != IRC__NIL)
-            scanned += irc__scan(c, n->head, &cq, r3, pr);
-        IRC_ASSERT(!n->child || top < IRC__LEVELS);
-        if (n->child && top < IRC__LEVELS) {
-            octs[top] = (uint8_t)oct;
-            q = cq;
-            top++;
-            block[top] = n->child;
-            mask[top] = (uint8_t)irc__children(c, n, &q, r3, pr);
-        }
-    }
-}
-
-uint32_t irc__index_query(const irc_cache *c, const float p[3], irc__visit_fn fn, void *ud)
-{
-    irc__probe pr;
-    pr.p = p;
-    pr.ranged = 0;
-    pr.range = -1.0;
-    pr.scale = 1.0;
-    pr.fn = fn;
-    pr.ud = ud;
-    return irc__descend(c, &pr);
-}
-
-/* range >= 0: records within range of p; range < 0: records whose radius
- * R_i (reach / a) may hold p. */
-void irc__index_range(const irc_cache *c, const float p[3], float range, irc__visit_fn fn,
-                      void *ud)
-{
-    irc__probe pr;
-    pr.p = p;
-    pr.ranged = range >= 0.0f;
-    pr.range = (double)range;
-    pr.scale = 1.0 / (double)c->cfg.accuracy;
-    pr.fn = fn;
-    pr.ud = ud;
-    (void)irc__descend(c, &pr);
 }

@@ -52,6 +52,9 @@ void irc__index_rebuild(irc_cache *c);
 /* Returns the index entries it scanned (the work; tests check it). */
 uint32_t irc__index_query(const irc_cache *c, const float p[3], irc__visit_fn fn,
                           void *ud);
+/* 1 if a block's root cube is one the index could have made (layout.c's
+ * header check of a set root), else 0. */
+int irc__index_root_sane(const irc_cache *c);
 void irc__index_range(const irc_cache *c, const float p[3], float range, irc__visit_fn fn,
                       void *ud);
 

@@ -302,7 +302,8 @@ static int irc__mutable_sane(const irc_cache *h)
            (uint32_t)h->torn <= h->capacity && (uint32_t)(h->torn >> 32) <= h->capacity &&
            h->writing <= 1u &&
            irc__finite_d(h->root_c[0]) && irc__finite_d(h->root_c[1]) &&
-           irc__finite_d(h->root_c[2]) && h->root_h >= 0.0 && h->root_h <= 1e39;
+           irc__finite_d(h->root_c[2]) && h->root_h >= 0.0 && h->root_h <= 1e39 &&
+           (!h->root_set || irc__index_root_sane(h));
 }
 
 /* Whether a block's header is one irc_init could have written: its

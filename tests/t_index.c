@@ -475,3 +475,71 @@ TEST(test_index_bulk_spread)
     block_free(&b);
     block_free(&d);
 }
+
+/* The walk's integer point (query.c) where it is least exact: records of
+ * radius 1 near the origin with one at 1e33 (a root wider than 2^100,
+ * where the point is made in double, and lists at the depth limit), and
+ * records of radius 1e-11 within 1e-9 of the origin with one at 1 (cubes
+ * 2^-40 of the root's, where the integer point is off by the most half
+ * edges), each answered as a scan of every record answers. */
+TEST(test_index_far_scales)
+{
+    static const double far[2] = {1e33, 1.0}, size[2] = {1.0, 1e-9};
+    int k;
+    for (k = 0; k < 2; k++) {
+        irc_config cfg = scene_config(&dummy, IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION, 4, 4);
+        irc_cache *c = block_cache(&cfg, 4000, 0);
+        unsigned long long st = 31 + (unsigned long long)k;
+        uint32_t i, found;
+        int e;
+        CHECK(c != NULL, "init");
+        if (!c) return;
+        for (i = 0; i < 4000; i++) {
+            irc_record r;
+            int j;
+            memset(&r, 0, sizeof r);
+            for (j = 0; j < 3; j++) {
+                r.p[j] = (float)(i == 0 ? far[k] : size[k] * xrand(&st));
+                r.e[j] = (float)xrand(&st);
+            }
+            rand_normal(&st, r.n);
+            r.radius = (float)(size[k] * (0.01 + 0.02 * xrand(&st)));
+            CHECK(irc_cache_insert(c, &r) == IRC_OK, "insert");
+        }
+        frexp(c->root_h, &e);
+        CHECK((e - 1 >= 100) == (k == 0), "scene %d: root half edge 2^%d", k, e - 1);
+        CHECK(k == 0 || c->depth >= 30, "scene %d: depth %u", k, (unsigned)c->depth);
+        found = compare(c, irc_t_quick ? 1000u : 4000u, 0, &st);
+        CHECK(found > 100, "scene %d: found %u", k, found);
+        block_free(&cfg);
+    }
+}
+
+/* What the walk relies on of the root (query.c, irc__index_root_sane) is
+ * checked when a block is attached: a root centre off its grid, or farther
+ * than 33 half edges from the origin, is refused, the block unchanged. */
+TEST(test_index_root_refused)
+{
+    irc_config cfg = scene_config(&dummy, IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION, 4, 4), ac;
+    irc_cache *c = block_cache(&cfg, 1000, 0), *a;
+    unsigned long long st = 5;
+    int k;
+    CHECK(c != NULL, "init");
+    if (!c) return;
+    fill(c, 1000, 0, &st);
+    CHECK(irc__index_root_sane(c), "the root a fill makes");
+    for (k = 0; k < 3; k++) {
+        const double was = c->root_c[0];
+        unsigned char *copy = malloc(cfg.buffer_size);
+        c->root_c[0] = k == 0 ? 40.0 * c->root_h : k == 1 ? was + c->root_h * 0x1p-40 : 1e300;
+        memcpy(copy, cfg.buffer, cfg.buffer_size);
+        ac = cfg;
+        CHECK(irc_attach(&ac, &a) == IRC_ERR_CORRUPT, "root %d attached", k);
+        CHECK(memcmp(copy, cfg.buffer, cfg.buffer_size) == 0, "root %d: block changed", k);
+        c->root_c[0] = was;
+        free(copy);
+    }
+    ac = cfg;
+    CHECK(irc_attach(&ac, &a) == IRC_OK, "the block as it was");
+    block_free(&cfg);
+}

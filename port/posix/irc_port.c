@@ -23,7 +23,9 @@
  * hangs.  This one is built from words in the block:
  *   - writer: the process id of the writer, 0 if none;
  *   - readers: a table of words, each 0 or (process id << 32 | count).
- *     A process's threads share its entries; any process may hold several.
+ *     Any process may hold several: a thread starts its search at an entry
+ *     of its own (its stack's address, hashed), so that threads on other
+ *     cores count themselves in on other lines.
  * A reader counts itself in, then looks at writer (both sequentially
  * consistent, so of a reader and a writer arriving together at least one
  * sees the other) and backs out if a writer came.  A writer claims writer,
@@ -38,10 +40,14 @@
  */
 #define POSIX_READERS 63u
 #define POSIX_CHECK_EVERY 64u /* waits between liveness checks */
+#define POSIX_LINE 8u         /* words a cache line */
 
+/* Every word on a cache line of its own: a reader's count changes twice a
+ * lookup, and threads whose entries shared a line would trade it between
+ * their cores on every lookup (64 bytes: x86 and most ARM cores). */
 typedef struct posix_lock {
-    uint64_t writer;
-    uint64_t readers[POSIX_READERS];
+    uint64_t writer[POSIX_LINE];
+    uint64_t readers[POSIX_READERS][POSIX_LINE];
 } posix_lock;
 
 /* An owner is a process id; kill(pid, 0) tells whether it still runs
@@ -58,7 +64,15 @@ static int posix_swap(uint64_t *w, uint64_t e, uint64_t d)
     return __atomic_compare_exchange_n(w, &e, d, 0, __ATOMIC_SEQ_CST, __ATOMIC_SEQ_CST);
 }
 
-static unsigned posix_home_entry(uint64_t me) { return (unsigned)(me * 2654435761u % POSIX_READERS); }
+/* The calling thread's first entry: its process and the 1 MiB granule of
+ * its stack (threads' stacks lie megabytes apart; one thread's calls stay
+ * in one granule or two, and lock and unlock find the entry either way). */
+static unsigned posix_home_entry(uint64_t me)
+{
+    unsigned char here;
+    uint64_t a = (uint64_t)(uintptr_t)&here >> 20;
+    return (unsigned)((me * 2654435761u + a * 0x9e3779b97f4a7c15ull) >> 40) % POSIX_READERS;
+}
 
 static int posix_lock_init(void *l)
 {
@@ -67,21 +81,22 @@ static int posix_lock_init(void *l)
 }
 static void posix_lock_destroy(void *l) { (void)l; }
 
-/* One more count on an entry of this process: its own, a free one, or
- * (when the table is full) one of a process that is gone.  0 if none. */
+/* One more count on the first entry from the thread's own that is this
+ * process's or free, or (when the table is full) on one of a process that
+ * is gone.  0 if none. */
 static int posix_count_in(posix_lock *k, uint64_t me)
 {
-    unsigned i, at, pass;
-    for (pass = 0; pass < 3; pass++)
+    unsigned i, at, pass, home = posix_home_entry(me);
+    for (pass = 0; pass < 2; pass++)
         for (i = 0; i < POSIX_READERS; i++) {
-            uint64_t *e = &k->readers[(posix_home_entry(me) + i) % POSIX_READERS];
+            uint64_t *e = k->readers[(home + i) % POSIX_READERS];
             uint64_t v = posix_get(e);
             at = 0;
             if (pass == 0 && v >> 32 == me)
                 at = posix_swap(e, v, v + 1);
-            else if (pass == 1 && v == 0)
+            else if (pass == 0 && v == 0)
                 at = posix_swap(e, 0, me << 32 | 1u);
-            else if (pass == 2 && v >> 32 != me && !posix_owner_alive(v >> 32))
+            else if (pass == 1 && v >> 32 != me && !posix_owner_alive(v >> 32))
                 at = posix_swap(e, v, me << 32 | 1u);
             if (at)
                 return 1;
@@ -91,10 +106,11 @@ static int posix_count_in(posix_lock *k, uint64_t me)
 
 static void posix_count_out(posix_lock *k, uint64_t me)
 {
+    const unsigned home = posix_home_entry(me);
     for (;;) {
         unsigned i;
         for (i = 0; i < POSIX_READERS; i++) {
-            uint64_t *e = &k->readers[(posix_home_entry(me) + i) % POSIX_READERS];
+            uint64_t *e = k->readers[(home + i) % POSIX_READERS];
             uint64_t v = posix_get(e);
             if (v >> 32 == me && (v & 0xffffffffu) &&
                 posix_swap(e, v, (v & 0xffffffffu) == 1u ? 0 : v - 1))
@@ -109,9 +125,9 @@ static int posix_read_lock(void *l)
     uint64_t me = posix_owner(), w;
     unsigned waits = 0;
     for (;;) {
-        if ((w = posix_get(&k->writer)) == 0) {
+        if ((w = posix_get(k->writer)) == 0) {
             if (posix_count_in(k, me)) {
-                if (posix_get(&k->writer) == 0)
+                if (posix_get(k->writer) == 0)
                     return 0;
                 posix_count_out(k, me);
             }
@@ -144,23 +160,23 @@ static int posix_write_lock(void *l)
     unsigned waits = 0, i;
     int took_over = 0;
     for (;;) {
-        if ((w = posix_get(&k->writer)) == 0) {
-            if (posix_swap(&k->writer, 0, me))
+        if ((w = posix_get(k->writer)) == 0) {
+            if (posix_swap(k->writer, 0, me))
                 break;
         } else if (++waits % POSIX_CHECK_EVERY == 0 && w != me && !posix_owner_alive(w) &&
-                   posix_swap(&k->writer, w, me)) {
+                   posix_swap(k->writer, w, me)) {
             took_over = 1;
             break;
         }
         sched_yield();
     }
     for (i = 0; i < POSIX_READERS; i++)
-        posix_drain(&k->readers[i], me);
+        posix_drain(k->readers[i], me);
     return took_over;
 }
 static void posix_write_unlock(void *l)
 {
-    __atomic_store_n(&((posix_lock *)l)->writer, 0, __ATOMIC_SEQ_CST);
+    __atomic_store_n(((posix_lock *)l)->writer, 0, __ATOMIC_SEQ_CST);
 }
 
 static void posix_yield(void) { sched_yield(); }
