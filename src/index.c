@@ -34,7 +34,11 @@
 #endif
 #define IRC__DEPTH 40    /* with the root's h >= |c|/32: centres within 2^45 of
                             their size, so exact in double */
-#define IRC__ROOT_MAX 1e39
+/* The widest root: the walk's integer point needs a root whose half edge
+ * and 2^57 over it are floats (query.c).  Records beyond it (coordinates
+ * past 1e30, where a squared distance is past FLT_MAX anyway) stay in the
+ * root's list, always candidates. */
+#define IRC__ROOT_MAX 0x1p99
 
 typedef struct irc__cube {
     double c[3];
@@ -246,6 +250,10 @@ static void irc__root_fit(irc_cache *c, const double lo[3], const double hi[3])
             break;
         c->home->root_h *= 2.0;
     }
+    if (c->home->root_h > IRC__ROOT_MAX) {
+        c->home->root_h = IRC__ROOT_MAX;
+        c->home->root_c[0] = c->home->root_c[1] = c->home->root_c[2] = 0.0;
+    }
     IRC_ASSERT(irc__index_root_sane(c->home)); /* what the walk relies on */
 }
 
@@ -327,7 +335,8 @@ static void irc__root_cover(irc_cache *c, const float p[3])
     if (irc__in_root(&q, p))
         return;
     if (!irc__nodes(c)[0].child) {
-        irc__root_refit(c, p);
+        if (c->home->root_h < IRC__ROOT_MAX) /* else p stays outside, in the list */
+            irc__root_refit(c, p);
         return;
     }
     do
@@ -343,7 +352,7 @@ void irc__index_insert(irc_cache *c, uint32_t id)
     irc__node *n;
     int depth;
     irc__root_cover(c, p);
-    if (!irc__nodes(c)[0].child &&
+    if (!irc__nodes(c)[0].child && c->home->root_h < IRC__ROOT_MAX &&
         irc__list_len(c, irc__nodes(c)[0].head, IRC__SPLIT) >= IRC__SPLIT)
         irc__root_refit(c, p);
     n = irc__home(c, p, reach, 1, &q, &depth);

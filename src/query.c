@@ -12,17 +12,17 @@
  * operation is a library call, and the double walk spent half a lookup in
  * them.
  *
- * Exactness.  The integer point is off by at most 2^9 units: the one
- * double subtraction p - low is off by 2^-53 of at most 5 root edges (the
- * clamp below), 2^7.4 units, and the conversion truncates under 1.  At
- * depth d a half edge is 2^(57 - d) units, so that is 2^(d - 48) half
- * edges: the scan widens its bound by 2^(d - 32) steps of 2 / 65535 half
- * edges and the children's test by 2^(d - 46) child half edges, twice
- * that, negligible above depth 30, and at the depth limit a wider
- * candidate set, never a narrower one.  A point farther than 4 root edges
- * from the root is clamped toward it per axis, which only shortens its
- * distance to anything inside the root (every list's entries but the
- * root's records outside it, which are always candidates).
+ * Exactness.  The integer point is off by under 2 units: p and the
+ * root's low corner scaled to units are exact floats (the root's rules,
+ * irc__index_root_sane), and only their truncations to integers round.
+ * At depth d a half edge is 2^(57 - d) units; the scan widens its bound
+ * by 2^(d - 32) steps of 2 / 65535 half edges and the children's test by
+ * 2^(d - 46) child half edges, room for 2^9 units, negligible above depth
+ * 30 and at the depth limit a wider candidate set, never a narrower one.
+ * A point farther than 4 root edges from the root is clamped toward it per
+ * axis, which only shortens its distance to anything inside the root
+ * (every list's entries but the root's records outside it, which are
+ * always candidates).
  */
 #include "cache.h"
 #include "index.h"
@@ -59,9 +59,9 @@ static float irc__pow2f(int k)
 }
 
 /* A depth-0 factor no smaller than 2^-100: rounding one from beyond
- * float's normal range down would narrow the tests (a root wider than
- * 2^100 reach units); a larger one only widens them, and a factor times
- * 2^d past FLT_MAX is infinite, which lets everything by. */
+ * float's normal range down would narrow the tests (a range or reach
+ * scale 2^-100 of a wide root's edge); a larger one only widens them, and
+ * a factor times 2^d past FLT_MAX is infinite, which lets everything by. */
 static float irc__factor(float x)
 {
     return x > 0x1p-100f ? x : 0x1p-100f;
@@ -85,7 +85,7 @@ static int64_t irc__to_int64(float x)
 
 /* The point's offset from the root's low corner in units.  lo = j h with
  * |j| <= 34 (irc__index_root_sane), so p and lo times 2^(57 - E) (h =
- * 2^E, E < 100) are exact floats and only the truncations to integers
+ * 2^E, -99 <= E <= 99) are exact floats and only the truncations to integers
  * round, under a unit each.  Clamped to [-4, 5] root edges from lo (file
  * comment), both bounds exact too. */
 static int64_t irc__fixed(float p, float lo, int e)
@@ -98,15 +98,6 @@ static int64_t irc__fixed(float p, float lo, int e)
     return irc__to_int64(x) - irc__to_int64(l);
 }
 
-/* The same in double, for a root beyond float's comfortable range (2^100:
- * coordinates near 1e30): off by 2^-53 of 5 root edges, 2^7.4 units. */
-static int64_t irc__fixed_wide(float p, double lo, double h)
-{
-    double t = ((double)p - lo) / (2.0 * h);
-    t = t < -4.0 ? -4.0 : t > 5.0 ? 5.0 : t;
-    return (int64_t)(t * 0x1p58);
-}
-
 static void irc__probe_set(const irc_cache *c, const float p[3], float range, float scale,
                            irc__visit_fn fn, void *ud, irc__probe *pr)
 {
@@ -114,16 +105,14 @@ static void irc__probe_set(const irc_cache *c, const float p[3], float range, fl
     float inv_h; /* 1/h: a power of two */
     uint64_t bits;
     int i, e;
-    /* h = 2^e, a normal double (irc__index_root_sane) */
+    /* h = 2^e, -99 <= e <= 99 (irc__index_root_sane) */
     IRC_MEMCPY(&bits, &c->home->root_h, sizeof bits);
     e = (int)(bits >> 52 & 0x7ffu) - 1023;
     for (i = 0; i < 3; i++)
-        pr->p[i] = e < 100 ? irc__fixed(p[i], (float)c->home->root_c[i] - irc__pow2f(e), e)
-                           : irc__fixed_wide(p[i], c->home->root_c[i] - c->home->root_h,
-                                             c->home->root_h);
+        pr->p[i] = irc__fixed(p[i], (float)c->home->root_c[i] - irc__pow2f(e), e);
     /* The factors in float: their roundings (relative 2^-23 at most) lie
      * well inside the margins 1e-5 and 4e-6 each carries. */
-    inv_h = e < 100 ? irc__pow2f(-e) : 0x1p-100f;
+    inv_h = irc__pow2f(-e);
     pr->m = ranged ? 0.0f : scale * (1.0f + 1e-5f);
     pr->f = ranged ? irc__factor(range * (32767.5f * (1.0f + 1e-5f)) * inv_h) : 0.0f;
     pr->s = ranged ? 0.0f : irc__factor(scale * (2.0f * (1.0f + 4e-6f)) * inv_h);
@@ -334,13 +323,12 @@ static uint32_t irc__descend(const irc_cache *c, const irc__probe *pr)
 int irc__index_root_sane(const irc_cache *h)
 {
     int e, i;
-    if (!(h->root_h >= 0x1p-99 && h->root_h <= 1e39) || IRC_FREXP(h->root_h, &e) != 0.5)
+    if (!(h->root_h >= 0x1p-99 && h->root_h <= 0x1p99) || IRC_FREXP(h->root_h, &e) != 0.5)
         return 0;
     for (i = 0; i < 3; i++) {
         const double lo = h->root_c[i] - h->root_h;
-        if (!(IRC_FABS(h->root_c[i]) <= 33.0 * h->root_h) ||
-            (h->root_h < 0x1p100 &&
-             ((double)(float)lo != lo || (double)(float)h->root_c[i] != h->root_c[i])))
+        if (!(IRC_FABS(h->root_c[i]) <= 33.0 * h->root_h) || (double)(float)lo != lo ||
+            (double)(float)h->root_c[i] != h->root_c[i])
             return 0;
     }
     return 1;
