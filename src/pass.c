@@ -56,12 +56,17 @@ int irc_pass_end(irc_cache *c, uint32_t *added)
     irc__sort(c, c->home->pass_base, n);
     kept = irc__unique(c, c->home->pass_base, n);
     irc__zero_slots(c, c->home->pass_base + kept, n - kept);
-    for (i = 0; i < kept; i++) {
+    /* Committed in canonical order (each one clamped by those before,
+     * found through the index), indexed in a scattered one (compact.c):
+     * without clamping only the scattered order indexes them. */
+    for (i = 0; i < kept && c->cfg.clamp_neighbours; i++) {
         c->home->count = c->home->pass_base + i + 1;
         irc__commit_locked(c, c->home->pass_base + i);
     }
-    /* Committed in canonical order (each one clamped by those before),
-     * indexed in a scattered one (compact.c). */
+    if (!c->cfg.clamp_neighbours) {
+        c->home->count = c->home->pass_base + kept;
+        irc__count(c, IRC__C_INSERTS, kept);
+    }
     if (kept) {
         irc__index_clear(c);
         irc__index_rebuild(c);
