@@ -41,6 +41,7 @@ typedef char irc__hess_fields[IRC__VFIELDS == IRC__HESS_FIELDS ? 1 : -1];
 typedef struct irc__hess_blk {
     float ex[4], ey[4], ez[4], cc[4], ee[4], cs[4], nc[4], i1[4], d0[4], d1[4];
     int ok[4], wide[4];
+    int any, anywide;       /* some lane counts; some counts and is wide */
 } irc__hess_blk;
 
 /* A block's geometry and I1 from four lanes of the vertex rows v0, v1
@@ -51,7 +52,7 @@ static void irc__hess_geom(const float *restrict v0, const float *restrict v1,
 {
     const float *x0 = v0, *y0 = x0 + st, *z0 = y0 + st, *x1 = v1, *y1 = x1 + st, *z1 = y1 + st;
     const float *a0 = la, *a1 = a0 + st, *a2 = a1 + st, *b0 = lb, *b1 = b0 + st, *b2 = b1 + st;
-    int q;
+    int q, any = 0, anywide = 0;
     for (q = 0; q < 4; q++) {
         w[q] = a0[q] - b0[q];
         w[4 + q] = a1[q] - b1[q];
@@ -84,7 +85,11 @@ static void irc__hess_geom(const float *restrict v0, const float *restrict v1,
         x2 = b->cc[q] * ics * ics;
         b->i1[q] = (1.0f - x2 * (1.0f / 3 - x2 * (1.0f / 5 - x2 * (1.0f / 7 - x2 * (1.0f / 9 -
                     x2 * (1.0f / 11)))))) * ics;
+        any |= b->ok[q];
+        anywide |= b->ok[q] & b->wide[q];
     }
+    b->any = any;
+    b->anywide = anywide;
 }
 
 /* A block's six terms of pi H F_e into f (six rows of four), 0 where the
@@ -152,7 +157,12 @@ static void irc__hess_terms(const float *v0, const float *v1, const float *la, c
     for (k = 0; k < count; k += 4) {
         irc__hess_blk b;
         irc__hess_geom(v0 + k, v1 + k, la + k, lb + k, st, nn, fw + 9u * k + 24u, &b);
-        if (b.wide[0] | b.wide[1] | b.wide[2] | b.wide[3])
+        if (!b.any) { /* a region of one radiance, as the old scalar loop skipped */
+            for (q = 0; q < 24; q++)
+                fw[9u * k + (uint32_t)q] = 0.0f;
+            continue;
+        }
+        if (b.anywide)
             for (q = 0; q < 4; q++) /* rare: outside the vector loop */
                 if (b.wide[q])
                     b.i1[q] = b.ok[q] ? IRC_ATAN2F(IRC_SQRTF(b.cc[q]), b.cs[q]) /
