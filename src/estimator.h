@@ -84,8 +84,8 @@ static inline uint64_t irc__gscratch_floats(uint32_t strata, uint32_t nphi)
 /* The Hessian's rows (hessian.c): a row of vertices or of a channel of
  * triangle radiances holds a float per column, column N repeating column
  * 0 (a last block of four lanes may read it); a family of edges is taken
- * a chunk of columns at a time: 16 (each chunk's sums are added to the
- * record's once), but 8 in rows of fewer than 64 columns, where
+ * a chunk of columns at a time, its sums added to the record's Hessian
+ * once a chunk: 32 columns, but 8 in rows of fewer than 64, where
  * IRC_FOOTPRINT_BOUND, which counts bytes a stratum, leaves less room. */
 #define IRC__HESS_FIELDS 7u
 static inline uint32_t irc__hstride(uint32_t nphi)
@@ -94,7 +94,7 @@ static inline uint32_t irc__hstride(uint32_t nphi)
 }
 static inline uint32_t irc__hchunk(uint32_t nphi)
 {
-    return nphi >= 64u ? 16u : nphi >= 8u ? 8u : (nphi + 3u) / 4u * 4u;
+    return nphi >= 64u ? 32u : nphi >= 8u ? 8u : (nphi + 3u) / 4u * 4u;
 }
 /* Its floats: two rows of vertices, two of radiances, three channels
  * each, and a chunk of edges' six terms and three weights (none where

@@ -78,7 +78,7 @@ static void irc__hess_geom(const float *restrict v0, const float *restrict v1,
         /* I1 = angle(r0, r1)/|c| = atan(x)/(x r0.r1), x = |c|/(r0.r1): the
          * grid's edges span a few degrees, where the series in x^2 is exact
          * to 5e-9 (x < 1/4) and needs no square root or arc function;
-         * wider ones take atan2 (irc__hessian_block), which stays accurate
+         * wider ones take atan2 (irc__hess_terms), which stays accurate
          * where acos of the cosine loses half its digits. */
         b->wide[q] = ((b->cs[q] > 0.0f) & (b->cc[q] < 0.0625f * b->cs[q] * b->cs[q])) == 0;
         ics = 1.0f / b->cs[q];
@@ -172,10 +172,11 @@ static void irc__hess_terms(const float *v0, const float *v1, const float *la, c
     }
 }
 
-/* acc[6 ch + i][lane] += the sum over a chunk's edges of w_ch f_i, a
- * channel at a time (six sums, the weights and the terms fit in a 4-wide
- * target's registers). */
-static void irc__hess_sum(const float *restrict fw, uint32_t count, float (*restrict acc)[4])
+/* h[ch][i] -= the sum over a chunk's edges of w_ch f_i, a channel at a
+ * time (six sums of four lanes, the weights and the terms fit in a 4-wide
+ * target's registers), the lanes added at the chunk's end: the closed
+ * forms give -H F_e (Radiance's comp_hessian returns the same sign). */
+static void irc__hess_sum(const float *restrict fw, uint32_t count, float h[3][6])
 {
     uint32_t k;
     int q, ch;
@@ -193,14 +194,12 @@ static void irc__hess_sum(const float *restrict fw, uint32_t count, float (*rest
                 s5[q] += w[q] * f[20 + q];
             }
         }
-        for (q = 0; q < 4; q++) {
-            acc[6 * ch][q] += s0[q];
-            acc[6 * ch + 1][q] += s1[q];
-            acc[6 * ch + 2][q] += s2[q];
-            acc[6 * ch + 3][q] += s3[q];
-            acc[6 * ch + 4][q] += s4[q];
-            acc[6 * ch + 5][q] += s5[q];
-        }
+        h[ch][0] -= (s0[0] + s0[1]) + (s0[2] + s0[3]);
+        h[ch][1] -= (s1[0] + s1[1]) + (s1[2] + s1[3]);
+        h[ch][2] -= (s2[0] + s2[1]) + (s2[2] + s2[3]);
+        h[ch][3] -= (s3[0] + s3[1]) + (s3[2] + s3[3]);
+        h[ch][4] -= (s4[0] + s4[1]) + (s4[2] + s4[3]);
+        h[ch][5] -= (s5[0] + s5[1]) + (s5[2] + s5[3]);
     }
 }
 
@@ -215,10 +214,10 @@ typedef struct irc__mesh {
 } irc__mesh;
 
 /* One family of a row's N edges, one a column (irc__hessian), a chunk of
- * columns at a time into fw and then into acc.  The last block's lanes past
+ * columns at a time into fw and then into h.  The last block's lanes past
  * column N - 1 are copies (finite) and weigh 0. */
 static void irc__hess_family(const irc__mesh *g, const float *v0, const float *v1,
-                             const float *la, const float *lb, float *fw, float (*acc)[4])
+                             const float *la, const float *lb, float *fw, float h[3][6])
 {
     const uint32_t chunk = irc__hchunk(g->n);
     uint32_t k, c;
@@ -228,7 +227,7 @@ static void irc__hess_family(const irc__mesh *g, const float *v0, const float *v
         for (c = g->n - k; c < count; c++)
             fw[9u * (c & ~3u) + 24u + c % 4u] = fw[9u * (c & ~3u) + 28u + c % 4u] =
                 fw[9u * (c & ~3u) + 32u + c % 4u] = 0.0f;
-        irc__hess_sum(fw, count, acc);
+        irc__hess_sum(fw, count, h);
     }
 }
 
@@ -341,7 +340,7 @@ void irc__hessian(const irc_cache *c, const irc__sample *s, const float *dirs,
                   const float n[3], float h[3][6])
 {
     const uint32_t m = c->cfg.strata_theta, nphi = c->cfg.strata_phi, st = irc__hstride(nphi);
-    float far = 0.0f, mean = 0.0f, inv = 0.0f, acc[18][4], *va, *vb, *l1, *l2, *fw, *t;
+    float far = 0.0f, mean = 0.0f, inv = 0.0f, *va, *vb, *l1, *l2, *fw, *t;
     uint32_t i, j, hits = 0;
     irc__mesh g;
     IRC_MEMSET(h, 0, 3 * 6 * sizeof(float));
@@ -376,7 +375,6 @@ void irc__hessian(const irc_cache *c, const irc__sample *s, const float *dirs,
     l2 = l1 + 3u * st;
     fw = l2 + 3u * st;
     IRC_MEMSET(l2, 0, 3u * st * sizeof(float)); /* no row above row 0 */
-    IRC_MEMSET(acc, 0, sizeof acc);
     irc__hess_row(&g, 0, va);
     for (j = 0; j < m; j++) {
         if (j + 1 < m) {
@@ -386,24 +384,20 @@ void irc__hessian(const irc_cache *c, const irc__sample *s, const float *dirs,
             IRC_MEMSET(l1, 0, 3u * st * sizeof(float)); /* no row below */
         /* along the row: T1 of cell k below, T2 of the row above's cell k
          * (l2 still holds the row above's) */
-        irc__hess_family(&g, va, va + 1, l1, l2 + 1, fw, acc);
+        irc__hess_family(&g, va, va + 1, l1, l2 + 1, fw, h);
         if (j + 1 < m) {
             irc__hess_shine(&g, vb + 1, vb, va + 1, l2 + 1);
             for (i = 0; i < 3; i++)
                 l2[i * st] = l2[i * st + nphi];
             /* the diagonal: T1 and T2 of cell k; the vertical: T1 of cell
              * k, T2 of cell k - 1 */
-            irc__hess_family(&g, va + 1, vb, l1, l2 + 1, fw, acc);
-            irc__hess_family(&g, vb, va, l1, l2, fw, acc);
+            irc__hess_family(&g, va + 1, vb, l1, l2 + 1, fw, h);
+            irc__hess_family(&g, vb, va, l1, l2, fw, h);
         }
         t = va; /* row j + 1 is the next row's top */
         va = vb;
         vb = t;
     }
-    /* the closed forms give -H F_e (Radiance's comp_hessian returns the
-     * same sign) */
-    for (i = 0; i < 18; i++)
-        h[i / 6][i % 6] = 0.0f - ((acc[i][0] + acc[i][1]) + (acc[i][2] + acc[i][3]));
 }
 
 /* Eigen-decomposition of the symmetric 2x2 [[a, b], [b, c]]: l0 >= l1 in
