@@ -81,6 +81,31 @@ static inline uint64_t irc__gscratch_floats(uint32_t strata, uint32_t nphi)
     return (uint64_t)strata + 5u * irc__pad4(nphi);
 }
 
+/* The Hessian's rows (hessian.c): a row of vertices or of a channel of
+ * triangle radiances holds a float per column, column N repeating column
+ * 0 (a last block of four lanes may read it); a family of edges is taken
+ * a chunk of columns at a time, its sums added to the record's Hessian
+ * once a chunk: 32 columns, but 8 in rows of fewer than 64, where
+ * IRC_FOOTPRINT_BOUND, which counts bytes a stratum, leaves less room. */
+#define IRC__HESS_FIELDS 7u
+static inline uint32_t irc__hstride(uint32_t nphi)
+{
+    return (nphi + 3u) / 4u * 4u + 1u;
+}
+static inline uint32_t irc__hchunk(uint32_t nphi)
+{
+    return nphi >= 64u ? 32u : nphi >= 8u ? 8u : (nphi + 3u) / 4u * 4u;
+}
+/* Its floats: two rows of vertices, two of radiances, three channels
+ * each, and a chunk of edges' six terms and three weights (none where
+ * there is no Hessian to take: fewer than 2 rows or 3 columns). */
+static inline uint64_t irc__hscratch_floats(uint32_t m, uint32_t nphi)
+{
+    if (m < 2 || nphi < 3)
+        return 0;
+    return (2u * IRC__HESS_FIELDS + 6u) * (uint64_t)irc__hstride(nphi) + 9u * irc__hchunk(nphi);
+}
+
 /* A slot's parts (cache.h, IRC__S_*), where layout.c placed them; s is
  * the start of the slot's working area, where its samples lie. */
 static inline unsigned char *irc__slot_part(const irc_cache *c, const void *s, int part)
@@ -113,9 +138,11 @@ static inline irc__cross *irc__slot_cross(const irc_cache *c, const irc__sample 
 {
     return (irc__cross *)(void *)irc__slot_part(c, s, IRC__S_CROSS);
 }
-static inline float *irc__slot_depths(const irc_cache *c, const irc__sample *s)
+/* The Hessian's rows (hessian.c): from the rays' part on, over the
+ * gradients' into its own (kind.h). */
+static inline float *irc__slot_hess(const irc_cache *c, const irc__sample *s)
 {
-    return (float *)(void *)irc__slot_part(c, s, IRC__S_DEPTHS);
+    return (float *)(void *)irc__slot_part(c, s, IRC__S_RAYS);
 }
 
 /* The sector (of 16, 22.5 degrees each, counter-clockwise from x) holding

@@ -76,12 +76,22 @@ typedef struct irc__recpart {
  * (at 0), one batch of rays and of hits (the sampler's), then what the
  * kind's estimators ask for: with translational or rotational gradients
  * the inverse hit distances and five rows of boundary weights
- * (gradient.c); each sample's direction and hit normal; the strata's
- * edges and their crossings (visibility.c); a depth per sample (Hessian).
+ * (gradient.c); the Hessian's rows of vertices and triangle radiances
+ * (hessian.c), which take the rays' and the gradients' bytes first (the
+ * Hessian runs after the last ray is cast and the gradients are summed,
+ * and both fill their parts before they read them) and ask here only
+ * for what those lack; each sample's direction and hit normal; the
+ * strata's edges and their crossings (visibility.c).
  * layout.c places them (a part of 0 bytes takes no room) and the block
  * keeps each one's byte offset, irc_cache.soff[IRC__S_*]. */
-enum { IRC__S_RAYS, IRC__S_INV, IRC__S_DIRS, IRC__S_NORMALS, IRC__S_EDGES, IRC__S_CROSS,
-       IRC__S_DEPTHS, IRC__S_COUNT };
+enum { IRC__S_RAYS, IRC__S_INV, IRC__S_HESS, IRC__S_DIRS, IRC__S_NORMALS, IRC__S_EDGES,
+       IRC__S_CROSS, IRC__S_COUNT };
+
+/* Bytes of the sampler's batch of rays and hits. */
+static inline uint64_t irc__rays_bytes(const irc_config *cfg)
+{
+    return (uint64_t)cfg->max_batch * (sizeof(irc_ray) + sizeof(irc_hit));
+}
 
 /* What a kind's scratch holds for a resolved config: bytes of each part
  * after the rays (IRC__S_INV ..), samples per slot, and whether the

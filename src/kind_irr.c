@@ -396,7 +396,8 @@ static int irc__irr_resolve(irc_config *cfg)
 /* The scratch the estimators read (kind.h, IRC__S_*): the gradients'
  * inverse distances and rows (gradient.c); directions and hit normals for
  * the visibility gradients and the Hessian; the strata's edges and their
- * crossings (visibility.c); a depth per sample (hessian.c). */
+ * crossings (visibility.c); rows of vertices and triangle radiances
+ * (hessian.c), over the rays' and the gradients' bytes (kind.h). */
 static void irc__irr_scratch(const irc_config *cfg, irc__scratch *s)
 {
     const uint32_t f = cfg->features, strata = cfg->strata_theta * cfg->strata_phi;
@@ -411,8 +412,12 @@ static void irc__irr_scratch(const irc_config *cfg, irc__scratch *s)
         s->bytes[IRC__S_EDGES] = edges * sizeof(int32_t);
         s->bytes[IRC__S_CROSS] = edges * sizeof(irc__cross);
     }
-    if (f & IRC_FEATURE_HESSIAN)
-        s->bytes[IRC__S_DEPTHS] = (uint64_t)strata * sizeof(float);
+    if (f & IRC_FEATURE_HESSIAN) {
+        const uint64_t need = irc__hscratch_floats(cfg->strata_theta, cfg->strata_phi) *
+                              sizeof(float),
+                       reuse = irc__rays_bytes(cfg) + s->bytes[IRC__S_INV];
+        s->bytes[IRC__S_HESS] = need > reuse ? need - reuse : 0u;
+    }
 }
 
 static int irc__irrg_find(irc_cache *c, const irc__query *q, void *out, float *weight);

@@ -68,7 +68,7 @@ static uint64_t irc__slot_layout(const irc_config *cfg, const irc__kind *k, irc_
     int i;
     IRC_MEMSET(&s, 0, sizeof s);
     k->scratch(cfg, &s);
-    s.bytes[IRC__S_RAYS] = (uint64_t)cfg->max_batch * (sizeof(irc_ray) + sizeof(irc_hit));
+    s.bytes[IRC__S_RAYS] = irc__rays_bytes(cfg);
     l->samples = s.samples;
     l->keep_geom = s.keep_geom;
     at = (uint64_t)s.samples * sizeof(irc__sample);

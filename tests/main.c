@@ -20,7 +20,7 @@
     X(test_hard_scale_invariance) X(test_hard_hemispheres) X(test_hard_lookups) X(test_hard_full_cache) \
     X(test_footprint_bounds) X(test_footprint_size_t) X(test_radius_limits) X(test_gradient_channels) \
     X(test_index_origin) X(test_relocate) X(test_host_context) X(test_busy_waits) X(test_not_stored_counted) \
-    X(test_hessian_closed_forms) X(test_eigen2) X(test_hessian_radius) X(test_gradient_within_reach) X(test_ellipse_records) X(test_ellipse_axis_range) X(test_screen_bound) X(test_leak_guard_by_hand) \
+    X(test_hessian_closed_forms) X(test_hessian_reference) X(test_eigen2) X(test_hessian_radius) X(test_gradient_within_reach) X(test_ellipse_records) X(test_ellipse_axis_range) X(test_screen_bound) X(test_leak_guard_by_hand) \
     X(test_snapshot_round_trip) X(test_snapshot_round_trip_sh) X(test_snapshot_rejects) X(test_snapshot_by_hand) X(test_merge_order_free) \
     X(test_pass_order_free) X(test_pass_frozen) X(test_pass_full) X(test_pass_state) X(test_pass_lock_free) \
     X(test_share_processes) X(test_share_killed) X(test_share_killed_in_lock) X(test_share_killed_random) X(test_join_refused) \
