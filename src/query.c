@@ -28,7 +28,9 @@
 #include "index.h"
 
 /* SSE where the compiler targets it (every x86-64), unless IRC_NO_SIMD:
- * the scalar path is the one 32-bit and embedded builds run. */
+ * the scalar path is the one 32-bit and embedded builds run.  (GCC's
+ * vector types, which would serve NEON too, took 1,306 instructions a
+ * lookup in this test where the intrinsics take 932.) */
 #if defined(__SSE2__) && !defined(IRC_NO_SIMD)
 #define IRC__SSE 1
 #include <xmmintrin.h>
@@ -83,9 +85,10 @@ static int64_t irc__to_int64(float x)
     return b >> 31 ? -m : m;
 }
 
-/* The point's offset from the root's low corner in units.  lo = j h with
- * |j| <= 34 (irc__index_root_sane), so p and lo times 2^(57 - E) (h =
- * 2^E, -99 <= E <= 99) are exact floats and only the truncations to integers
+/* The point's offset from the root's low corner in units.  lo is a float
+ * within 34 half edges h = 2^E of the origin, -99 <= E <= 99
+ * (irc__index_root_sane), so p and lo times 2^(57 - E) are exact floats,
+ * below 2^62.1 where it matters, and only the truncations to integers
  * round, under a unit each.  Clamped to [-4, 5] root edges from lo (file
  * comment), both bounds exact too. */
 static int64_t irc__fixed(float p, float lo, int e)
