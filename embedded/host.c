@@ -176,6 +176,9 @@ static void irradiance(void)
  * and the share the index's double arithmetic keeps (docs/PORTING.md, "Embedded").
  * Every answer is checked against the one value all records hold. */
 static unsigned char many_block[160 * 1024];
+#ifndef HOST_LOOKUPS
+#define HOST_LOOKUPS 1000 /* embedded/profile.sh: LOOKUPS=0 for the inserts alone */
+#endif
 
 static float unit_rand(uint32_t *st)
 {
@@ -185,7 +188,7 @@ static float unit_rand(uint32_t *st)
 
 static void many(void)
 {
-    enum { RECORDS = 1000, LOOKUPS = 1000 };
+    enum { RECORDS = 1000, LOOKUPS = HOST_LOOKUPS };
     irc_config cfg;
     irc_cache *c;
     irc_record r;
@@ -219,8 +222,8 @@ static void many(void)
     }
     t1 = board_instructions();
     printf("     %d lookups among %d records, %d answered: %lu instructions a lookup\n", LOOKUPS,
-           RECORDS, hits, (unsigned long)((t1 - t0) / LOOKUPS));
-    check(bad == 0 && hits > LOOKUPS / 2, "lookups among 1000 records: every answer 2", 0.0, 0.0);
+           RECORDS, hits, (unsigned long)((t1 - t0) / (LOOKUPS ? LOOKUPS : 1)));
+    check(bad == 0 && (hits > LOOKUPS / 2 || LOOKUPS == 0), "lookups among 1000 records: every answer 2", 0.0, 0.0);
     irc_fini(c);
 }
 

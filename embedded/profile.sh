@@ -6,7 +6,8 @@
 # cross builds it, with -g; QEMU runs the host one instruction a block
 # (-singlestep) and logs every block it executes (-d exec), and each
 # address is counted and named by arm-none-eabi-addr2line (inlined code
-# under the inlined function's name).  Prints the instructions of the
+# under the inlined function's name); LOOKUPS=N sets part 2's lookups
+# (1,000; 0 counts the inserts alone).  Prints the instructions of the
 # whole run by function, and the share in libgcc's software double.
 set -eu
 cd "$(dirname "$0")/.."
@@ -19,7 +20,7 @@ command -v python3 >/dev/null || { echo "profile.sh needs python3"; exit 1; }
 rm -rf $B
 make -s CC=${CROSS}gcc AR=${CROSS}ar PORT=none BUILD=$B \
     OPT="$M4 -Os -g -ffunction-sections -fdata-sections" $B/libirrcache.a
-${CROSS}gcc -std=c99 $M4 -Os -g -ffunction-sections -fdata-sections -DHOST_PART=$PART \
+${CROSS}gcc -std=c99 $M4 -Os -g -ffunction-sections -fdata-sections -DHOST_PART=$PART -DHOST_LOOKUPS=${LOOKUPS:-1000} \
     -Iinclude -Iembedded embedded/host.c embedded/board.c $B/libirrcache.a \
     --specs=rdimon.specs -nostartfiles -T embedded/mps2.ld -Wl,--gc-sections -lm -o $B/host.elf
 # Each executed block is one line "Trace N: host [flags/pc/...] name".
