@@ -27,13 +27,13 @@
 #include "cache.h"
 #include "index.h"
 
-/* SSE2 where the compiler targets it (every x86-64), unless IRC_NO_SIMD:
- * the scalar path is the one 32-bit and embedded builds run.  (GCC's
- * vector types, which would serve NEON too, measured the same here; no
- * 64-bit ARM machine was at hand to test that path.) */
-#if defined(__SSE2__) && !defined(IRC_NO_SIMD)
-#define IRC__SSE 1
-#include <emmintrin.h>
+/* Four lanes in the compiler's vector types (GCC and Clang; no header)
+ * where the target has SSE2 (every x86-64), unless IRC_NO_SIMD: the scalar
+ * path is the one 32-bit and embedded builds run. */
+#if (defined(__GNUC__) || defined(__clang__)) && defined(__SSE2__) && !defined(IRC_NO_SIMD)
+#define IRC__LANES 1
+typedef float irc__v4f __attribute__((vector_size(16)));
+typedef int32_t irc__v4i __attribute__((vector_size(16)));
 #endif
 
 #define IRC__FX 58 /* fixed-point bits of the root's edge */
@@ -51,7 +51,8 @@ typedef struct irc__probe {
     void *ud;
 } irc__probe;
 
-/* 2^k as a float, for k in [-126, 127], from its bits. */
+/* 2^k as a float, for k in [-126, 127], from its bits (weight.c's
+ * irc__grad_scale also builds denormals; that test costs the walk 2%). */
 static float irc__pow2f(int k)
 {
     uint32_t bits = (uint32_t)(k + 127) << 23;
@@ -172,22 +173,22 @@ static uint32_t irc__scan(const irc_cache *c, uint32_t id, int d, const float r3
                 b2 = (r3[2] + 1.0f) * 32767.5f;
     /* The bound is m rq + f steps: a reach times scale, or the range. */
     const float m = pr->m, f = pr->f * irc__pow2f(d) + 1.0f + irc__pow2f(d - 32);
-#ifdef IRC__SSE
-    /* The entry's four 16-bit fields widened and converted at once; the
-     * same operations in the same order as below. */
-    const __m128 b = _mm_setr_ps(b0, b1, b2, 0.0f);
-    const __m128i zero = _mm_setzero_si128();
+#ifdef IRC__LANES
+    /* The entry's four 16-bit fields converted at once; the same
+     * operations in the same order as below. */
+    const irc__v4f b = {b0, b1, b2, 0.0f};
     for (; id != IRC__NIL; id = ix[id].next) {
         const irc__ixe *e = &ix[id];
-        const __m128 q = _mm_cvtepi32_ps(
-                         _mm_unpacklo_epi16(_mm_loadl_epi64((const __m128i *)(const void *)e), zero)),
-                     dv = _mm_sub_ps(b, q), sq = _mm_mul_ps(dv, dv),
-                     d2 = _mm_add_ss(_mm_add_ss(sq, _mm_shuffle_ps(sq, sq, 1)),
-                                     _mm_shuffle_ps(sq, sq, 2)),
-                     r = _mm_add_ss(_mm_mul_ss(_mm_shuffle_ps(q, q, 3), _mm_set_ss(m)), _mm_set_ss(f));
+        const irc__v4i qi = {e->q[0], e->q[1], e->q[2], e->rq};
+        const irc__v4f q = __builtin_convertvector(qi, irc__v4f);
+        irc__v4f dv = b - q;
+        dv *= dv;
         n++;
-        if (_mm_comile_ss(d2, _mm_mul_ss(r, r)) || e->rq == IRC__IX_ANY)
-            pr->fn(pr->ud, id);
+        {
+            const float r = q[3] * m + f;
+            if (dv[0] + dv[1] + dv[2] <= r * r || e->rq == IRC__IX_ANY)
+                pr->fn(pr->ud, id);
+        }
     }
 #else
     for (; id != IRC__NIL; id = ix[id].next) {
@@ -237,20 +238,19 @@ static unsigned irc__children(const irc_cache *c, const irc__node *n, int d,
     xy[1] = part[0][1] + part[1][0];
     xy[2] = part[0][0] + part[1][1];
     xy[3] = part[0][1] + part[1][1];
-#ifdef IRC__SSE
+#ifdef IRC__LANES
     {
         /* The same operations on four children at once: the same masks. */
-        const __m128 vs = _mm_set1_ps(s), vf = _mm_set1_ps(fixed), zero = _mm_setzero_ps(),
-                     q = _mm_loadu_ps(xy);
+        const irc__v4f vs = {s, s, s, s}, vf = {fixed, fixed, fixed, fixed},
+                       zero = {0.0f, 0.0f, 0.0f, 0.0f}, q = {xy[0], xy[1], xy[2], xy[3]};
         int h;
         for (h = 0; h < 2; h++) {
-            const __m128 reach = _mm_setr_ps(ch[4 * h].reach, ch[4 * h + 1].reach,
-                                             ch[4 * h + 2].reach, ch[4 * h + 3].reach),
-                         r = _mm_add_ps(_mm_mul_ps(reach, vs), vf),
-                         d2 = _mm_add_ps(q, _mm_set1_ps(part[2][h]));
-            mask |= (unsigned)_mm_movemask_ps(_mm_and_ps(_mm_cmpge_ps(reach, zero),
-                                                         _mm_cmple_ps(d2, _mm_mul_ps(r, r))))
-                    << (4 * h);
+            const irc__v4f reach = {ch[4 * h].reach, ch[4 * h + 1].reach, ch[4 * h + 2].reach,
+                                    ch[4 * h + 3].reach},
+                           r = reach * vs + vf,
+                           z = {part[2][h], part[2][h], part[2][h], part[2][h]}, d2 = q + z;
+            const irc__v4i in = (reach >= zero) & (d2 <= r * r);
+            mask |= (unsigned)__builtin_ia32_movmskps((irc__v4f)in) << (4 * h);
         }
     }
 #else
