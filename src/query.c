@@ -31,7 +31,7 @@
  * where the target has SSE2 (every x86-64), unless IRC_NO_SIMD: the scalar
  * path is the one 32-bit and embedded builds run. */
 #if (defined(__GNUC__) || defined(__clang__)) && defined(__SSE2__) && !defined(IRC_NO_SIMD)
-#define IRC__LANES 1
+#define IRC__VEC4 1
 typedef float irc__v4f __attribute__((vector_size(16)));
 typedef int32_t irc__v4i __attribute__((vector_size(16)));
 #endif
@@ -173,7 +173,7 @@ static uint32_t irc__scan(const irc_cache *c, uint32_t id, int d, const float r3
                 b2 = (r3[2] + 1.0f) * 32767.5f;
     /* The bound is m rq + f steps: a reach times scale, or the range. */
     const float m = pr->m, f = pr->f * irc__pow2f(d) + 1.0f + irc__pow2f(d - 32);
-#ifdef IRC__LANES
+#ifdef IRC__VEC4
     /* The entry's four 16-bit fields converted at once; the same
      * operations in the same order as below. */
     const irc__v4f b = {b0, b1, b2, 0.0f};
@@ -238,7 +238,7 @@ static unsigned irc__children(const irc_cache *c, const irc__node *n, int d,
     xy[1] = part[0][1] + part[1][0];
     xy[2] = part[0][0] + part[1][1];
     xy[3] = part[0][1] + part[1][1];
-#ifdef IRC__LANES
+#ifdef IRC__VEC4
     {
         /* The same operations on four children at once: the same masks. */
         const irc__v4f vs = {s, s, s, s}, vf = {fixed, fixed, fixed, fixed},
