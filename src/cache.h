@@ -169,9 +169,10 @@ int irc__port_ok(const irc_port *p);
  * gets how many there are in all. */
 int irc__collect(irc_cache *c, const irc__query *q, uint32_t *ids, uint32_t cap,
                  uint32_t *found);
-/* store.c: the positions of records ids[0 .. n - 1], read as a lookup
- * reads (under the read lock, or in a pass without). */
-int irc__positions(irc_cache *c, const uint32_t *ids, uint32_t n, float (*pos)[3]);
+/* store.c: the positions and coded normals of records ids[0 .. n - 1],
+ * read as a lookup reads (under the read lock, or in a pass without). */
+int irc__positions(irc_cache *c, const uint32_t *ids, uint32_t n, float (*pos)[3],
+                   uint32_t *nrm);
 /* slots.c: claim a scratch slot (waiting unless cfg.no_wait; IRC_OK or
  * IRC_ERR_BUSY; *waited set when it waited), and give it back zeroed. */
 int irc__slot_claim(irc_cache *c, uint32_t *t, int *waited);

@@ -9,6 +9,7 @@
  * itself (Krivanek and Gautron 2009, Sec. 2.3.3).
  */
 #include "cache.h"
+#include "octa.h"
 #include "sampler.h"
 
 #ifndef IRC_NO_SIGHT
@@ -21,6 +22,39 @@
  * the record's hemisphere has seen (a host's ray offsets move the hit by
  * a few epsilons). */
 #define IRC__SIGHT_SHORT 0.9f
+
+/* The direction from the query toward a record at distance l along d.  A
+ * record on the same convex surface as the query lies below the query's
+ * tangent plane: on a circle the chord leaves the tangent at half the
+ * angle between n and n_i, and the surface bulges above the chord by l^2
+ * / 8r, far more than the epsilons a host offsets its rays by, so a ray
+ * along the chord meets the query's own surface at once and every record
+ * on a ball or a column would be hidden.  The chord is raised toward the
+ * tangent plane by as much of its dip as the normals' turn explains, up to
+ * 2 sin(theta / 2) = sqrt(2 (1 - n.n_i)): twice a circle's, since on a
+ * tessellated surface a chord from a face's edge dips by the whole angle
+ * between the faces.  A dip the normals do not explain (a record past a
+ * ledge's edge, below the query, the normals alike) keeps its ray. */
+static void irc__sight_dir(const float n[3], uint32_t code, const float d[3], float l,
+                           float dir[3])
+{
+    float ni[3], dip = -(d[0] * n[0] + d[1] * n[1] + d[2] * n[2]) / l, turn, m;
+    int j;
+    for (j = 0; j < 3; j++)
+        dir[j] = d[j] / l;
+    if (!(dip > 0.0f) || code == IRC__FREE)
+        return;
+    irc__oct_decode(code, ni);
+    turn = 2.0f * (1.0f - (n[0] * ni[0] + n[1] * ni[1] + n[2] * ni[2]));
+    turn = turn > 0.0f ? IRC_SQRTF(turn) : 0.0f;
+    if (turn <= 0.0f)
+        return;
+    for (j = 0; j < 3; j++)
+        dir[j] += (dip < turn ? dip : turn) * n[j];
+    m = IRC_SQRTF(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
+    for (j = 0; j < 3; j++)
+        dir[j] /= m;
+}
 
 static void irc__sort_ids(uint32_t *ids, uint32_t n)
 {
@@ -42,9 +76,9 @@ static int irc__sight_batch(irc__call *k, uint32_t *ids, uint32_t first, uint32_
     irc_ray rays[IRC__SIGHT_BATCH];
     irc_hit hits[IRC__SIGHT_BATCH];
     float len[IRC__SIGHT_BATCH], pos[IRC__SIGHT_BATCH][3];
-    uint32_t i, m = 0, at[IRC__SIGHT_BATCH];
+    uint32_t i, m = 0, at[IRC__SIGHT_BATCH], nrm[IRC__SIGHT_BATCH];
     int j, st;
-    if ((st = irc__positions(k->c, ids + first, n, pos)) < 0)
+    if ((st = irc__positions(k->c, ids + first, n, pos, nrm)) < 0)
         return st;
     for (i = 0; i < n; i++) {
         float d[3], l;
@@ -53,10 +87,8 @@ static int irc__sight_batch(irc__call *k, uint32_t *ids, uint32_t first, uint32_
         l = IRC_SQRTF(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
         if (!(l > 0.0f && l <= FLT_MAX))
             continue; /* at the query's own point, or beyond float */
-        for (j = 0; j < 3; j++) {
-            rays[m].org[j] = k->q.p[j];
-            rays[m].dir[j] = d[j] / l;
-        }
+        IRC_MEMCPY(rays[m].org, k->q.p, sizeof rays[m].org);
+        irc__sight_dir(k->q.n, nrm[i], d, l, rays[m].dir);
         len[m] = l;
         at[m++] = first + i;
     }

@@ -494,14 +494,18 @@ int irc__collect(irc_cache *c, const irc__query *q, uint32_t *ids, uint32_t cap,
     return IRC_OK;
 }
 
-int irc__positions(irc_cache *c, const uint32_t *ids, uint32_t n, float (*pos)[3])
+int irc__positions(irc_cache *c, const uint32_t *ids, uint32_t n, float (*pos)[3],
+                   uint32_t *nrm)
 {
     int lock = !c->home->pass_open;
     uint32_t i;
     if (lock && irc__read_lock(c) < 0)
         return IRC_ERR_PORT;
-    for (i = 0; i < n; i++)
-        IRC_MEMCPY(pos[i], irc__rec_at(c, ids[i])->p, sizeof pos[i]);
+    for (i = 0; i < n; i++) {
+        const irc__rec *r = irc__rec_at(c, ids[i]);
+        IRC_MEMCPY(pos[i], r->p, sizeof pos[i]);
+        nrm[i] = r->n;
+    }
     if (lock)
         irc__read_unlock(c);
     return IRC_OK;
