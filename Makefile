@@ -6,6 +6,7 @@
 #   make demo       build the demo tracer and render the Cornell box
 #   make test       every test; ends with "N passed, N failed"
 #   make bench-core the core benchmark (CSV on stdout)
+#   make bench-host the cache in a small path tracer, every sample
 #   make cross      libirrcache.a for a Cortex-M4F (CROSS=arm-none-eabi-)
 #   make embedded-test  that library's host run under QEMU (mps2-an386)
 #   make size       code, data and stack per object and entry point
@@ -384,6 +385,14 @@ embree-example: real-scenes
 bench-core: $(BUILD)/bench_core
 	$(BUILD)/bench_core
 
+# The cache in a small path tracer of its own, called at every sample of
+# every pixel (bench/README.md, "In a path tracer's hands"); BEFORE=<commit>
+# also runs the same host against that commit's library.
+$(BUILD)/bench_host: bench/host.c bench/bench_util.h $(LIBA)
+	$(CC) -std=c99 $(WARN) -Iinclude -Ibench $(OPT) bench/host.c $(LIBA) -o $@ -lm $(THREAD_LIBS)
+bench-host: $(BUILD)/bench_host
+	sh bench/host.sh $(BUILD)/bench_host $(BEFORE)
+
 # One lookup workload for profilers (bench/README.md: "Where the lookup time goes"):
 # rates, entries scanned and passed, and a checksum of the answers.
 bench-lookups: $(BUILD)/bench_lookups
@@ -449,7 +458,7 @@ uninstall:
 clean:
 	rm -rf build build-*
 
-.PHONY: amalgamation embree-example all lib cross embedded-test embedded-host size examples test coverage demo real-scenes fig15 adaptive glossy sh-experiments sh-animation fuzz fuzz-long replay bench-core bench-lookups bench-records bench bench-fill farm-demo install uninstall clean
+.PHONY: amalgamation embree-example all lib cross embedded-test embedded-host size examples test coverage demo real-scenes fig15 adaptive glossy sh-experiments sh-animation fuzz fuzz-long replay bench-core bench-host bench-lookups bench-records bench bench-fill farm-demo install uninstall clean
 
 # Which records answer the worst pixels of a Sponza render, and why
 # (bench/README.md, "On real geometry"); needs make bench's cached references.

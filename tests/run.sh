@@ -156,11 +156,12 @@ check build-tests $MAKE -s BUILD=build build/irc_tests
 suite suite ./build/irc_tests
 
 # The benchmarks build, and the profiling driver runs (figures come from
-# make bench-core, make bench-lookups and make bench-records, not from
+# make bench-core, make bench-host, make bench-lookups and make bench-records, not from
 # here).
 check build-bench $MAKE -s BUILD=build build/bench_core build/bench_lookups build/bench_records \
-    build/bench_run build/outliers
+    build/bench_run build/outliers build/bench_host
 check bench-lookups ./build/bench_lookups scanline 1000 2000 count
+check bench-host ./build/bench_host 16 12 4 16
 check bench-records ./build/bench_records shgrad 3
 
 echo "== stage 2c: suite at 32 bits"
