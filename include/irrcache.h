@@ -177,7 +177,11 @@ typedef enum irc_status {
                                  begun while one is open or ended when none
                                  is; clear, snapshot read or merge while a
                                  pass is open */
-    IRC_ERR_LAST = -18        /* the most negative code the library returns */
+    IRC_ERR_NESTED = -19,     /* a trace callback called into the cache that
+                                 is computing its record, and the call would
+                                 compute one too (it would wait for its own
+                                 slot): see "Several bounces" below */
+    IRC_ERR_LAST = -19        /* the most negative code the library returns */
 } irc_status;
 
 /* A one-line English description of any status code (never NULL).  Thread
@@ -250,11 +254,31 @@ typedef struct irc_trace_args {
 
 /*
  * Cast args->count rays and fill args->hits.  The callback may touch only
- * args->hits[0 .. count-1] and its own state; it must not call back into the
- * same cache.  It runs on the thread that called into the library, with no
+ * args->hits[0 .. count-1] and its own state, and may call into other
+ * caches (below); a call into the same cache that would compute a record
+ * returns IRC_ERR_NESTED.  For confirming rays (visibility_only) it calls
+ * no cache.  It runs on the thread that called into the library, with no
  * lock of the cache held, possibly on several threads at once.  Return 0 on
  * success or a negative code of the host's own to abort the record (the
  * library returns it unchanged and keeps nothing of the record).
+ *
+ * Several bounces (Radiance's -ab N) take one cache per level: the
+ * callback of level k's cache shades each hit with level k+1's lookup
+ * (radiance = emission + direct + albedo / pi * E_{k+1}), the last
+ * level's with direct light only, passing args->host on.  Why not one
+ * cache with records tagged by level: a level-k record holds N - k
+ * bounces, so records of different levels must not answer each other's
+ * lookups, and tagging would scan every level's records in each lookup;
+ * separate caches keep each level's index, size (irc_footprint), accuracy
+ * (deeper levels are damped by albedo and take a larger cfg.accuracy),
+ * passes and snapshots its own.  No deadlock: a thread holding a slot of
+ * level k waits only for a slot of level k+1, whose holders wait only on
+ * deeper levels, and the last waits on none, so some thread always runs,
+ * with any number of host threads and slots (cfg.threads = 1 included).
+ * A callback that calls back into its own cache, directly or through a
+ * cycle of caches, would wait for its own slot or recurse without end:
+ * the call returns IRC_ERR_NESTED instead when the port tells threads
+ * apart (irc_port thread: posix and c11) or runs one thread (none).
  */
 typedef int (*irc_trace_fn)(const irc_trace_args *args);
 
@@ -316,6 +340,13 @@ typedef struct irc_port {
     int (*owner_alive)(uint64_t token);   /* optional: 0 if the process
                                              whose owner() gave token is
                                              gone, else 1 */
+    uint64_t (*thread)(void);             /* optional: a nonzero token of the
+                                             calling thread, unique among
+                                             its process's live threads;
+                                             with it a call nested in its
+                                             own cache's callback returns
+                                             IRC_ERR_NESTED instead of
+                                             waiting for itself */
 } irc_port;
 
 /* The ports.  A build compiles the one chosen by `make PORT=posix|c11|none`
@@ -824,7 +855,8 @@ IRC_API int irc_cache_lookup_gradient(irc_cache *cache, const float p[3], const 
  * nothing changed.  A miss that had to wait for a scratch slot looks up
  * again first, since another thread may have stored a record there
  * meanwhile.  Returns IRC_OK, IRC_NOT_STORED (value valid, pool full and
- * eviction off), or a negative error code on failure.
+ * eviction off), or a negative error code on failure (IRC_ERR_NESTED from
+ * inside this cache's own callback: see irc_trace_fn).
  */
 IRC_API int irc_cache_lookup_or_compute(irc_cache *cache, const float p[3],
                                         const float n[3], float rgb[3], float *weight,

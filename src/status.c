@@ -27,6 +27,7 @@ const char *irc_strerror(int status)
     case IRC_ERR_MISMATCH: return "the snapshot's kind or config differs from the cache's";
     case IRC_ERR_FINGERPRINT: return "the snapshot was made for another scene";
     case IRC_ERR_STATE: return "a fill pass is open, or none is, where the call needs otherwise";
+    case IRC_ERR_NESTED: return "a trace callback called into the cache computing its record";
     default: return status < 0 ? "error from the trace callback" : "unknown status";
     }
 }

@@ -231,7 +231,7 @@ done
 
 echo "== stage 4: threads under TSan"
 check build-tsan $MAKE -s CC="$SAN_CC" BUILD=build-tsan OPT="-O1 -g -fsanitize=thread" build-tsan/irc_tests
-suite tsan IRC_TEST_QUICK=1 TSAN_OPTIONS=halt_on_error=1 ./build-tsan/irc_tests test_threads test_busy_waits test_pass_order_free
+suite tsan IRC_TEST_QUICK=1 TSAN_OPTIONS=halt_on_error=1 ./build-tsan/irc_tests test_threads test_busy_waits test_pass_order_free test_levels
 
 echo "== stage 5: header, example host and library rules"
 check examples $MAKE -s BUILD=build examples

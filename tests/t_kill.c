@@ -216,11 +216,12 @@ TEST(test_share_killed_in_lock)
  * holding them.  Same name as irc_port_posix: it joins that block. */
 static unsigned long port_calls, port_die_at;
 static int port_held;   /* 1: the read lock, 2: the write lock */
+static int port_count = -1; /* count only calls made holding this (-1: all) */
 static int *port_died;  /* shared with the parent: port_held at death */
 
 static void tick(void)
 {
-    if (++port_calls == port_die_at) {
+    if ((port_count < 0 || port_held == port_count) && ++port_calls == port_die_at) {
         if (port_died)
             *port_died = port_held;
         kill(getpid(), SIGKILL);
@@ -284,14 +285,16 @@ static void victim_fill(irc_cache *v, int passes)
     }
 }
 
-/* Port calls of one whole victim fill: the range die_at is drawn from. */
-static unsigned long calls_of_fill(irc_config cfg, int passes)
+/* Port calls of one whole victim fill made holding `held` (0 none, 1 the
+ * read lock, 2 the write lock): the range die_at is drawn from. */
+static unsigned long calls_of_fill(irc_config cfg, int passes, int held)
 {
     irc_port kp = killing_port();
     irc_cache *c;
     size_t bytes = 0;
     cfg.port = &kp;
     port_calls = port_die_at = 0;
+    port_count = held;
     if (irc_footprint(&cfg, 300, &bytes) != IRC_OK || !(cfg.buffer = malloc(bytes)))
         return 0;
     cfg.buffer_size = bytes;
@@ -300,6 +303,7 @@ static unsigned long calls_of_fill(irc_config cfg, int passes)
         irc_fini(c);
     }
     free(cfg.buffer);
+    port_count = -1;
     return port_calls;
 }
 
@@ -310,26 +314,36 @@ TEST(test_share_killed_random)
     irc_config cfg;
     irc_cache *c;
     size_t mapped = 0;
-    unsigned long total[2];
+    unsigned long total[2][3];
     unsigned long long seed = 12345;
-    int t, died = 0, held[3] = {0, 0, 0}, *where;
+    int t, h, died = 0, held[3] = {0, 0, 0}, *where, few = 0;
     scene_sphere_plane(&s);
     cfg = share_config(&s);
     cfg.evict = IRC_EVICT_CLOCK;
     cfg.clamp_neighbours = IRC_ON;
-    total[0] = calls_of_fill(cfg, 0);
-    total[1] = calls_of_fill(cfg, 1);
-    CHECK(total[0] > 1000 && total[1] > 1000, "port calls of a fill: %lu, %lu", total[0], total[1]);
+    /* Each trial dies at a random call among those made in one state (no
+     * lock, the read lock, the write lock, in turn), so that every state
+     * is hit however few of a fill's calls it makes.  Lookups inside a
+     * pass take no lock: a pass's trials die outside it or in the write
+     * lock. */
+    for (h = 0; h < 3; h++) {
+        total[0][h] = calls_of_fill(cfg, 0, h);
+        total[1][h] = calls_of_fill(cfg, 1, h);
+        few |= total[0][h] < 100 || (h != 1 && total[1][h] < 100);
+    }
+    CHECK(!few, "port calls of a fill: %lu %lu %lu, in passes %lu %lu %lu", total[0][0],
+          total[0][1], total[0][2], total[1][0], total[1][1], total[1][2]);
     CHECK(map_block(&cfg, 300, &mapped) != NULL, "mapped block");
-    if (!cfg.buffer || total[0] <= 1000 || total[1] <= 1000)
+    if (!cfg.buffer || few)
         return;
     where = (int *)(void *)((unsigned char *)cfg.buffer + mapped - 4096);
     for (t = 0; t < trials; t++) {
         pid_t victim;
         int status = -1;
         unsigned long at;
+        const int state = (t & 1) && (t >> 1) % 3 == 1 ? 0 : (t >> 1) % 3;
         seed = seed * 6364136223846793005ull + 1442695040888963407ull;
-        at = 1 + (unsigned long)(seed >> 33) % total[t & 1];
+        at = 1 + (unsigned long)(seed >> 33) % total[t & 1][state];
         if (irc_init(&cfg, 300, &c) != IRC_OK) {
             CHECK(0, "init");
             break;
@@ -343,6 +357,7 @@ TEST(test_share_killed_random)
             vc.port = &kp;
             port_calls = 0;
             port_die_at = at;
+            port_count = state;
             port_died = where;
             if (irc_join(&vc, view, sizeof view, &v) != IRC_OK)
                 _exit(100);
@@ -355,13 +370,13 @@ TEST(test_share_killed_random)
             died++;
             held[*where]++;
         }
-        CHECK(survives(c, 150), "trial %d (%s, killed at port call %lu of %lu): the survivor "
-                                "hung or found bad records", t, t & 1 ? "passes" : "no pass", at,
-              total[t & 1]);
+        CHECK(survives(c, 150), "trial %d (%s, killed at port call %lu of %lu holding %d): the "
+                                "survivor hung or found bad records", t,
+              t & 1 ? "passes" : "no pass", at, total[t & 1][state], state);
         irc_fini(c);
     }
     /* a join's calls come before the fill's: a late die_at may miss */
-    CHECK(died >= trials * 3 / 4 && held[2] >= 1 && held[1] >= 1,
+    CHECK(died >= trials * 3 / 4 && held[0] >= 1 && held[2] >= 1 && held[1] >= 1,
           "%d of %d victims died, %d holding no lock, %d the read lock, %d the write lock", died,
           trials, held[0], held[1], held[2]);
     printf("  %d victims of %d died: %d holding no lock, %d the read lock, %d the write lock\n",

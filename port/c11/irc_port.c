@@ -80,7 +80,12 @@ static int c11_cas(uint64_t *o, uint64_t e, uint64_t d)
                                                    memory_order_acquire);
 }
 
+/* A thread's token: the address of a thread-local byte, distinct among the
+ * live threads of a process (never written). */
+static _Thread_local char c11_me;
+static uint64_t c11_thread(void) { return (uint64_t)(uintptr_t)&c11_me; }
+
 const irc_port irc_port_c11 = {
     "c11", sizeof(c11_lock), c11_lock_init, c11_lock_destroy,
     c11_read_lock, c11_read_unlock, c11_write_lock, c11_write_unlock, c11_yield,
-    c11_load, c11_store, c11_add, c11_or, c11_cas, NULL, NULL};
+    c11_load, c11_store, c11_add, c11_or, c11_cas, NULL, NULL, c11_thread};

@@ -21,4 +21,4 @@ static int none_cas(uint64_t *o, uint64_t e, uint64_t d)
 
 const irc_port irc_port_none = {
     "none", 0, none_lock_init, none_lock, none_take, none_lock, none_take,
-    none_lock, NULL, none_load, none_store, none_add, none_or, none_cas, NULL, NULL};
+    none_lock, NULL, none_load, none_store, none_add, none_or, none_cas, NULL, NULL, NULL};

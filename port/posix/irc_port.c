@@ -181,6 +181,11 @@ static void posix_write_unlock(void *l)
 
 static void posix_yield(void) { sched_yield(); }
 
+/* A thread's token: the address of a thread-local byte, distinct among the
+ * live threads of a process (never written: no state is kept in it). */
+static __thread char posix_me;
+static uint64_t posix_thread(void) { return (uint64_t)(uintptr_t)&posix_me; }
+
 static uint64_t posix_load(const uint64_t *o) { return __atomic_load_n(o, __ATOMIC_ACQUIRE); }
 static void posix_store(uint64_t *o, uint64_t v) { __atomic_store_n(o, v, __ATOMIC_RELEASE); }
 static uint64_t posix_add(uint64_t *o, uint64_t v) { return __atomic_fetch_add(o, v, __ATOMIC_RELAXED); }
@@ -193,4 +198,5 @@ static int posix_cas(uint64_t *o, uint64_t e, uint64_t d)
 const irc_port irc_port_posix = {
     "posix", sizeof(posix_lock), posix_lock_init, posix_lock_destroy,
     posix_read_lock, posix_read_unlock, posix_write_lock, posix_write_unlock, posix_yield,
-    posix_load, posix_store, posix_add, posix_or, posix_cas, posix_owner, posix_owner_alive};
+    posix_load, posix_store, posix_add, posix_or, posix_cas, posix_owner, posix_owner_alive,
+    posix_thread};
