@@ -271,8 +271,8 @@ sh-animation: $(BUILD)/shanim
 	$(BUILD)/shanim --power 2 --out $(BUILD)/sh-animation/b2 demo/scenes/sh.scene
 	$(BUILD)/shanim --power 8 --out $(BUILD)/sh-animation/b8 demo/scenes/sh.scene
 
-$(BUILD)/demo_tests: tests/t_demo.c tests/harness.c tests/scenes.c $(DEMO_LIB_SRC) demo/*.h tests/*.h $(LIBA)
-	$(CC) $(TEST_CFLAGS) -Idemo $(OPT) $(CFLAGS) tests/t_demo.c tests/harness.c tests/scenes.c $(DEMO_LIB_SRC) $(LIBA) -o $@ -lm -lpthread
+$(BUILD)/demo_tests: tests/t_demo.c tests/t_bounce.c tests/harness.c tests/scenes.c $(DEMO_LIB_SRC) demo/*.h tests/*.h $(LIBA)
+	$(CC) $(TEST_CFLAGS) -Idemo $(OPT) $(CFLAGS) tests/t_demo.c tests/t_bounce.c tests/harness.c tests/scenes.c $(DEMO_LIB_SRC) $(LIBA) -o $@ -lm -lpthread
 
 $(BUILD)/adaptive_tests: tests/t_adaptive.c tests/harness.c tests/scenes.c demo/adaptive.c demo/delaunay.c demo/adaptive.h tests/*.h $(LIBA)
 	$(CC) $(TEST_CFLAGS) -Idemo $(OPT) $(CFLAGS) tests/t_adaptive.c tests/harness.c tests/scenes.c demo/adaptive.c demo/delaunay.c $(LIBA) -o $@ -lm -lpthread
@@ -364,12 +364,14 @@ $(BUILD)/minimal: examples/minimal.c $(LIBA)
 	$(CC) -std=c99 $(WARN) -Iinclude $(OPT) examples/minimal.c $(LIBA) -o $@ -lm $(THREAD_LIBS)
 $(BUILD)/threads: examples/threads.c $(LIBA)
 	$(CC) -std=c99 $(WARN) -D_POSIX_C_SOURCE=200809L -Iinclude $(OPT) examples/threads.c $(LIBA) -o $@ -lm -lpthread
+$(BUILD)/levels: examples/levels.c $(LIBA)
+	$(CC) -std=c99 $(WARN) -D_POSIX_C_SOURCE=200809L -Iinclude $(OPT) examples/levels.c $(LIBA) -o $@ -lm -lpthread
 $(BUILD)/passes: examples/passes.c $(LIBA)
 	$(CC) -std=c99 $(WARN) -D_POSIX_C_SOURCE=200809L -Iinclude $(OPT) examples/passes.c $(LIBA) -o $@ -lm -lpthread
 $(BUILD)/minimal_cpp: examples/minimal.cpp $(LIBA)
 	$(CXX) -std=c++11 -Wall -Wextra $(WERROR) -pedantic -Iinclude $(OPT) examples/minimal.cpp $(LIBA) \
 	       -o $@ -lm $(THREAD_LIBS)
-examples: $(BUILD)/minimal $(BUILD)/threads $(BUILD)/passes $(BUILD)/minimal_cpp
+examples: $(BUILD)/minimal $(BUILD)/threads $(BUILD)/levels $(BUILD)/passes $(BUILD)/minimal_cpp
 
 # irrcache in an Embree 3 tracer on the Sponza atrium (bench/README.md, "On real
 # geometry"): installs libembree-dev from Debian's packages when missing;
@@ -406,11 +408,18 @@ bench-records: $(BUILD)/bench_records
 
 # Speed against error on every shipped scene (bench/README.md: "Speed against
 # error").  BENCH_QUICK=1: small images, fewer runs, under two minutes.
-$(BUILD)/bench_run: bench/bench.c bench/report.c bench/bench.h $(DEMO_LIB_SRC) demo/*.h $(LIBA)
-	$(CC) $(DEMO_CFLAGS) bench/bench.c bench/report.c $(DEMO_LIB_SRC) $(LIBA) -o $@ -lm -lpthread
+$(BUILD)/bench_run: bench/bench.c bench/report.c bench/bounces.c bench/bench.h $(DEMO_LIB_SRC) demo/*.h $(LIBA)
+	$(CC) $(DEMO_CFLAGS) bench/bench.c bench/report.c bench/bounces.c $(DEMO_LIB_SRC) $(LIBA) -o $@ -lm -lpthread
 
 bench: $(BUILD)/bench_run $(BUILD)/glossy real-scenes
 	sh bench/bench.sh $(BUILD)/bench_run
+
+# Several bounces (bench/README.md, "Several bounces"): path tracing, the
+# cache at the first level with path-traced gathers, a cache at every level,
+# on the Cornell box at 2 and 3 bounces and the Sponza atrium at 2.
+BOUNCE_SCENES ?= bounces3-cornell,bounces2-cornell,bounces2-sponza-atrium
+bench-bounces: $(BUILD)/bench_run real-scenes
+	BENCH_SCENES=$(BOUNCE_SCENES) $(BUILD)/bench_run
 
 # The Cornell box on a Slurm job array of 4 tile jobs, merged by a fifth
 # (farm/README.md); starts a single-node Slurm of its own as root.
@@ -458,7 +467,7 @@ uninstall:
 clean:
 	rm -rf build build-*
 
-.PHONY: amalgamation embree-example all lib cross embedded-test embedded-host size examples test coverage demo real-scenes fig15 adaptive glossy sh-experiments sh-animation fuzz fuzz-long replay bench-core bench-host bench-lookups bench-records bench bench-fill farm-demo install uninstall clean
+.PHONY: amalgamation embree-example all lib cross embedded-test embedded-host size examples test coverage demo real-scenes fig15 adaptive glossy sh-experiments sh-animation fuzz fuzz-long replay bench-core bench-host bench-lookups bench-records bench bench-bounces bench-fill farm-demo install uninstall clean
 
 # Which records answer the worst pixels of a Sponza render, and why
 # (bench/README.md, "On real geometry"); needs make bench's cached references.

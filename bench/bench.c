@@ -39,14 +39,20 @@
 static const bscene scenes[] = {
     /* The real scenes (make real-scenes): brute force on the reference's
      * lattice only, its time scaled to the whole image. */
-    {"sponza-atrium", "build/scenes/sponza-atrium.scene", 640, 480, 160, 120, 0, 0, 0, 8},
-    {"sponza-arcade", "build/scenes/sponza-arcade.scene", 640, 480, 160, 120, 0, 0, 0, 8},
-    {"cornell", "demo/scenes/cornell.scene", 512, 512, 128, 128, 0, 0, 0, 0},
-    {"fig5", "demo/scenes/fig5.scene", 256, 192, 128, 96, 1, 0, 0, 0},
-    {"fig15", "demo/scenes/fig15.scene", 256, 256, 96, 96, 0, 0, 0, 0},
+    {"sponza-atrium", "build/scenes/sponza-atrium.scene", 640, 480, 160, 120, 0, 0, 0, 8, 0},
+    {"sponza-arcade", "build/scenes/sponza-arcade.scene", 640, 480, 160, 120, 0, 0, 0, 8, 0},
+    {"cornell", "demo/scenes/cornell.scene", 512, 512, 128, 128, 0, 0, 0, 0, 0},
+    {"fig5", "demo/scenes/fig5.scene", 256, 192, 128, 96, 1, 0, 0, 0, 0},
+    {"fig15", "demo/scenes/fig15.scene", 256, 256, 96, 96, 0, 0, 0, 0, 0},
     /* The ground's lit spots under three small emitters: one light sample
      * a secondary hit left a 16384-ray reference 3.5% noisy. */
-    {"sh", "demo/scenes/sh.scene", 128, 128, 64, 64, 1, 16, 65536, 0},
+    {"sh", "demo/scenes/sh.scene", 128, 128, 64, 64, 1, 16, 65536, 0, 0},
+    /* Several bounces (make bench-bounces): only when BENCH_SCENES names
+     * them. */
+    {"bounces3-cornell", "demo/scenes/cornell.scene", 256, 256, 64, 64, 0, 0, 0, 0, 3},
+    {"bounces2-cornell", "demo/scenes/cornell.scene", 256, 256, 64, 64, 0, 0, 0, 0, 2},
+    {"bounces2-sponza-atrium", "build/scenes/sponza-atrium.scene", 640, 480, 160, 120, 0, 0, 0, 8,
+     2},
 };
 
 
@@ -61,7 +67,7 @@ static double elapsed(const struct timespec *t0)
  * offset, so that it never meets the coarse fill passes' pixels (multiples
  * of powers of two), where records are made and a lookup answers with its
  * own record: measured there, a cache's interpolation would go unseen. */
-static int lattice_offset(const ctx *c)
+int lattice_offset(const ctx *c)
 {
     return c->stride / 2 + 1;
 }
@@ -249,7 +255,7 @@ static void experiment_opts(render_opts *o)
     }
 }
 
-static render_opts base_opts(const ctx *c)
+render_opts base_opts(const ctx *c)
 {
     render_opts o;
     memset(&o, 0, sizeof o);
@@ -262,6 +268,7 @@ static render_opts base_opts(const ctx *c)
     o.strata_n = 64;
     o.max_records = 400000;
     o.secondary_samples = c->secondary;
+    o.bounces = c->bounces;
     experiment_opts(&o);
     return o;
 }
@@ -275,8 +282,11 @@ static int reference(ctx *c, const bscene *b)
     for (k = 0; k < 2; k++) {
         char path[256], err[256];
         int rw, rh;
-        snprintf(path, sizeof path, OUT "/ref-%s-%dx%d-s%d-o%d-r%d-l%d-seed%d.exr", b->name, c->w,
-                 c->h, c->stride, lattice_offset(c), c->ref_rays, c->secondary, k + 1);
+        char bn[16] = ""; /* one bounce: the name references always had */
+        if (c->bounces > 1)
+            snprintf(bn, sizeof bn, "-b%d", c->bounces);
+        snprintf(path, sizeof path, OUT "/ref-%s-%dx%d-s%d-o%d-r%d-l%d%s-seed%d.exr", b->name,
+                 c->w, c->h, c->stride, lattice_offset(c), c->ref_rays, c->secondary, bn, k + 1);
         if (exr_read(path, &rw, &rh, &one[k], err, sizeof err) == 0 && rw == c->w && rh == c->h) {
             printf("  reference %d: %s (cached)\n", k + 1, path);
             continue;
@@ -310,8 +320,8 @@ static int reference(ctx *c, const bscene *b)
     return 0;
 }
 
-static int add_run(ctx *c, const char *method, double param, const render_opts *o,
-                   const bscene *b, FILE *csv)
+int add_run(ctx *c, const char *method, double param, const render_opts *o, const bscene *b,
+            FILE *csv)
 {
     run *r = &c->runs[c->nruns];
     r->m = o->mode == MODE_CACHE ? o->strata_m : 0;
@@ -363,6 +373,11 @@ static int wanted(const char *var, const char *name)
         if ((p == l || p[-1] == ',') && (p[n] == ',' || p[n] == 0))
             return 1;
     return 0;
+}
+
+int wanted_method(const char *name)
+{
+    return wanted("BENCH_METHODS", name);
 }
 
 /* BENCH_SCENES=sponza names both Sponza views: a scene's name up to its
@@ -597,7 +612,8 @@ int main(int argc, char **argv)
     for (k = 0; k < sizeof scenes / sizeof scenes[0]; k++) {
         const bscene *b = &scenes[k];
         char err[512];
-        if (!wanted("BENCH_SCENES", b->name) && !wanted_family(b->name))
+        if ((!wanted("BENCH_SCENES", b->name) && !wanted_family(b->name)) ||
+            (b->bounces > 1 && !(getenv("BENCH_SCENES") && *getenv("BENCH_SCENES"))))
             continue;
         if (scene_load(b->path, &c.s, err, sizeof err) < 0) {
             fprintf(stderr, "%s\n", err);
@@ -609,11 +625,13 @@ int main(int argc, char **argv)
         c.s.cam.height = c.h;
         c.nruns = 0;
         c.secondary = b->secondary;
+        c.bounces = b->bounces;
         c.stride = b->stride ? b->stride : 4;
         c.ref_rays = b->ref_rays ? (c.quick ? b->ref_rays / 4 : b->ref_rays)
                                  : (c.quick ? 4096 : 16384);
         printf("%s at %dx%d\n", b->name, c.w, c.h);
-        if (reference(&c, b) < 0 || sweep(&c, b, csv) < 0)
+        if (reference(&c, b) < 0 ||
+            (b->bounces > 1 ? bounce_sweep(&c, b, csv) : sweep(&c, b, csv)) < 0)
             return 1;
         table(&c, b, md);
         defaults_table(&c, b, md);

@@ -23,6 +23,9 @@ typedef struct bscene {
                          renders that lattice only, its time scaled by the
                          image's pixels over the lattice's (a pixel's cost
                          does not depend on its neighbours) */
+    int bounces;      /* > 1: bounces of indirect light, every method and
+                         the reference alike; such a scene runs only when
+                         BENCH_SCENES names it (bounces.c's sweep) */
 } bscene;
 
 typedef struct run {
@@ -42,6 +45,7 @@ typedef struct run {
 typedef struct ctx {
     int quick, threads, stride, ref_rays, w, h;
     int secondary; /* the scene's (bscene) */
+    int bounces;   /* the scene's (bscene; 0: 1) */
     scene s;
     float *ref;            /* the averaged reference (lattice pixels) */
     double ref_noise;
@@ -49,7 +53,7 @@ typedef struct ctx {
     int nruns;
 } ctx;
 
-#define NMETHODS 6
+#define NMETHODS 8
 extern const char *const methods[NMETHODS];      /* short names (CSV, BENCH_METHODS) */
 extern const char *const method_names[NMETHODS]; /* the table's */
 
@@ -59,5 +63,18 @@ void table(ctx *c, const bscene *b, FILE *md);
 void defaults_table(const ctx *c, const bscene *b, FILE *md);
 /* One data file per method for gnuplot, and its lines in plot.gp. */
 void data_files(const ctx *c, const bscene *b, FILE *gp);
+
+/* bench.c's: every run's settings before its own (the scene's, BENCH_SET's),
+ * a lattice's offset, and one run rendered, measured and written out. */
+render_opts base_opts(const ctx *c);
+int lattice_offset(const ctx *c);
+int add_run(ctx *c, const char *method, double param, const render_opts *o, const bscene *b,
+            FILE *csv);
+/* Whether BENCH_METHODS (a comma-separated list; unset: all) names it. */
+int wanted_method(const char *name);
+
+/* A scene of several bounces (bounces.c): path tracing, the cache at the
+ * first level with path-traced gathers, and a cache at every level. */
+int bounce_sweep(ctx *c, const bscene *b, FILE *csv);
 
 #endif

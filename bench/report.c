@@ -8,11 +8,14 @@
 
 #include "bench.h"
 
-const char *const methods[NMETHODS] = {"brute", "none", "trans+rot", "vis", "hess", "sh"};
+const char *const methods[NMETHODS] = {"brute", "none", "trans+rot", "vis", "hess", "sh",
+                                      "first", "levels"};
 const char *const method_names[NMETHODS] = {
     "brute force", "cache, no gradients", "cache, translational + rotational (the defaults)",
     "cache, visibility gradients", "cache, trans + rot, Hessian radii",
-    "cache, SH records L = 3 + gradients"};
+    "cache, SH records L = 3 + gradients",
+    "cache at the first level, path-traced gathers (trans + rot)",
+    "cache at every level (trans + rot)"};
 
 /* The error a run is judged by: relative RMSE, or the 99th percentile of
  * the per-pixel relative error. */

@@ -44,6 +44,19 @@ static const char usage[] =
     "                          any order gives the same cache)\n"
     "  --no-new-records        keep the cache as loaded: a miss computes a record,\n"
     "                          uses it and drops it (counted)\n"
+    "  --bounces N             bounces of indirect light, 1..8 (default 1)\n"
+    "  --gather cache|path     with N > 1, what a gather ray's hit adds for the\n"
+    "                          bounces beyond: the next level's cache (one cache\n"
+    "                          a level, default) or a path with next-event\n"
+    "                          estimation (the reference always takes paths)\n"
+    "  --level-scale S         level k's accuracy is a x S^(k-1) (default 1),\n"
+    "  --level-strata D        its strata M/D^(k-1) x N/D^(k-1) (default 2),\n"
+    "  --level-min-radius F    its radii in [F x, 1 x] 0.1 x the visible\n"
+    "                          diagonal (default 0.5; 0: no minimum)\n"
+    "  --level-sight           deeper levels' lookups confirm records with rays\n"
+    "                          (default: they do not)\n"
+    ;
+static const char usage2[] =
     "  --free-fill             threads store records as they make them (the\n"
     "                          records then depend on thread timing); default:\n"
     "                          deterministic fill passes, pixels P apart in P^2\n"
@@ -151,6 +164,12 @@ static int parse_args(int argc, char **argv, cli *c)
         else if (!strcmp(a, "--no-check-visibility")) c->o.check_visibility = IRC_OFF;
         else if (!strcmp(a, "--pixels")) NEED(sscanf(n, "%f,%f", &c->o.min_pixels, &c->o.max_pixels) == 2);
         else if (!strcmp(a, "--free-fill")) c->o.free_fill = 1;
+        else if (!strcmp(a, "--bounces")) { NEED(parse_uint(n, 1, MAX_BOUNCES, &v)); c->o.bounces = (int)v; }
+        else if (!strcmp(a, "--gather")) { NEED(!strcmp(n, "cache") || !strcmp(n, "path")); c->o.gather = strcmp(n, "cache") ? GATHER_PATH : GATHER_CACHE; }
+        else if (!strcmp(a, "--level-strata")) { NEED(parse_uint(n, 1, 64, &v)); c->o.level_strata = (int)v; }
+        else if (!strcmp(a, "--level-min-radius")) NEED(parse_float(n, &c->o.level_min_radius) && c->o.level_min_radius >= 0.0f && c->o.level_min_radius < 1.0f);
+        else if (!strcmp(a, "--level-sight")) c->o.level_check_visibility = 1;
+        else if (!strcmp(a, "--level-scale")) NEED(parse_float(n, &c->o.level_scale) && c->o.level_scale > 0.0f);
         else if (!strcmp(a, "--tiles")) { NEED(parse_uint(n, 1, 65536, &v)); c->o.tiles = (int)v; }
         else if (!strcmp(a, "--tile")) { NEED(parse_uint(n, 0, 65535, &v)); c->o.tile = (int)v; }
         else if (!strcmp(a, "--save-cache")) { NEED(1); c->save = n; }
@@ -169,13 +188,14 @@ static int parse_args(int argc, char **argv, cli *c)
         else if (!strcmp(a, "--compare")) { NEED(1); c->compare = n; }
         else if (!strcmp(a, "--points")) { NEED(1); c->points = n; }
         else if (!strcmp(a, "--quiet")) c->o.progress = 0;
-        else if (!strcmp(a, "--help")) { fputs(usage, stdout); exit(0); }
-        else if (a[0] == '-' || c->scene) { fprintf(stderr, "irc_demo: unknown argument %s\n%s", a, usage); return -1; }
+        else if (!strcmp(a, "--help")) { fputs(usage, stdout); fputs(usage2, stdout); exit(0); }
+        else if (a[0] == '-' || c->scene) { fprintf(stderr, "irc_demo: unknown argument %s\n%s%s", a, usage, usage2); return -1; }
         else c->scene = a;
 #undef NEED
     }
     if (!c->scene) {
         fputs(usage, stderr);
+        fputs(usage2, stderr);
         return -1;
     }
     return 0;
@@ -252,6 +272,15 @@ static void report(FILE *f, const cli *c, const renderer *r, const render_stats 
     fprintf(f, "  rays %llu; records %llu; lookups %llu (%llu answered from records); cache memory %.1f MB\n",
            (unsigned long long)st->rays, (unsigned long long)st->records,
            (unsigned long long)st->lookups, (unsigned long long)st->hits, st->cache_bytes / 1048576.0);
+    if (r->o.bounces > 1) {
+        int k;
+        fprintf(f, "  %d bounces, %s beyond the first", r->o.bounces,
+                r->o.gather == GATHER_CACHE ? "a cache a level" : "paths");
+        for (k = 2; k <= r->o.bounces && r->o.gather == GATHER_CACHE; k++)
+            fprintf(f, "%s level %d %llu records", k == 2 ? ":" : ",", k,
+                    (unsigned long long)st->level_records[k - 2]);
+        fputc('\n', f);
+    }
     if (c->o.frozen)
         fprintf(f, "  no new records: %llu misses computed and dropped\n",
                 (unsigned long long)st->dropped);

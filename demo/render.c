@@ -4,6 +4,7 @@
  */
 #define _POSIX_C_SOURCE 200809L
 #include "render.h"
+#include "bounce.h"
 #include "glossy.h"
 #include "camera.h"
 
@@ -17,88 +18,12 @@
 
 #define PI 3.14159265358979323846
 
-typedef struct tstate {
-    double trace_s, cache_s;
-    uint64_t rays, dropped;
-} tstate;
-
-
-
 double render_clock(void)
 {
     struct timespec t;
     clock_gettime(CLOCK_MONOTONIC, &t);
     return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
-
-static uint64_t ray_key(const float o[3], const float d[3], uint64_t seed)
-{
-    uint32_t b[6];
-    uint64_t h = hash64(seed ^ 0x5bd1e995u);
-    int i;
-    memcpy(b, o, 12);
-    memcpy(b + 3, d, 12);
-    for (i = 0; i < 6; i++)
-        h = hash64(h ^ b[i]);
-    return h;
-}
-
-/* Radiance leaving a secondary hit toward the ray's origin: direct light
- * (secondary_samples light samples, default one), plus emission only from
- * spheres: emissive triangles are the sampled lights, whose light the
- * camera ray's hit already counts as direct. */
-static void secondary(const renderer *r, const surface *sf, int prim, const float d[3],
-                      uint64_t key, float out[3], uint64_t *rays)
-{
-    direct_light(&r->b, &r->l, sf, d, r->o.secondary_samples > 0 ? r->o.secondary_samples : 1,
-                 key, out, rays);
-    if (prim < 0) {
-        float e[3];
-        int i;
-        emitted(sf, e);
-        for (i = 0; i < 3; i++)
-            out[i] += e[i];
-    }
-}
-
-/* Casts count rays; what the cache's callback and the reference share.
- * shade 0: the hits' distances only (the cache's confirming rays). */
-static void cast(const renderer *r, const irc_ray *rays, irc_hit *hits, uint32_t count,
-                 int shade, tstate *ts)
-{
-    double t0 = render_clock();
-    uint32_t i;
-    for (i = 0; i < count; i++) {
-        const float *o = rays[i].org, *d = rays[i].dir;
-        irc_hit *h = &hits[i];
-        bvh_hit bh;
-        ts->rays++;
-        if (!bvh_intersect(&r->b, o, d, ray_offset(o), FLT_MAX, &bh)) {
-            h->status = IRC_RAY_ESCAPED;
-            env_radiance(&r->s->env, d, h->radiance);
-        } else if (!shade) {
-            h->status = IRC_RAY_HIT;
-            h->dist = bh.t;
-        } else {
-            surface sf;
-            surface_at(r->s, o, d, &bh, &sf);
-            h->status = IRC_RAY_HIT;
-            h->dist = bh.t;
-            memcpy(h->normal, sf.ng, sizeof h->normal);
-            secondary(r, &sf, bh.prim, d, ray_key(o, d, r->o.seed), h->radiance, &ts->rays);
-        }
-    }
-    ts->trace_s += render_clock() - t0;
-}
-
-static int host_trace(const irc_trace_args *a)
-{
-    const renderer *r = (const renderer *)a->context;
-    /* The thread's counters come as the call's host pointer. */
-    cast(r, a->rays, a->hits, a->count, !a->visibility_only, (tstate *)a->host);
-    return 0;
-}
-
 
 /* The default maximum radius: 0.1 x the diagonal of what the camera sees
  * (the box around the first hits of a 32 x 32 grid of camera rays), as
@@ -143,6 +68,10 @@ void render_opts_defaults(render_opts *o)
     o->light_samples = 16;
     o->seed = 1;
     o->threads = 1;
+    o->bounces = 1;
+    o->level_scale = 1.0f;
+    o->level_strata = 2;
+    o->level_min_radius = 0.5f;
 }
 
 int renderer_init(renderer *r, const scene *s, const render_opts *o, char *err, size_t n)
@@ -150,6 +79,12 @@ int renderer_init(renderer *r, const scene *s, const render_opts *o, char *err, 
     memset(r, 0, sizeof *r);
     r->s = s;
     r->o = *o;
+    if (r->o.bounces < 1)
+        r->o.bounces = 1;
+    if (r->o.bounces > MAX_BOUNCES)
+        r->o.bounces = MAX_BOUNCES;
+    if (o->mode != MODE_CACHE)
+        r->o.gather = GATHER_PATH; /* the reference: path tracing with NEE */
     if (bvh_build(&r->b, s) < 0 || lights_build(&r->l, s) < 0) {
         snprintf(err, n, "out of memory");
         return -1;
@@ -160,7 +95,9 @@ int renderer_init(renderer *r, const scene *s, const render_opts *o, char *err, 
         int st;
         memset(&cfg, 0, sizeof cfg);
         cfg.trace = host_trace;
-        cfg.context = r;
+        r->ctx[0].r = r;
+        r->ctx[0].level = 1;
+        cfg.context = &r->ctx[0];
         cfg.max_batch = 64;
         cfg.features = o->features;
         cfg.sh.bands = (o->features & IRC_FEATURE_SH) ? o->sh_bands : 0;
@@ -193,12 +130,17 @@ int renderer_init(renderer *r, const scene *s, const render_opts *o, char *err, 
             renderer_free(r);
             return -1;
         }
+        if (levels_init(r, &cfg, r->o.bounces > 1 ? visible_size(r) : 0.0f, err, n) < 0) {
+            renderer_free(r);
+            return -1;
+        }
     }
     return 0;
 }
 
 void renderer_free(renderer *r)
 {
+    levels_free(r);
     if (r->cache)
         irc_fini(r->cache);
     free(r->block);
@@ -237,7 +179,7 @@ static void reference_e(const renderer *r, const float p[3], const float n[3], u
         }
         if (++nb == 64 || i == total - 1) {
             int j;
-            cast(r, rays, hits, (uint32_t)nb, 1, ts);
+            cast(r, rays, hits, (uint32_t)nb, 1, 1, ts);
             for (j = 0; j < nb; j++)
                 for (c = 0; c < 3; c++)
                     sum[c] += hits[j].radiance[c];
@@ -271,8 +213,7 @@ static int irradiance(renderer *r, const float p[3], const float n[3], float fp,
 {
     sh->bands = 0;
     if (r->o.mode == MODE_CACHE) {
-        double t0 = render_clock(), tr0 = ts->trace_s;
-        int st;
+        int st, was = clock_enter(ts, CLOCK_CACHE);
         if (r->o.features & IRC_FEATURE_SH) {
             st = irc_sh_lookup_or_compute(r->cache, p, n, sh, NULL, ts);
             if (st >= 0)
@@ -290,7 +231,7 @@ static int irradiance(renderer *r, const float p[3], const float n[3], float fp,
             st = irc_cache_lookup_or_compute_px(r->cache, p, n, r->o.no_footprint ? 0.0f : fp,
                                                 e, NULL, ts);
         }
-        ts->cache_s += (render_clock() - t0) - (ts->trace_s - tr0);
+        clock_enter(ts, was);
         return st < 0 ? st : 0;
     }
     reference_e(r, p, n, key, e, ts);
@@ -326,7 +267,7 @@ static void glossy_indirect(const renderer *r, const surface *sf, const float p[
         if (wt[nb][0] + wt[nb][1] + wt[nb][2] > 0.0f)
             nb++; /* below the surface: counted, not cast */
         if (nb > 0 && (nb == 64 || i == n - 1)) {
-            cast(r, rays, hits, (uint32_t)nb, 1, ts);
+            cast(r, rays, hits, (uint32_t)nb, 1, 1, ts);
             for (j = 0; j < nb; j++)
                 for (c = 0; c < 3; c++)
                     sum[c] += (double)wt[j][c] * hits[j].radiance[c];
@@ -489,6 +430,7 @@ static void *worker(void *arg)
 
 static void collect(renderer *r, const tstate *ts, int n, double wall, render_stats *st)
 {
+    irc_stats cs;
     int i;
     memset(st, 0, sizeof *st);
     st->wall = wall;
@@ -499,7 +441,6 @@ static void collect(renderer *r, const tstate *ts, int n, double wall, render_st
         st->dropped += ts[i].dropped;
     }
     if (r->cache) {
-        irc_stats cs;
         irc_cache_stats(r->cache, &cs);
         st->records = cs.records;
         st->lookups = cs.lookups;
@@ -507,6 +448,9 @@ static void collect(renderer *r, const tstate *ts, int n, double wall, render_st
         st->cache_bytes = cs.bytes_total;
         st->record_bytes = cs.record_bytes;
     }
+    for (i = 0; i < MAX_BOUNCES; i++)
+        if (r->deeper[i] && irc_cache_stats(r->deeper[i], &cs) == IRC_OK)
+            st->level_records[i] = cs.records;
 }
 
 int render_image(renderer *r, float *rgb, render_stats *st)

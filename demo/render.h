@@ -16,6 +16,10 @@
 #include "shade.h"
 
 enum { MODE_CACHE, MODE_REFERENCE };
+/* With bounces > 1, where a record's (or the reference's) gather rays get
+ * the light of the bounces beyond their hits (bounce.c). */
+enum { GATHER_CACHE, GATHER_PATH };
+#define MAX_BOUNCES 8
 enum { SHOW_FULL, SHOW_INDIRECT };
 
 typedef struct render_opts {
@@ -60,6 +64,20 @@ typedef struct render_opts {
                              (tile + 1) H / tiles) (a farm job's share) */
     int frozen;           /* cache: add no records; a miss computes one,
                              uses its value and drops it (counted) */
+    int bounces;          /* bounces of indirect light, 1 .. MAX_BOUNCES
+                             (0: 1) */
+    int gather;           /* GATHER_CACHE: a cache at every level, each
+                             filled freely; GATHER_PATH: the cache at the
+                             first level only, paths beyond (the reference
+                             always takes paths) */
+    float level_scale;    /* GATHER_CACHE: level k's accuracy is a x
+                             level_scale^(k-1) (0: 1) */
+    int level_strata;     /* ... its strata M x N / level_strata^(k-1)
+                             (0: 1) */
+    float level_min_radius; /* ... its radii at least this x the maximum
+                               (0.1 x the visible diagonal; 0: none) */
+    int level_check_visibility; /* ... 1: its lookups confirm records with
+                                   rays (cfg.check_visibility), 0: not */
     int free_fill;        /* cache: threads insert records as they make
                              them, so the records (and the image) depend on
                              thread timing; 0: deterministic passes, pixels
@@ -79,7 +97,14 @@ typedef struct render_stats {
     uint64_t lookups, hits;
     size_t cache_bytes;   /* the cache's block */
     size_t record_bytes;  /* bytes of one stored record */
+    uint64_t level_records[MAX_BOUNCES]; /* records of levels 2, 3, ... */
 } render_stats;
+
+struct renderer;
+typedef struct level_ctx {  /* a level's cfg.context */
+    const struct renderer *r;
+    int level;              /* 1: the camera's hits */
+} level_ctx;
 
 typedef struct renderer {
     const scene *s;
@@ -88,6 +113,9 @@ typedef struct renderer {
     render_opts o;
     irc_cache *cache;     /* MODE_CACHE */
     void *block;
+    irc_cache *deeper[MAX_BOUNCES];  /* levels 2 .. bounces (GATHER_CACHE) */
+    void *deeper_block[MAX_BOUNCES];
+    level_ctx ctx[MAX_BOUNCES];
 } renderer;
 
 /* irc_demo's defaults: the cache with the library's defaults (every cache

@@ -237,6 +237,7 @@ echo "== stage 5: header, example host and library rules"
 check examples $MAKE -s BUILD=build examples
 check example-minimal ./build/minimal
 check example-threads ./build/threads
+check example-levels ./build/levels
 check example-passes ./build/passes
 check example-minimal-cpp ./build/minimal_cpp
 check header-c99 cc -std=c99 -pedantic -Wall -Wextra -Werror -fsyntax-only -x c include/irrcache.h
