@@ -269,9 +269,12 @@ typedef struct irc_trace_args {
  * cache with records tagged by level: a level-k record holds N - k
  * bounces, so records of different levels must not answer each other's
  * lookups, and tagging would scan every level's records in each lookup;
- * separate caches keep each level's index, size (irc_footprint), accuracy
- * (deeper levels are damped by albedo and take a larger cfg.accuracy),
- * passes and snapshots its own.  No deadlock: a thread holding a slot of
+ * separate caches keep each level's index, size (irc_footprint), config
+ * and snapshots its own.  What paid for deeper levels on the Cornell box
+ * (bench/README.md, "Several bounces"): the same accuracy, radii floored
+ * at half of max_radius, half the strata a level, no confirming rays;
+ * fill them freely (in a pass, their records would stay out of sight of
+ * the pass's other lookups).  No deadlock: a thread holding a slot of
  * level k waits only for a slot of level k+1, whose holders wait only on
  * deeper levels, and the last waits on none, so some thread always runs,
  * with any number of host threads and slots (cfg.threads = 1 included).
