@@ -408,8 +408,9 @@ bench-records: $(BUILD)/bench_records
 
 # Speed against error on every shipped scene (bench/README.md: "Speed against
 # error").  BENCH_QUICK=1: small images, fewer runs, under two minutes.
-$(BUILD)/bench_run: bench/bench.c bench/report.c bench/bounces.c bench/bench.h $(DEMO_LIB_SRC) demo/*.h $(LIBA)
-	$(CC) $(DEMO_CFLAGS) bench/bench.c bench/report.c bench/bounces.c $(DEMO_LIB_SRC) $(LIBA) -o $@ -lm -lpthread
+BENCH_RUN_SRC = bench/bench.c bench/report.c bench/bounces.c bench/select.c
+$(BUILD)/bench_run: $(BENCH_RUN_SRC) bench/bench.h $(DEMO_LIB_SRC) demo/*.h $(LIBA)
+	$(CC) $(DEMO_CFLAGS) $(BENCH_RUN_SRC) $(DEMO_LIB_SRC) $(LIBA) -o $@ -lm -lpthread
 
 bench: $(BUILD)/bench_run $(BUILD)/glossy real-scenes
 	sh bench/bench.sh $(BUILD)/bench_run

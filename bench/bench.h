@@ -70,8 +70,14 @@ render_opts base_opts(const ctx *c);
 int lattice_offset(const ctx *c);
 int add_run(ctx *c, const char *method, double param, const render_opts *o, const bscene *b,
             FILE *csv);
-/* Whether BENCH_METHODS (a comma-separated list; unset: all) names it. */
+/* select.c: whether the comma-separated list in VAR names NAME (unset:
+ * all do), BENCH_METHODS's shorthand, a scene named by its family
+ * (BENCH_SCENES=sponza: sponza-atrium, sponza-arcade), and BENCH_SET's
+ * settings laid over o. */
+int wanted(const char *var, const char *name);
 int wanted_method(const char *name);
+int wanted_family(const char *name);
+void experiment_opts(render_opts *o);
 
 /* A scene of several bounces (bounces.c): path tracing, the cache at the
  * first level with path-traced gathers, and a cache at every level. */

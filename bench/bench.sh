@@ -4,7 +4,7 @@
 # with apt, as make test installs its tools; without it, CSV and table
 # only), then the table into bench/README.md between its two marker lines
 # (full runs only: quick figures are not for the documents).
-# BENCH_SCENES, BENCH_METHODS (see bench.c): partial runs leave it alone.
+# BENCH_SCENES, BENCH_METHODS (see select.c): partial runs leave it alone.
 set -e
 driver=$1
 if [ "${BENCH_QUICK:-0}" = 1 ]; then "$driver" quick; else "$driver"; fi
