@@ -256,7 +256,8 @@ typedef struct irc_trace_args {
  * Cast args->count rays and fill args->hits.  The callback may touch only
  * args->hits[0 .. count-1] and its own state, and may call into other
  * caches (below); a call into the same cache that would compute a record
- * returns IRC_ERR_NESTED.  For confirming rays (visibility_only) it calls
+ * must not be made (it returns IRC_ERR_NESTED where the port can tell,
+ * below).  For confirming rays (visibility_only) it calls
  * no cache.  It runs on the thread that called into the library, with no
  * lock of the cache held, possibly on several threads at once.  Return 0 on
  * success or a negative code of the host's own to abort the record (the
