@@ -49,17 +49,9 @@ static void beyond(const renderer *r, const surface *sf, int level, uint64_t key
     } else {
         irc_ray ray;
         irc_hit hit;
-        float t1[3], t2[3], sgn = n[2] >= 0.0f ? 1.0f : -1.0f;
-        float a = -1.0f / (sgn + n[2]), b = n[0] * n[1] * a;
-        double u1 = rnd(key, 0), u2 = rnd(key, 1), st = sqrt(u1), ct = sqrt(1.0 - u1);
         int c;
-        t1[0] = 1.0f + sgn * n[0] * n[0] * a; t1[1] = sgn * b; t1[2] = -sgn * n[0];
-        t2[0] = b; t2[1] = sgn + n[1] * n[1] * a; t2[2] = -n[1];
-        for (c = 0; c < 3; c++) {
-            ray.org[c] = sf->p[c];
-            ray.dir[c] = (float)(st * (cos(2.0 * PI * u2) * t1[c] + sin(2.0 * PI * u2) * t2[c]) +
-                                 ct * n[c]);
-        }
+        memcpy(ray.org, sf->p, sizeof ray.org);
+        cosine_dir(n, rnd(key, 0), rnd(key, 1), ray.dir);
         cast(r, &ray, &hit, 1, 1, level + 1, ts);
         for (c = 0; c < 3; c++)
             e[c] = (float)PI * hit.radiance[c];

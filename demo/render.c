@@ -158,25 +158,15 @@ static void reference_e(const renderer *r, const float p[3], const float n[3], u
     irc_hit hits[64];
     int total = r->o.ref_rays, m = (int)sqrt((double)total), k = total / (m > 0 ? m : 1);
     int i, c, nb = 0;
-    float t1[3], t2[3], sgn = n[2] >= 0.0f ? 1.0f : -1.0f;
-    float a = -1.0f / (sgn + n[2]), b = n[0] * n[1] * a;
     double sum[3] = {0, 0, 0};
-    t1[0] = 1.0f + sgn * n[0] * n[0] * a; t1[1] = sgn * b; t1[2] = -sgn * n[0];
-    t2[0] = b; t2[1] = sgn + n[1] * n[1] * a; t2[2] = -n[1];
     for (i = 0; i < total; i++) {
-        double u1 = rnd(key, 2u * i), u2 = rnd(key, 2u * i + 1), s2, st, ct, ph;
+        double u1 = rnd(key, 2u * i), u2 = rnd(key, 2u * i + 1);
         if (i < m * k) {
             u1 = ((i / k) + u1) / m;
             u2 = ((i % k) + u2) / k;
         }
-        s2 = u1;
-        st = sqrt(s2);
-        ct = sqrt(1.0 - s2);
-        ph = 2.0 * PI * u2;
-        for (c = 0; c < 3; c++) {
-            rays[nb].org[c] = p[c];
-            rays[nb].dir[c] = (float)(st * (cos(ph) * t1[c] + sin(ph) * t2[c]) + ct * n[c]);
-        }
+        memcpy(rays[nb].org, p, sizeof rays[nb].org);
+        cosine_dir(n, u1, u2, rays[nb].dir);
         if (++nb == 64 || i == total - 1) {
             int j;
             cast(r, rays, hits, (uint32_t)nb, 1, 1, ts);

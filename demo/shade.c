@@ -146,6 +146,18 @@ float ray_offset(const float p[3])
     return 1e-5f * (1.0f + m);
 }
 
+void cosine_dir(const float n[3], double u1, double u2, float out[3])
+{
+    float t1[3], t2[3], sgn = n[2] >= 0.0f ? 1.0f : -1.0f;
+    float a = -1.0f / (sgn + n[2]), b = n[0] * n[1] * a;
+    double st = sqrt(u1), ct = sqrt(1.0 - u1), ph = 2.0 * PI * u2;
+    int c;
+    t1[0] = 1.0f + sgn * n[0] * n[0] * a; t1[1] = sgn * b; t1[2] = -sgn * n[0];
+    t2[0] = b; t2[1] = sgn + n[1] * n[1] * a; t2[2] = -n[1];
+    for (c = 0; c < 3; c++)
+        out[c] = (float)(st * (cos(ph) * t1[c] + sin(ph) * t2[c]) + ct * n[c]);
+}
+
 void env_radiance(const environment *e, const float d[3], float out[3])
 {
     int i;

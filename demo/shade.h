@@ -68,6 +68,11 @@ void direct_eval(const light_sample *ls, int n, int samples, const surface *sf, 
  * not push rays off small objects). */
 float ray_offset(const float p[3]);
 
+/* The cosine-distributed direction around unit n for (u1, u2) in [0,1)^2:
+ * sin^2 theta = u1, phi = 2 pi u2, in a frame built from n alone (Duff et
+ * al.'s branchless basis), so every caller sampling around n agrees. */
+void cosine_dir(const float n[3], double u1, double u2, float out[3]);
+
 /* A hash-based uniform number in [0,1) for (key, index). */
 double rnd(uint64_t key, uint32_t i);
 uint64_t hash64(uint64_t x);
