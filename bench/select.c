@@ -65,6 +65,7 @@ void experiment_opts(render_opts *o)
         else if (!strcmp(name, "nofp")) o->no_footprint = v != 0.0;
         else if (!strcmp(name, "free")) o->free_fill = v != 0.0;
         else if (!strcmp(name, "ss")) o->supersamples = (uint32_t)v;
+        else if (!strcmp(name, "fullpx")) o->full_pixels = (float)v;
         else if (!strcmp(name, "vis")) o->check_visibility = v != 0.0 ? IRC_ON : IRC_OFF;
         else if (!strcmp(name, "sm")) o->strata_m = (uint32_t)v;
         else if (!strcmp(name, "sn")) o->strata_n = (uint32_t)v;

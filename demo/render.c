@@ -105,6 +105,7 @@ int renderer_init(renderer *r, const scene *s, const render_opts *o, char *err, 
         cfg.strata_theta = o->strata_m;
         cfg.strata_phi = o->strata_n;
         cfg.irr.supersamples = o->supersamples;
+        cfg.irr.full_pixels = o->full_pixels;
         cfg.min_radius = o->min_radius;
         cfg.min_pixels = o->min_pixels;
         cfg.max_pixels = o->max_pixels;

@@ -31,6 +31,7 @@ typedef struct render_opts {
     float accuracy;       /* cache: a */
     uint32_t strata_m, strata_n;
     uint32_t supersamples; /* cache: irc_config.irr.supersamples */
+    float full_pixels;     /* cache: irc_config.irr.full_pixels */
     uint32_t max_records;
     float min_radius, max_radius; /* max < 0: 0.1 x the diagonal of what
                                      the camera sees; 0: the library's */

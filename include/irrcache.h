@@ -537,6 +537,19 @@ typedef struct irc_config {
                                 lit differently.  Default off: on the
                                 Sponza atrium it made 1.6x the records for
                                 the same error */
+        float full_pixels;   /* records that cost what they serve: a record
+                                made by the _px call whose radius R spans
+                                fewer than full_pixels pixels (R /
+                                footprint) is sampled on a coarser grid,
+                                M/2 x N/2 below full_pixels, M/4 x N/4
+                                below full_pixels / 2 (levels that keep
+                                >= 64 strata, >= 2 rows, >= 8 columns):
+                                its rays follow the pixels it serves.  The
+                                call samples the coarsest grid first and
+                                refines it, keeping its rays.  Not with
+                                VISIBILITY, HESSIAN or supersamples.
+                                Finite; 0 the default (32), negative:
+                                every record on the full grid */
     } irr;
     struct irc_config_sh {   /* SH records (IRC_FEATURE_SH) */
         uint32_t bands;      /* L, bands 0..L-1, L*L coefficients per

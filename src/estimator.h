@@ -45,10 +45,9 @@ float irc__net_visibility(const irc_cache *c, const irc__sample *s);
 
 /* irradiance.c: the irradiance record's estimator */
 int irc__irr_compute(irc__call *k, void *rec);
-uint64_t irc__gtab_bytes(uint32_t m, uint32_t nphi);
-void irc__gtab_fill(const irc_cache *c, void *tab);
-void irc__gradients(const irc_cache *c, const irc__sample *s, const float mean[3],
-                    const float t1[3], const float t2[3], float gt[3][3], float gr[3][3]);
+void irc__gradients(const irc_cache *c, const irc__grid *g, const irc__sample *s,
+                    const float mean[3], const float t1[3], const float t2[3], float gt[3][3],
+                    float gr[3][3]);
 
 /* A visibility discontinuity on an edge between two neighbouring strata:
  * the bracket [wa, wb] around the silhouette, a on the blocker's side, b on

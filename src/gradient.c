@@ -29,11 +29,11 @@
  * boundaries (V_j) and the rotational weight W_j, and the two constants of
  * the rotation that turns (cos phi_b, sin phi_b) into a column's integral
  * of v(phi). */
-void irc__gtab_fill(const irc_cache *c, void *tab)
+static void irc__gtab_fill_one(uint32_t m, uint32_t nphi, float *tab)
 {
-    const uint32_t m = c->cfg.strata_theta, nphi = c->cfg.strata_phi, np = irc__pad4(nphi);
+    const uint32_t np = irc__pad4(nphi);
     const float dphi = 2.0f * IRC_PI / nphi, half = IRC_SINF(0.5f * dphi);
-    float *col = (float *)tab;
+    float *col = tab;
     float *row = (float *)(void *)(col + 4u * np), th0 = 0.0f, sc0 = 0.0f;
     uint32_t j, k;
     for (k = 0; k <= nphi; k++) {
@@ -69,29 +69,76 @@ void irc__gtab_fill(const irc_cache *c, void *tab)
     row[3 * m + 1] = IRC_SINF(dphi);
 }
 
-/* Bytes of the table (irc__gtab_fill). */
-uint64_t irc__gtab_bytes(uint32_t m, uint32_t nphi)
+/* Floats of one grid's table, rounded up to a multiple of 4 so that the
+ * next level's table stays 16-byte aligned. */
+static uint64_t irc__gtab_floats(uint32_t m, uint32_t nphi)
 {
-    return (uint64_t)irc__pad4(nphi) * 4u * sizeof(float) +
-           (3u * (uint64_t)m + 2u) * sizeof(float);
+    return ((uint64_t)irc__pad4(nphi) * 4u + 3u * (uint64_t)m + 2u + 3u) / 4u * 4u;
 }
 
-static const float *irc__gtab_rows(const irc_cache *c)
+/* The grids a config's M x N strata coarsen to, each halving M and N: a
+ * level exists while both halve exactly and it keeps >= 2 rows, >= 8
+ * columns and >= 64 strata (a coarser pilot's radius is too noisy to
+ * choose by).  Level 0 is the configured grid. */
+uint32_t irc__grid_levels(uint32_t m, uint32_t nphi)
 {
-    return (const float *)(const void *)((const float *)irc__gtab(c) +
-                                          4u * irc__pad4(c->cfg.strata_phi));
+    uint32_t l = 1;
+    while (l < IRC__GRIDS && m % (2u << (l - 1)) == 0 && nphi % (2u << (l - 1)) == 0 &&
+           (m >> l) >= 2u && (nphi >> l) >= 8u && (m >> l) * (nphi >> l) >= 64u)
+        l++;
+    return l;
+}
+
+/* Bytes of every level's table (irc__gtab_fill). */
+uint64_t irc__gtab_bytes(uint32_t m, uint32_t nphi)
+{
+    const uint32_t levels = irc__grid_levels(m, nphi);
+    uint64_t f = 0;
+    uint32_t l;
+    for (l = 0; l < levels; l++)
+        f += irc__gtab_floats(m >> l, nphi >> l);
+    return f * sizeof(float);
+}
+
+void irc__gtab_fill(uint32_t m, uint32_t nphi, void *tab)
+{
+    const uint32_t levels = irc__grid_levels(m, nphi);
+    float *t = (float *)tab;
+    uint32_t l;
+    for (l = 0; l < levels; l++) {
+        irc__gtab_fill_one(m >> l, nphi >> l, t);
+        t += irc__gtab_floats(m >> l, nphi >> l);
+    }
+}
+
+void irc__grid_at(const irc_cache *c, uint32_t level, irc__grid *g)
+{
+    const float *t = (const float *)irc__gtab(c);
+    uint32_t l;
+    for (l = 0; l < level; l++)
+        t += irc__gtab_floats(c->cfg.strata_theta >> l, c->cfg.strata_phi >> l);
+    g->m = c->cfg.strata_theta >> level;
+    g->nphi = c->cfg.strata_phi >> level;
+    g->strata = g->m * g->nphi;
+    g->level = level;
+    g->tab = t;
+}
+
+static const float *irc__gtab_rows(const irc__grid *g)
+{
+    return g->tab + 4u * irc__pad4(g->nphi);
 }
 
 /* Inverse hit distances, one per stratum, into the slot: 0 for a ray that
  * escaped, NaN for a failed one (whose stratum then keeps NaN, below).
  * Float: the gradient is stored in 16-bit mantissas, and float division
  * is the cheap one.  A denormal distance's inverse is capped, not inf. */
-static void irc__inverse_depths(const irc_cache *c, const irc__sample *restrict s,
+static void irc__inverse_depths(const irc__grid *g, const irc__sample *restrict s,
                                 float *restrict inv)
 {
     uint32_t i;
     int q;
-    for (i = 0; i + 4 <= c->strata; i += 4) {
+    for (i = 0; i + 4 <= g->strata; i += 4) {
         const irc__sample *s4 = s + i;
         float x[4], *o4 = inv + i;
         for (q = 0; q < 4; q++)
@@ -99,7 +146,7 @@ static void irc__inverse_depths(const irc_cache *c, const irc__sample *restrict 
         for (q = 0; q < 4; q++)
             o4[q] = x[q] > FLT_MAX ? FLT_MAX : x[q];
     }
-    for (; i < c->strata; i++) {
+    for (; i < g->strata; i++) {
         float x = 1.0f / s[i].d;
         inv[i] = x > FLT_MAX ? FLT_MAX : x;
     }
@@ -132,12 +179,12 @@ static int irc__grad_silhouette(const irc__vis_edges *v, const int32_t *e, uint3
 /* The boundary weights of row j: below[k] for the boundary to row j - 1 (0
  * in row 0), left[k] for the boundary to column k - 1 (column N - 1 for
  * k = 0; left[N] repeats left[0]). */
-static void irc__row_weights(const irc_cache *c, const irc__vis_edges *v, uint32_t j,
+static void irc__row_weights(const irc__grid *g, const irc__vis_edges *v, uint32_t j,
                              const float *restrict inv, float *restrict below,
                              float *restrict left)
 {
-    const uint32_t nphi = c->cfg.strata_phi;
-    const float *rw = irc__gtab_rows(c);
+    const uint32_t nphi = g->nphi;
+    const float *rw = irc__gtab_rows(g);
     const float *ia = inv + j * nphi, *ib = j ? ia - nphi : ia;
     const float U = j ? rw[3 * j] : 0.0f, V = rw[3 * j + 1];
     uint32_t k;
@@ -177,12 +224,12 @@ static void irc__row_weights(const irc_cache *c, const irc__vis_edges *v, uint32
  * and its right one (column k + 1's left, -).  So a stratum costs one
  * multiply-add per channel and axis.  up: the row above's below weights
  * (zero in the top row). */
-static void irc__row_coeffs(const irc_cache *c, const float *restrict below,
+static void irc__row_coeffs(const irc__grid *g, const float *restrict below,
                             const float *restrict up, const float *restrict left,
                             float *restrict alpha, float *restrict beta)
 {
-    const uint32_t nphi = c->cfg.strata_phi, np = irc__pad4(nphi);
-    const float *cc = (const float *)irc__gtab(c), *sc = cc + np, *cb = sc + np, *sb = cb + np;
+    const uint32_t nphi = g->nphi, np = irc__pad4(nphi);
+    const float *cc = g->tab, *sc = cc + np, *cb = sc + np, *sb = cb + np;
     uint32_t k;
     int q;
 #if IRC__LANES == 4
@@ -229,11 +276,11 @@ typedef struct irc__row_sums {
     float c[4], s[4];   /* the radiance times cos phi_b and sin phi_b */
 } irc__row_sums;
 
-static void irc__row_sum(const irc_cache *c, const irc__sample *a, const float *alpha,
+static void irc__row_sum(const irc__grid *g, const irc__sample *a, const float *alpha,
                          const float *beta, const float ref[4], irc__row_sums *o)
 {
-    const uint32_t nphi = c->cfg.strata_phi, np = irc__pad4(nphi);
-    const float *cb = (const float *)irc__gtab(c) + 2u * np, *sb = cb + np;
+    const uint32_t nphi = g->nphi, np = irc__pad4(nphi);
+    const float *cb = g->tab + 2u * np, *sb = cb + np;
     float t1[4] = {0, 0, 0, 0}, t2[4] = {0, 0, 0, 0}, sc[4] = {0, 0, 0, 0},
           ss[4] = {0, 0, 0, 0};
     uint32_t k;
@@ -286,12 +333,13 @@ static void irc__row_sum(const irc_cache *c, const irc__sample *a, const float *
  * (-sin phi_b, cos phi_b) in the frame t1, t2.  Rotational: grad_r =
  * integral of L(w) (n x w) dw with n x w = sin(theta) v(phi).  Rows are
  * taken top down, so that a row's boundary above is already known. */
-void irc__gradients(const irc_cache *c, const irc__sample *s, const float mean[3],
-                    const float t1[3], const float t2[3], float gt[3][3], float gr[3][3])
+void irc__gradients(const irc_cache *c, const irc__grid *g, const irc__sample *s,
+                    const float mean[3], const float t1[3], const float t2[3], float gt[3][3],
+                    float gr[3][3])
 {
-    const uint32_t m = c->cfg.strata_theta, nphi = c->cfg.strata_phi, np = irc__pad4(nphi);
-    const float *rw = irc__gtab_rows(c);
-    float *inv = irc__slot_inv(c, s), *below = inv + c->strata, *up = below + np,
+    const uint32_t m = g->m, nphi = g->nphi, np = irc__pad4(nphi);
+    const float *rw = irc__gtab_rows(g);
+    float *inv = irc__slot_inv(c, s), *below = inv + g->strata, *up = below + np,
           *left = up + np, *alpha = left + np, *beta = alpha + np, *t;
     float tr[3][2] = {{0, 0}, {0, 0}, {0, 0}}, ro[3][2] = {{0, 0}, {0, 0}, {0, 0}};
     irc__vis_edges v = {NULL, NULL, NULL};
@@ -304,12 +352,12 @@ void irc__gradients(const irc_cache *c, const irc__sample *s, const float mean[3
         v.ev = v.eh + c->strata;
         v.x = irc__slot_cross(c, s);
     }
-    irc__inverse_depths(c, s, inv);
+    irc__inverse_depths(g, s, inv);
     IRC_MEMSET(below, 0, 5u * np * sizeof(float)); /* the padding included */
     for (j = m; j-- > 0;) {
-        irc__row_weights(c, &v, j, inv, below, left);
-        irc__row_coeffs(c, below, up, left, alpha, beta);
-        irc__row_sum(c, s + j * nphi, alpha, beta, ref, &o);
+        irc__row_weights(g, &v, j, inv, below, left);
+        irc__row_coeffs(g, below, up, left, alpha, beta);
+        irc__row_sum(g, s + j * nphi, alpha, beta, ref, &o);
         t = up; /* this row's boundaries below are the next row's above */
         up = below;
         below = t;

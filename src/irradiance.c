@@ -109,9 +109,9 @@ typedef struct irc__totals {
 
 /* One pass over the samples for the estimator's sums, row by row (a row's
  * sums in float, then the rows': the roundings grow with N + M, not M N). */
-static void irc__totals_of(const irc_cache *c, const irc__sample *s, irc__totals *t)
+static void irc__totals_of(const irc__grid *g, const irc__sample *s, irc__totals *t)
 {
-    const uint32_t m = c->cfg.strata_theta, nphi = c->cfg.strata_phi;
+    const uint32_t m = g->m, nphi = g->nphi;
     uint32_t j, k;
     IRC_MEMSET(t, 0, sizeof *t);
     for (j = 0; j < m; j++) {
@@ -164,11 +164,12 @@ static float irc__split_sphere(const irc_cache *c, const irc__totals *t, float *
  * its horizontal distance d sin(theta) over the reach a R(phi) in that
  * direction (the ellipse's).  Row and column centres stand for the
  * jittered directions; the distance is rounded down, the safe way. */
-static uint64_t irc__leak_guard(const irc_cache *c, const irc__sample *s, const float un[3],
-                                const float t1[3], const float t2[3], const irc_record *rec)
+static uint64_t irc__leak_guard(const irc_cache *c, const irc__grid *g, const irc__sample *s,
+                                const float un[3], const float t1[3], const float t2[3],
+                                const irc_record *rec)
 {
-    const uint32_t m = c->cfg.strata_theta, nphi = c->cfg.strata_phi;
-    const float *cc = (const float *)irc__gtab(c), *sc = cc + irc__pad4(nphi),
+    const uint32_t m = g->m, nphi = g->nphi;
+    const float *cc = g->tab, *sc = cc + irc__pad4(nphi),
                 inv_m = 1.0f / (float)m;
     float o1[3], o2[3], near[16], ax[2] = {0.0f, 0.0f}, q = 1.0f, w[3];
     uint32_t j, k;
@@ -271,18 +272,18 @@ static void irc__radii(const irc_cache *c, const irc__sample *s, const float n[3
 
 /* Not inlined: its locals (and the Hessian's and the leak guard's) would
  * otherwise sit under the visibility gradient's calls. */
-static IRC__NOINLINE void irc__record_build(const irc_cache *c, const irc__sample *s,
-                       const float n[3], const float t1[3],
+static IRC__NOINLINE void irc__record_build(const irc_cache *c, const irc__grid *grid,
+                       const irc__sample *s, const float n[3], const float t1[3],
                        const float t2[3], float gvis[3][3], float fp, irc_record *out)
 {
-    const uint32_t total = c->strata;
+    const uint32_t total = grid->strata;
     float mean[3], hm, far, r, g[3][3], gr[3][3];
     const uint32_t f = c->cfg.features;
     irc__totals t;
     uint32_t used;
     int ch, k;
 
-    irc__totals_of(c, s, &t);
+    irc__totals_of(grid, s, &t);
     used = t.used;
     IRC_MEMSET(out, 0, sizeof *out);
     for (ch = 0; ch < 3; ch++) {
@@ -294,7 +295,7 @@ static IRC__NOINLINE void irc__record_build(const irc_cache *c, const irc__sampl
     hm = irc__split_sphere(c, &t, &far);
     r = hm;
     if (f & (IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION))
-        irc__gradients(c, s, mean, t1, t2, (f & IRC_FEATURE_TRANSLATION) ? g : NULL,
+        irc__gradients(c, grid, s, mean, t1, t2, (f & IRC_FEATURE_TRANSLATION) ? g : NULL,
                        (f & IRC_FEATURE_ROTATION) ? gr : NULL);
     if (f & IRC_FEATURE_TRANSLATION) {
         for (ch = 0; ch < 3; ch++)
@@ -317,7 +318,7 @@ static IRC__NOINLINE void irc__record_build(const irc_cache *c, const irc__sampl
     irc__radii(c, s, n, t1, t2, r, far, fp, out);
 #ifndef IRC_NO_GUARD /* else no record has a guard (kind_irr.c) */
     if (c->off[IRC__P_GUARD])
-        out->leak_guard = irc__leak_guard(c, s, n, t1, t2, out);
+        out->leak_guard = irc__leak_guard(c, grid, s, n, t1, t2, out);
 #endif
     out->mean_dist = hm;
     out->features = c->cfg.features;
@@ -325,21 +326,66 @@ static IRC__NOINLINE void irc__record_build(const irc_cache *c, const irc__sampl
     out->rays_used = used;
 }
 
+/* Records that cost what they serve.  A record's rays are spread over
+ * the pixels it serves: about (a R / f)^2 of them for reach a R and pixel
+ * width f, and its noise is copied to each, so a record serving few pixels
+ * pays as much a pixel as per-pixel sampling and buys no less noise.  The
+ * _px call (footprint f > 0) therefore samples the coarsest grid first (a
+ * sixteenth of the rays at two levels), takes that pilot's radius R before
+ * any pixel bound, and refines (irc__refine: the pilot's rays are kept)
+ * one level at a time while R / f reaches cfg.irr.full_pixels / 2^level:
+ * rays grow with the served area (R / f)^2, up to the configured grid
+ * when R / f >= full_pixels.  Not with visibility gradients or the
+ * Hessian (they read every stratum's direction, which a refinement would
+ * have to move too), nor with super-samples. */
+static uint32_t irc__pilot_level(const irc__call *k)
+{
+    const irc_cache *c = k->c;
+    if (!(k->footprint > 0.0f) || !(c->cfg.irr.full_pixels > 0.0f) || c->keep_geom ||
+        c->cfg.irr.supersamples)
+        return 0;
+    return irc__grid_levels(c->cfg.strata_theta, c->cfg.strata_phi) - 1u;
+}
+
+/* Whether the pilot on grid g, whose record is *pilot, should be refined:
+ * its radius in pixels against the level's share of full_pixels.  A pilot
+ * that saw nothing (every ray escaped) has no scale and gets the full
+ * grid, as the reach bounds give it the widest reach. */
+static int irc__wants_finer(const irc__call *k, const irc__grid *g, const irc_record *pilot)
+{
+    const float rp = pilot->minor_radius / k->footprint;
+    if (pilot->mean_dist == 0.0f)
+        return 1;
+    return rp * (float)(1u << g->level) >= k->c->cfg.irr.full_pixels;
+}
+
 int irc__irr_compute(irc__call *k, void *rec)
 {
     irc_cache *c = k->c;
     irc_record *out = (irc_record *)rec;
+    const irc__sample *s = (const irc__sample *)(void *)k->slot;
     float t1[3], t2[3], gvis[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
     const int vis = (c->cfg.features & IRC_FEATURE_VISIBILITY) != 0;
+    const uint32_t top = irc__pilot_level(k);
+    irc__grid g, finer;
     int st;
-    if ((st = irc__hemisphere(k, t1, t2, k->c->cfg.irr.supersamples)) < 0)
+    irc__grid_at(c, top, &g);
+    if ((st = irc__hemisphere(k, &g, t1, t2, g.level ? 0u : c->cfg.irr.supersamples)) < 0)
         return st;
+    while (g.level > 0) {
+        irc__record_build(c, &g, s, k->q.n, t1, t2, NULL, 0.0f, out);
+        if (!irc__wants_finer(k, &g, out))
+            break;
+        irc__grid_at(c, g.level - 1u, &finer);
+        if ((st = irc__refine(k, top, &g, &finer, t1, t2)) < 0)
+            return st;
+        g = finer;
+    }
 #ifndef IRC_NO_VISIBILITY
     if (vis && (st = irc__grad_visibility(k, 0, gvis)) < 0)
         return st;
 #endif
-    irc__record_build(c, (const irc__sample *)(void *)k->slot, k->q.n, t1, t2,
-                      vis ? gvis : NULL, k->footprint, out);
+    irc__record_build(c, &g, s, k->q.n, t1, t2, vis ? gvis : NULL, k->footprint, out);
 
     out->rays = k->rays;
     out->p[0] = k->q.p[0];

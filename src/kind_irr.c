@@ -373,6 +373,10 @@ static int irc__irr_features(irc_config *cfg)
  * the real scenes: on unless asked off; the leak guard paid only between
  * rooms: off.  Super-samples follow the first rays, which visibility
  * gradients read as they were. */
+/* cfg.irr.full_pixels by default (irradiance.c, "Records that cost what
+ * they serve"). */
+#define IRC__DEF_FULL_PIXELS 32.0f
+
 static int irc__irr_resolve(irc_config *cfg)
 {
     const uint32_t strata = cfg->strata_theta * cfg->strata_phi;
@@ -388,6 +392,12 @@ static int irc__irr_resolve(irc_config *cfg)
         cfg->irr.supersamples > strata ||
         (cfg->irr.supersamples && (cfg->features & IRC_FEATURE_VISIBILITY)))
         return IRC_ERR_CONFIG;
+    if (!(cfg->irr.full_pixels > -IRC__CAP && cfg->irr.full_pixels < IRC__CAP))
+        return IRC_ERR_CONFIG;
+    if (cfg->irr.full_pixels == 0.0f)
+        cfg->irr.full_pixels = IRC__DEF_FULL_PIXELS;
+    if (cfg->irr.full_pixels < 0.0f)
+        cfg->irr.full_pixels = -1.0f;
     irc__switch_defaults(cfg, IRC_ON, IRC_ON);
     cfg->irr.leak_guard = cfg->irr.leak_guard == IRC_ON;
     return IRC_OK;

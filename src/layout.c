@@ -217,7 +217,7 @@ int irc_init(const irc_config *cfg, uint32_t max_records, irc_cache **out)
     c->strata = r.strata_theta * r.strata_phi;
     irc__port_name(c->port, c->port_name);
     irc__index_reset(c);
-    irc__gtab_fill(c, irc__part(c, c->o_gtab));
+    irc__gtab_fill(c->cfg.strata_theta, c->cfg.strata_phi, irc__part(c, c->o_gtab));
     if (c->port->lock_init(irc__lock(c)) < 0)
         return IRC_ERR_PORT;
     c->magic = IRC__MAGIC;
@@ -415,7 +415,7 @@ int irc_attach(const irc_config *cfg, irc_cache **out)
     /* What a lookup reads but no check can judge is made anew: the
      * strata's table from the config, and the scratch slots, empty and
      * owned by none. */
-    irc__gtab_fill(c, irc__part(c, c->o_gtab));
+    irc__gtab_fill(c->cfg.strata_theta, c->cfg.strata_phi, irc__part(c, c->o_gtab));
     IRC_MEMSET(irc__part(c, c->o_scratch), 0, (size_t)c->cfg.threads * c->slot_bytes);
     /* The copied lock object is the old address's: made anew.  Nothing
      * holds it in a block at rest. */

@@ -12,8 +12,10 @@ static int irc__occlusion(irc__call *k, void *dst)
 {
     irc_occlusion *out = (irc_occlusion *)dst;
     float t1[3], t2[3], g[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+    irc__grid grid;
     int st, i;
-    if ((st = irc__hemisphere(k, t1, t2, k->c->cfg.irr.supersamples)) < 0)
+    irc__grid_at(k->c, 0, &grid);
+    if ((st = irc__hemisphere(k, &grid, t1, t2, k->c->cfg.irr.supersamples)) < 0)
         return st;
     out->visible = irc__net_visibility(k->c, (const irc__sample *)(void *)k->slot);
     if ((st = irc__grad_visibility(k, 1, g)) < 0)

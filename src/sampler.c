@@ -112,23 +112,38 @@ typedef struct irc__dirs {
     irc__rng rng;
 } irc__dirs;
 
-static void irc__dirs_init(const irc_cache *c, const float n[3], const float t1[3],
-                           const float t2[3], const irc__rng *rng, irc__dirs *g)
+static void irc__dirs_init(const irc_cache *c, const irc__grid *gr, const float n[3],
+                           const float t1[3], const float t2[3], const irc__rng *rng,
+                           irc__dirs *g)
 {
-    const uint32_t np = irc__pad4(c->cfg.strata_phi);
+    const uint32_t np = irc__pad4(gr->nphi);
     int i;
     for (i = 0; i < 3; i++) {
         g->t1[i] = t1[i];
         g->t2[i] = t2[i];
         g->n[i] = n[i];
     }
-    g->inv_m = (float)(1.0f / c->cfg.strata_theta);
-    g->dphi = (float)(2.0f * IRC_PI / c->cfg.strata_phi);
-    g->cb = (const float *)irc__gtab(c) + 2u * np;
+    g->inv_m = (float)(1.0f / gr->m);
+    g->dphi = (float)(2.0f * IRC_PI / gr->nphi);
+    g->cb = gr->tab + 2u * np;
     g->sb = g->cb + np;
-    g->nphi = c->cfg.strata_phi;
+    g->nphi = gr->nphi;
     g->uniform = c->kind->uniform;
     g->rng = *rng;
+    /* A coarser grid's draws are its own: level 0's stay what they were. */
+    if (gr->level)
+        g->rng.key = irc__mix(g->rng.key ^ (0x6c6576656cull + gr->level));
+}
+
+/* Stratum (j, k)'s two uniform numbers in [0, 1): 24 bits each, exact in
+ * float, so 2 u is exact and its floor says which half the sample lies
+ * in (irc__refine). */
+static void irc__stratum_uv(const irc__dirs *g, uint32_t j, uint32_t k, float *u1, float *u2)
+{
+    const uint64_t h = irc__mix(g->rng.key + (uint64_t)(j * g->nphi + k + 1) *
+                                                 0x9e3779b97f4a7c15ull);
+    *u1 = (float)(h >> 40) * (1.0f / 16777216.0f);
+    *u2 = (float)(h >> 8 & 0xffffffu) * (1.0f / 16777216.0f);
 }
 
 /* Stratum (j, k)'s direction.  Rows are Ward's cosine-weighted sin^2(theta)
@@ -139,14 +154,11 @@ static void irc__dirs_init(const irc_cache *c, const float n[3], const float t1[
  * rounding dominates); for fewer columns the library calls. */
 static void irc__direction(const irc__dirs *g, uint32_t j, uint32_t k, float dir[3])
 {
-    const uint64_t h = irc__mix(g->rng.key + (uint64_t)(j * g->nphi + k + 1) *
-                                                 0x9e3779b97f4a7c15ull);
-    /* 24 bits each: exact in float and below 1. */
-    const float u1 = (float)(h >> 40) * (1.0f / 16777216.0f),
-                u2 = (float)(h >> 8 & 0xffffffu) * (1.0f / 16777216.0f);
-    const float d = u2 * g->dphi, d2 = d * d;
-    float s2, st, ct, sd, cd, cp, sp;
+    float u1, u2, d, d2, s2, st, ct, sd, cd, cp, sp;
     int i;
+    irc__stratum_uv(g, j, k, &u1, &u2);
+    d = u2 * g->dphi;
+    d2 = d * d;
     if (g->uniform) {
         ct = 1.0f - ((float)j + u1) * g->inv_m;
         s2 = (1.0f - ct) * (1.0f + ct);
@@ -227,12 +239,13 @@ int irc__cast(irc__call *k, irc_ray *rays, irc_hit *hits, uint32_t count)
  * hemisphere around n, casting rays in batches of cfg.max_batch.  *used
  * gets the number of usable samples.  Returns IRC_OK or a negative code
  * (the callback's own, passed through). */
-int irc__sample_hemisphere(irc__call *k, const float n[3], const float t1[3],
-                           const float t2[3], uint32_t first, uint32_t *used)
+int irc__sample_hemisphere(irc__call *k, const irc__grid *gr, const float n[3],
+                           const float t1[3], const float t2[3], uint32_t first,
+                           uint32_t *used)
 {
     irc_cache *c = k->c;
     irc__sample *base = (irc__sample *)(void *)k->slot, *out = base + first;
-    const uint32_t m = c->cfg.strata_theta, nphi = c->cfg.strata_phi;
+    const uint32_t m = gr->m, nphi = gr->nphi;
     const uint32_t total = m * nphi, batch = c->cfg.max_batch;
     irc_ray *rays = irc__slot_rays(c, k->slot);
     irc_hit *hits = (irc_hit *)(void *)(rays + batch);
@@ -242,7 +255,7 @@ int irc__sample_hemisphere(irc__call *k, const float n[3], const float t1[3],
     int st;
 
     rng = irc__rng_for(k->q.p, n, c->cfg.seed);
-    irc__dirs_init(c, n, t1, t2, &rng, &g);
+    irc__dirs_init(c, gr, n, t1, t2, &rng, &g);
     for (s0 = 0; s0 < total; s0 += batch) {
         uint32_t cnt = total - s0 < batch ? total - s0 : batch;
         for (i = 0; i < cnt; i++) {
@@ -364,12 +377,12 @@ static int irc__ss_merge(irc__sample *s, const uint32_t *at, const irc_hit *hits
  * chosen first, all from the first samples (marked by their distance's
  * sign, the one bit a sample has spare), then sampled in batches.
  * Returns IRC_OK or a negative code (the callback's own). */
-int irc__supersample(irc__call *k, const float n[3], const float t1[3], const float t2[3],
-                     uint32_t extra)
+int irc__supersample(irc__call *k, const irc__grid *gr, const float n[3], const float t1[3],
+                     const float t2[3], uint32_t extra)
 {
     const irc_cache *c = k->c;
     irc__sample *s = (irc__sample *)(void *)k->slot;
-    const uint32_t m = c->cfg.strata_theta, nphi = c->cfg.strata_phi;
+    const uint32_t m = gr->m, nphi = gr->nphi;
     const uint32_t total = m * nphi, batch = c->cfg.max_batch < 64u ? c->cfg.max_batch : 64u;
     irc_ray *rays = irc__slot_rays(c, k->slot);
     irc_hit *hits = (irc_hit *)(void *)(rays + c->cfg.max_batch);
@@ -390,7 +403,7 @@ int irc__supersample(irc__call *k, const float n[3], const float t1[3], const fl
         s[i].d = -s[i].d; /* chosen */
     }
     rng.key = irc__mix(rng.key ^ 0x73757065727321ull); /* the second draw's */
-    irc__dirs_init(c, n, t1, t2, &rng, &g);
+    irc__dirs_init(c, gr, n, t1, t2, &rng, &g);
     for (i = 0; i < total; i++) {
         if (!(s[i].d < 0.0f))
             continue;
@@ -413,17 +426,129 @@ int irc__supersample(irc__call *k, const float n[3], const float t1[3], const fl
 
 #endif /* IRC_NO_SUPERSAMPLE */
 
-int irc__hemisphere(irc__call *k, float t1[3], float t2[3], uint32_t extra)
+int irc__hemisphere(irc__call *k, const irc__grid *g, float t1[3], float t2[3],
+                    uint32_t extra)
 {
     uint32_t used = 0;
     int st;
     irc__frame(k->q.n, t1, t2);
-    st = irc__sample_hemisphere(k, k->q.n, t1, t2, 0, &used);
+    st = irc__sample_hemisphere(k, g, k->q.n, t1, t2, 0, &used);
 #ifndef IRC_NO_SUPERSAMPLE /* else no config asks for any (kind_irr.c) */
     if (st == IRC_OK && extra)
-        st = irc__supersample(k, k->q.n, t1, t2, extra);
+        st = irc__supersample(k, g, k->q.n, t1, t2, extra);
 #else
     (void)extra;
 #endif
     return st;
+}
+
+/* A stratum of the finer grid still to be sampled: no radiance a host may
+ * report is negative. */
+#define IRC__EMPTY (-1.0f)
+
+/* Where in stratum (j, k) of grid level lv the sample it holds lies, as
+ * (u1, u2) in [0, 1)^2, after refinements from the pilot's level top
+ * (d[l]: level l's draws).  A stratum's sample is the draw of its
+ * coarsest ancestor whose sample fell into it, carried down: at each
+ * refinement a sample at (u1, u2) goes to the child half [2 u1 >= 1],
+ * [2 u2 >= 1] and sits at 2 u - that child there.  Where the carried
+ * sample went to a sibling, the stratum at that level was sampled afresh
+ * with its own level's draw. */
+static void irc__held_uv(const irc__dirs *d, uint32_t top, uint32_t lv, uint32_t j,
+                         uint32_t k, float *u1, float *u2)
+{
+    uint32_t l = top;
+    for (;;) {
+        uint32_t m;
+        irc__stratum_uv(&d[l], j >> (l - lv), k >> (l - lv), u1, u2);
+        for (m = l; m > lv; m--) {
+            const uint32_t a = 2.0f * *u1 >= 1.0f, b = 2.0f * *u2 >= 1.0f;
+            if (a != ((j >> (m - 1u - lv)) & 1u) || b != ((k >> (m - 1u - lv)) & 1u))
+                break;
+            *u1 = 2.0f * *u1 - (float)a;
+            *u2 = 2.0f * *u2 - (float)b;
+        }
+        if (m == lv)
+            return;
+        l = m - 1u; /* sampled afresh at level m - 1 */
+    }
+}
+
+/* Moves each sample of the coarser grid (level from->level) to the finer
+ * stratum it lies in (row 2J + [2 u1 >= 1], column 2K + [2 u2 >= 1]) and
+ * marks the other three of its block empty.  From the last sample down: a
+ * block's strata all lie at or after its coarse sample's index, so
+ * nothing yet to move is overwritten. */
+static void irc__spread(irc__sample *s, const irc__dirs *d, uint32_t top, const irc__grid *from,
+                        const irc__grid *to)
+{
+    uint32_t i = from->strata;
+    while (i-- > 0) {
+        const uint32_t jc = i / from->nphi, kc = i % from->nphi;
+        const irc__sample keep = s[i];
+        float u1, u2;
+        uint32_t a, b;
+        irc__held_uv(d, top, from->level, jc, kc, &u1, &u2);
+        for (a = 0; a < 2; a++)
+            for (b = 0; b < 2; b++)
+                s[(2u * jc + a) * to->nphi + 2u * kc + b].l[0] = IRC__EMPTY;
+        a = 2.0f * u1 >= 1.0f;
+        b = 2.0f * u2 >= 1.0f;
+        s[(2u * jc + a) * to->nphi + 2u * kc + b] = keep;
+    }
+}
+
+/* Fills the empty strata from index *at on with the batch's cnt hits, in
+ * the order their rays were made. */
+static int irc__fill_empty(irc__sample *s, uint32_t *at, const irc_hit *hits, uint32_t cnt)
+{
+    uint32_t q;
+    for (q = 0; q < cnt; (*at)++) {
+        int st;
+        if (s[*at].l[0] != IRC__EMPTY)
+            continue;
+        if ((st = irc__accept_hit(&hits[q++], &s[*at])) < 0)
+            return st;
+    }
+    return IRC_OK;
+}
+
+int irc__refine(irc__call *k, uint32_t top, const irc__grid *from, const irc__grid *to,
+                const float t1[3], const float t2[3])
+{
+    irc_cache *c = k->c;
+    irc__sample *s = (irc__sample *)(void *)k->slot;
+    const uint32_t batch = c->cfg.max_batch;
+    irc_ray *rays = irc__slot_rays(c, k->slot);
+    irc_hit *hits = (irc_hit *)(void *)(rays + batch);
+    const irc__rng rng = irc__rng_for(k->q.p, k->q.n, c->cfg.seed);
+    irc__dirs d[IRC__GRIDS];
+    irc__grid gl;
+    uint32_t i, cnt = 0, at = 0, used = 0;
+    int st;
+    for (i = to->level; i <= top; i++) {
+        irc__grid_at(c, i, &gl);
+        irc__dirs_init(c, &gl, k->q.n, t1, t2, &rng, &d[i]);
+    }
+    irc__spread(s, d, top, from, to);
+    for (i = 0; i < to->strata; i++) {
+        if (s[i].l[0] != IRC__EMPTY)
+            continue;
+        rays[cnt].org[0] = k->q.p[0];
+        rays[cnt].org[1] = k->q.p[1];
+        rays[cnt].org[2] = k->q.p[2];
+        irc__direction(&d[to->level], i / to->nphi, i % to->nphi, rays[cnt].dir);
+        if (++cnt < batch)
+            continue;
+        if ((st = irc__cast(k, rays, hits, cnt)) < 0 ||
+            (st = irc__fill_empty(s, &at, hits, cnt)) < 0)
+            return st;
+        cnt = 0;
+    }
+    if (cnt && ((st = irc__cast(k, rays, hits, cnt)) < 0 ||
+                (st = irc__fill_empty(s, &at, hits, cnt)) < 0))
+        return st;
+    for (i = 0; i < to->strata; i++)
+        used += s[i].d == s[i].d;
+    return used * 2u < to->strata || used == 0 ? IRC_ERR_NOSAMPLES : IRC_OK;
 }

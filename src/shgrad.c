@@ -15,24 +15,24 @@
 /* The stratum grid the samples came from: one hemisphere (a surface
  * record) or two glued at the equator with the same azimuths (a free
  * point), rows of equal solid angle, cos(theta_j) = 1 - j/M. */
-typedef struct irc__grid {
+typedef struct irc__shgrid {
     const irc__sample *s;
     const float *dir, *nrm;
     const float *axis[2], *t1, *t2;
     uint32_t m, n, halves;
-} irc__grid;
+} irc__shgrid;
 
 static int irc__hit(const irc__sample *x)
 {
     return x->d == x->d && x->d < HUGE_VALF;
 }
 
-static irc__seen irc__shg_seen(const irc__grid *g, uint32_t i)
+static irc__seen irc__shg_seen(const irc__shgrid *g, uint32_t i)
 {
     return irc__seen_at(g->dir, g->nrm, i, g->s[i].d);
 }
 
-static int irc__shg_continuous(const irc__grid *g, uint32_t a, uint32_t b)
+static int irc__shg_continuous(const irc__shgrid *g, uint32_t a, uint32_t b)
 {
     const irc__seen va = irc__shg_seen(g, a), vb = irc__shg_seen(g, b);
     return irc__continuous(&va, &vb);
@@ -40,7 +40,7 @@ static int irc__shg_continuous(const irc__grid *g, uint32_t a, uint32_t b)
 
 /* The depth where the surface of sample i ends, past i on the side away
  * from its neighbour o (strata.c's rule; without o, i's own). */
-static float irc__shg_silhouette(const irc__grid *g, uint32_t i, int64_t o)
+static float irc__shg_silhouette(const irc__shgrid *g, uint32_t i, int64_t o)
 {
     const irc__seen e = irc__shg_seen(g, i);
     irc__seen in;
@@ -63,7 +63,7 @@ static float irc__shg_silhouette(const irc__grid *g, uint32_t i, int64_t o)
  * surface: the nearer side's 1/r runs on to the silhouette's depth
  * (irc__shg_silhouette), the farther side's surface continues behind.
  * w_out gets the vector for sample i. */
-static void irc__shg_edge(const irc__grid *g, uint32_t i, int64_t o, int64_t back,
+static void irc__shg_edge(const irc__shgrid *g, uint32_t i, int64_t o, int64_t back,
                       float len, const float nu[3], float w_out[3])
 {
     float f, k;
@@ -84,7 +84,7 @@ static void irc__shg_edge(const irc__grid *g, uint32_t i, int64_t o, int64_t bac
 /* Sample index of row j (of rows 0..2M-1 counted from the first
  * hemisphere's pole across the equator), column k; -1 off the grid.  Once
  * per row: it divides. */
-static int64_t irc__shg_at(const irc__grid *g, int64_t j, uint32_t k)
+static int64_t irc__shg_at(const irc__shgrid *g, int64_t j, uint32_t k)
 {
     uint32_t h;
     if (j < 0 || j >= (int64_t)(g->halves * g->m))
@@ -108,7 +108,7 @@ typedef struct irc__shg_cell {
 } irc__shg_cell;
 
 /* The edge vector of the sample in column k of the row q describes. */
-static void irc__edge_vector(const irc__grid *g, uint32_t k, const irc__shg_cell *q, float w[3])
+static void irc__edge_vector(const irc__shgrid *g, uint32_t k, const irc__shg_cell *q, float w[3])
 {
     const float dphi = 2.0f * IRC_PI / g->n;
     const uint32_t i = (uint32_t)q->row + k, kl = k ? k - 1 : g->n - 1,
@@ -181,7 +181,7 @@ static void irc__sh_add(const irc_cache *c, irc__shsum *a, const irc__sample *x,
     }
 }
 
-static void irc__sh_accumulate(const irc_cache *c, const irc__grid *g, const float *n,
+static void irc__sh_accumulate(const irc_cache *c, const irc__shgrid *g, const float *n,
                                irc__shsum *a)
 {
     const float dw = 2.0f * IRC_PI / c->strata, idw = 1.0f / dw, dphi = 2.0f * IRC_PI / g->n;
@@ -239,7 +239,8 @@ int irc__sh_sample(irc__call *k, irc__shsum *a)
     irc_cache *c = k->c;
     const float *un = k->q.free ? NULL : k->q.n;
     float t1[3], t2[3];
-    irc__grid g;
+    irc__shgrid g;
+    irc__grid grid;
     uint32_t used, h;
     int st;
     g.s = (const irc__sample *)(const void *)k->slot;
@@ -253,8 +254,9 @@ int irc__sh_sample(irc__call *k, irc__shsum *a)
     g.n = c->cfg.strata_phi;
     g.halves = un ? 1u : 2u;
     irc__frame(g.axis[0], t1, t2);
+    irc__grid_at(c, 0, &grid);
     for (h = 0; h < g.halves; h++) {
-        st = irc__sample_hemisphere(k, g.axis[h], t1, t2, h * c->strata, &used);
+        st = irc__sample_hemisphere(k, &grid, g.axis[h], t1, t2, h * c->strata, &used);
         if (st < 0)
             return st;
     }

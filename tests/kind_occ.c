@@ -40,8 +40,10 @@ static int occ_make(irc__call *k, void *rec)
     float t1[3], t2[3], r;
     double inv = 0.0;
     uint32_t i, used = 0, open = 0;
-    int st = irc__hemisphere(k, t1, t2, 0);
-    if (st < 0)
+    irc__grid g;
+    int st;
+    irc__grid_at(c, 0, &g);
+    if ((st = irc__hemisphere(k, &g, t1, t2, 0)) < 0)
         return st;
     memset(o, 0, sizeof *o);
     for (i = 0; i < c->strata; i++) {
