@@ -44,7 +44,8 @@ PIC = $(if $(filter none,$(PORT)),,-fPIC)
 SRC = src/status.c src/version.c src/check.c src/config.c src/kinds.c src/strata.c src/layout.c src/store.c src/kind_irr.c src/gradient.c \
       src/kind_sh.c src/sampler.c src/irradiance.c src/octa.c src/weight.c src/index.c src/query.c src/compact.c \
       src/visibility.c src/hessian.c src/sh.c src/shgrad.c src/snapshot.c src/merge.c \
-      src/pass.c src/sight.c src/slots.c src/verify.c src/repair.c src/occlusion.c src/stats.c
+      src/pass.c src/sight.c src/slots.c src/verify.c src/repair.c src/occlusion.c src/stats.c \
+      src/pixel.c
 # make LEAVE_OUT="SH VISIBILITY HESSIAN SIGHT SUPERSAMPLE GUARD" (any of them): those parts are
 # not compiled, and util.h's IRC_NO_* switch tells the rest (the same
 # switches, set in a user config header, compile those files empty).
@@ -204,14 +205,27 @@ demo: $(BUILD)/irc_demo
 # demo/README.md, "Scene files"): shipped gzip'd, read from build/scenes with their scene
 # files and materials beside them.
 REAL_SCENES = $(BUILD)/scenes/sponza.obj $(BUILD)/scenes/bunny.obj $(BUILD)/scenes/sponza.mtl \
-              $(BUILD)/scenes/sponza-atrium.scene $(BUILD)/scenes/sponza-arcade.scene
+              $(patsubst demo/scenes/%,$(BUILD)/scenes/%,$(wildcard demo/scenes/sponza-*.scene \
+                 demo/scenes/breakfast-room-*.scene demo/scenes/grey-white-room-*.scene))
+# The furnished interiors' models are not shipped (bench/README.md, "The
+# corpus"): where CORPUS holds them (NAME.obj.gz and NAME.mtl), they are
+# copied in too; make bench skips their views otherwise.
+CORPUS ?= ../shared/data/real-scenes
+CORPUS_MODELS = $(foreach m,breakfast-room grey-white-room,$(if $(wildcard $(CORPUS)/$(m).obj.gz),\
+                  $(BUILD)/scenes/$(m).obj $(BUILD)/scenes/$(m).mtl))
 $(BUILD)/scenes/%.obj: demo/scenes/%.obj.gz
 	@mkdir -p $(dir $@)
 	gzip -dc $< > $@.part && mv $@.part $@
 $(BUILD)/scenes/%: demo/scenes/%
 	@mkdir -p $(dir $@)
 	cp $< $@
-real-scenes: $(REAL_SCENES)
+$(BUILD)/scenes/%.obj: $(CORPUS)/%.obj.gz
+	@mkdir -p $(dir $@)
+	gzip -dc $< > $@.part && mv $@.part $@
+$(BUILD)/scenes/%.mtl: $(CORPUS)/%.mtl
+	@mkdir -p $(dir $@)
+	cp $< $@
+real-scenes: $(REAL_SCENES) $(CORPUS_MODELS)
 
 # The first-order paper's Fig. 15 experiment (docs/DESIGN.md: "Visibility gradients").
 $(BUILD)/fig15: experiments/fig15.c $(DEMO_LIB_SRC) demo/*.h $(LIBA)

@@ -26,6 +26,9 @@ typedef struct bscene {
     int bounces;      /* > 1: bounces of indirect light, every method and
                          the reference alike; such a scene runs only when
                          BENCH_SCENES names it (bounces.c's sweep) */
+    int optional;     /* a corpus view whose model is not shipped (make
+                         real-scenes copies it from CORPUS when there):
+                         skipped, with a line saying so, when absent */
 } bscene;
 
 typedef struct run {

@@ -330,9 +330,9 @@ static IRC__NOINLINE void irc__record_build(const irc_cache *c, const irc__grid 
  * the pixels it serves: about (a R / f)^2 of them for reach a R and pixel
  * width f, and its noise is copied to each, so a record serving few pixels
  * pays as much a pixel as per-pixel sampling and buys no less noise.  The
- * _px call (footprint f > 0) therefore samples the coarsest grid first (a
- * sixteenth of the rays at two levels), takes that pilot's radius R before
- * any pixel bound, and refines (irc__refine: the pilot's rays are kept)
+ * _px call (footprint f > 0) can sample the coarsest grid first (a
+ * sixteenth of the rays at two levels), take that pilot's radius R within
+ * the pixel bounds, and refine (irc__refine: the pilot's rays are kept)
  * one level at a time while R / f reaches cfg.irr.full_pixels / 2^level:
  * rays grow with the served area (R / f)^2, up to the configured grid
  * when R / f >= full_pixels.  Not with visibility gradients or the
@@ -347,15 +347,12 @@ static uint32_t irc__pilot_level(const irc__call *k)
     return irc__grid_levels(c->cfg.strata_theta, c->cfg.strata_phi) - 1u;
 }
 
-/* Whether the pilot on grid g, whose record is *pilot, should be refined:
- * its radius in pixels against the level's share of full_pixels.  A pilot
- * that saw nothing (every ray escaped) has no scale and gets the full
- * grid, as the reach bounds give it the widest reach. */
+/* Whether the pilot on grid g, whose record is *pilot (its radius within
+ * the pixel bounds: the pixels it will serve), should be refined: that
+ * radius in pixels against the level's share of full_pixels. */
 static int irc__wants_finer(const irc__call *k, const irc__grid *g, const irc_record *pilot)
 {
     const float rp = pilot->minor_radius / k->footprint;
-    if (pilot->mean_dist == 0.0f)
-        return 1;
     return rp * (float)(1u << g->level) >= k->c->cfg.irr.full_pixels;
 }
 
@@ -373,7 +370,7 @@ int irc__irr_compute(irc__call *k, void *rec)
     if ((st = irc__hemisphere(k, &g, t1, t2, g.level ? 0u : c->cfg.irr.supersamples)) < 0)
         return st;
     while (g.level > 0) {
-        irc__record_build(c, &g, s, k->q.n, t1, t2, NULL, 0.0f, out);
+        irc__record_build(c, &g, s, k->q.n, t1, t2, NULL, k->footprint, out);
         if (!irc__wants_finer(k, &g, out))
             break;
         irc__grid_at(c, g.level - 1u, &finer);

@@ -69,7 +69,7 @@ TEST(test_detail_refined_strata)
 {
     detail_host h;
     irc_config cfg;
-    irc_cache *c = detail_cache(&h, &cfg, 0.0f);
+    irc_cache *c = detail_cache(&h, &cfg, 32.0f);
     const float p[3] = {0.3f, -0.2f, 0.0f}, n[3] = {0, 0, 1};
     float rgb[3], w;
     uint32_t i, empty = 0, twice = 0;
@@ -98,7 +98,8 @@ TEST(test_detail_refined_strata)
 }
 
 /* The same record with the switch off: the full grid sampled at once (the
- * same count, other draws), and the plain call (no pixel) likewise. */
+ * same count, other draws); the plain call (no pixel) and the default
+ * likewise. */
 TEST(test_detail_full_grid_paths)
 {
     detail_host h;
@@ -120,9 +121,14 @@ TEST(test_detail_full_grid_paths)
     }
     CHECK(empty == 0 && twice == 0, "full grid: empty strata %u, doubled %u", empty, twice);
     free(h.count);
-    c = detail_cache(&h, &cfg, 0.0f);
+    c = detail_cache(&h, &cfg, 32.0f);
     CHECK(c != NULL && irc_cache_lookup_or_compute(c, p, n, rgb, &w, &h) == IRC_OK &&
               h.rays == 1024, "plain call: %u rays", h.rays);
+    free(h.count);
+    /* the default (0) is off: a record 2 pixels wide still takes 1,024 */
+    c = detail_cache(&h, &cfg, 0.0f);
+    CHECK(c != NULL && irc_cache_lookup_or_compute_px(c, p, n, 0.5f, rgb, &w, &h) == IRC_OK &&
+              h.rays == 1024, "default: %u rays", h.rays);
     free(h.count);
 }
 
@@ -135,7 +141,7 @@ TEST(test_detail_coarse_records)
 {
     detail_host h;
     irc_config cfg;
-    irc_cache *c = detail_cache(&h, &cfg, 0.0f);
+    irc_cache *c = detail_cache(&h, &cfg, 32.0f);
     const float n[3] = {0, 0, 1};
     double sum = 0.0, sum2 = 0.0, mean, sd;
     uint32_t i, coarse = 0, total = 100;
@@ -191,4 +197,95 @@ TEST(test_detail_config)
     cfg = scene_config(&s, IRC_FEATURE_SH, 0, 0);
     cfg.irr.full_pixels = 8.0f;
     CHECK(irc_footprint(&cfg, 16, &bytes) == IRC_ERR_CONFIG, "an SH cache took an irradiance field");
+}
+
+/* Intersects the ray from the origin through (x, y, 1) with the plane
+ * through q of normal m. */
+static void on_plane(double x, double y, const double q[3], const double m[3], double out[3])
+{
+    const double d[3] = {x, y, 1.0};
+    double t = (q[0] * m[0] + q[1] * m[1] + q[2] * m[2]) / (d[0] * m[0] + d[1] * m[1] + d[2] * m[2]);
+    int i;
+    for (i = 0; i < 3; i++)
+        out[i] = t * d[i];
+}
+
+/* irc_pixel_footprint against the area a pixel really covers: a camera at
+ * the origin looking along +z, pixels of width s on the plane z = 1; the
+ * pixel's corners cast onto the tilted surface span |dp/dx x dp/dy|, whose
+ * square root is the footprint (differences of 1e-3 pixels, so the
+ * parallelogram is the pixel's to 1e-3).  Then the grazing clamp, the
+ * sign of n, and the refusals. */
+TEST(test_pixel_footprint)
+{
+    const float eye[3] = {0, 0, 0}, fwd[3] = {0, 0, 2}, s = 0.004f;
+    float fp = -1.0f, worst = 0.0f;
+    int i;
+    for (i = 0; i < 200; i++) {
+        /* pixels across a 70-degree view, surfaces tilted up to 80 degrees */
+        const double x = -0.7 + 1.4 * ((i * 37) % 200) / 200.0, y = -0.5 + (i % 20) / 20.0;
+        const double dist = 0.5 + 0.1 * i, h = 1e-3 * s, len = sqrt(x * x + y * y + 1.0);
+        const double tilt = 1.4 * ((i * 13) % 100) / 100.0, az = 0.7 * i;
+        double m[3], q[3], a[3], b[3], c0[3], u[3], v[3], w[3], area, back[3];
+        float p[3], n[3];
+        int k;
+        for (k = 0; k < 3; k++)
+            back[k] = -(k == 0 ? x : k == 1 ? y : 1.0) / len;
+        /* the normal: the direction back to the eye turned by tilt */
+        {
+            double t1[3] = {back[1], -back[0], 0.0}, l1 = sqrt(t1[0] * t1[0] + t1[1] * t1[1]);
+            double t2[3];
+            for (k = 0; k < 3; k++)
+                t1[k] /= l1;
+            t2[0] = back[1] * t1[2] - back[2] * t1[1];
+            t2[1] = back[2] * t1[0] - back[0] * t1[2];
+            t2[2] = back[0] * t1[1] - back[1] * t1[0];
+            for (k = 0; k < 3; k++)
+                m[k] = cos(tilt) * back[k] + sin(tilt) * (cos(az) * t1[k] + sin(az) * t2[k]);
+        }
+        for (k = 0; k < 3; k++)
+            q[k] = -back[k] * dist;
+        on_plane(x, y, q, m, c0);
+        on_plane(x + h, y, q, m, a);
+        on_plane(x, y + h, q, m, b);
+        for (k = 0; k < 3; k++) {
+            u[k] = (a[k] - c0[k]) / 1e-3;
+            v[k] = (b[k] - c0[k]) / 1e-3;
+            p[k] = (float)c0[k];
+            n[k] = (float)(i % 2 ? m[k] : -m[k]); /* either side */
+        }
+        w[0] = u[1] * v[2] - u[2] * v[1];
+        w[1] = u[2] * v[0] - u[0] * v[2];
+        w[2] = u[0] * v[1] - u[1] * v[0];
+        area = sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+        CHECK(irc_pixel_footprint(eye, fwd, s, p, n, &fp) == IRC_OK, "call %d", i);
+        if (fabs(fp / sqrt(area) - 1.0) > worst)
+            worst = (float)fabs(fp / sqrt(area) - 1.0);
+    }
+    printf("  200 pixels: worst relative difference from the cast pixel %.2e\n", worst);
+    CHECK(worst < 2e-3, "footprint off by %g", worst);
+    {
+        /* grazing: |d.n| = 0.01 gives the footprint of 0.05 */
+        const float p[3] = {0, 0, 5}, n1[3] = {0, 0.99995f, 0.01f}, n2[3] = {0, 0.99875f, 0.05f};
+        float f1, f2;
+        CHECK(irc_pixel_footprint(eye, fwd, s, p, n1, &f1) == IRC_OK &&
+                  irc_pixel_footprint(eye, fwd, s, p, n2, &f2) == IRC_OK &&
+                  fabsf(f1 / f2 - 1.0f) < 1e-3f,
+              "grazing %g against %g", f1, f2);
+    }
+    {
+        const float p[3] = {0, 0, 5}, n[3] = {0, 0, 1}, behind[3] = {0, 0, -5}, zero[3] = {0, 0, 0};
+        const float bad[3] = {0, NAN, 5};
+        fp = 7.0f;
+        CHECK(irc_pixel_footprint(NULL, fwd, s, p, n, &fp) == IRC_ERR_NULL, "null eye");
+        CHECK(irc_pixel_footprint(eye, fwd, s, p, n, NULL) == IRC_ERR_NULL, "null out");
+        CHECK(irc_pixel_footprint(eye, fwd, s, bad, n, &fp) == IRC_ERR_NONFINITE, "nan p");
+        CHECK(irc_pixel_footprint(eye, fwd, INFINITY, p, n, &fp) == IRC_ERR_NONFINITE, "inf angle");
+        CHECK(irc_pixel_footprint(eye, fwd, s, p, zero, &fp) == IRC_ERR_NORMAL, "zero normal");
+        CHECK(irc_pixel_footprint(eye, fwd, 0.0f, p, n, &fp) == IRC_ERR_RANGE, "zero angle");
+        CHECK(irc_pixel_footprint(eye, zero, s, p, n, &fp) == IRC_ERR_RANGE, "zero forward");
+        CHECK(irc_pixel_footprint(eye, fwd, s, eye, n, &fp) == IRC_ERR_RANGE, "p at eye");
+        CHECK(irc_pixel_footprint(eye, fwd, s, behind, n, &fp) == IRC_ERR_RANGE, "behind");
+        CHECK(fp == 7.0f, "a refused call wrote %g", fp);
+    }
 }
