@@ -39,11 +39,11 @@
 static const bscene scenes[] = {
     /* The real scenes (make real-scenes): brute force on the reference's
      * lattice only, its time scaled to the whole image. */
-    {"sponza-atrium", "build/scenes/sponza-atrium.scene", 640, 480, 160, 120, 0, 0, 0, 8, 0},
-    {"sponza-arcade", "build/scenes/sponza-arcade.scene", 640, 480, 160, 120, 0, 0, 0, 8, 0},
-    {"sponza-gallery", "build/scenes/sponza-gallery.scene", 640, 480, 160, 120, 0, 0, 0, 8, 0},
-    {"sponza-floor", "build/scenes/sponza-floor.scene", 640, 480, 160, 120, 0, 0, 0, 8, 0},
-    {"sponza-capitals", "build/scenes/sponza-capitals.scene", 640, 480, 160, 120, 0, 0, 0, 8, 0},
+    {"sponza-atrium", "build/scenes/sponza-atrium.scene", 640, 480, 160, 120, 0, 0, 0, 8, 0, 0},
+    {"sponza-arcade", "build/scenes/sponza-arcade.scene", 640, 480, 160, 120, 0, 0, 0, 8, 0, 0},
+    {"sponza-gallery", "build/scenes/sponza-gallery.scene", 640, 480, 160, 120, 0, 0, 0, 8, 0, 0},
+    {"sponza-floor", "build/scenes/sponza-floor.scene", 640, 480, 160, 120, 0, 0, 0, 8, 0, 0},
+    {"sponza-capitals", "build/scenes/sponza-capitals.scene", 640, 480, 160, 120, 0, 0, 0, 8, 0, 0},
     /* Furnished interiors (bench/README.md, "The corpus"): their models
      * are not shipped. */
     {"breakfast-table", "build/scenes/breakfast-room-table.scene", 640, 480, 160, 120, 0, 0, 0, 8,
@@ -54,18 +54,18 @@ static const bscene scenes[] = {
      8, 0, 1},
     {"greywhite-fireplace", "build/scenes/grey-white-room-fireplace.scene", 640, 480, 160, 120, 0, 0,
      0, 8, 0, 1},
-    {"cornell", "demo/scenes/cornell.scene", 512, 512, 128, 128, 0, 0, 0, 0, 0},
-    {"fig5", "demo/scenes/fig5.scene", 256, 192, 128, 96, 1, 0, 0, 0, 0},
-    {"fig15", "demo/scenes/fig15.scene", 256, 256, 96, 96, 0, 0, 0, 0, 0},
+    {"cornell", "demo/scenes/cornell.scene", 512, 512, 128, 128, 0, 0, 0, 0, 0, 0},
+    {"fig5", "demo/scenes/fig5.scene", 256, 192, 128, 96, 1, 0, 0, 0, 0, 0},
+    {"fig15", "demo/scenes/fig15.scene", 256, 256, 96, 96, 0, 0, 0, 0, 0, 0},
     /* The ground's lit spots under three small emitters: one light sample
      * a secondary hit left a 16384-ray reference 3.5% noisy. */
-    {"sh", "demo/scenes/sh.scene", 128, 128, 64, 64, 1, 16, 65536, 0, 0},
+    {"sh", "demo/scenes/sh.scene", 128, 128, 64, 64, 1, 16, 65536, 0, 0, 0},
     /* Several bounces (make bench-bounces): only when BENCH_SCENES names
      * them. */
-    {"bounces3-cornell", "demo/scenes/cornell.scene", 256, 256, 64, 64, 0, 0, 0, 0, 3},
-    {"bounces2-cornell", "demo/scenes/cornell.scene", 256, 256, 64, 64, 0, 0, 0, 0, 2},
+    {"bounces3-cornell", "demo/scenes/cornell.scene", 256, 256, 64, 64, 0, 0, 0, 0, 3, 0},
+    {"bounces2-cornell", "demo/scenes/cornell.scene", 256, 256, 64, 64, 0, 0, 0, 0, 2, 0},
     {"bounces2-sponza-atrium", "build/scenes/sponza-atrium.scene", 640, 480, 160, 120, 0, 0, 0, 8,
-     2},
+     2, 0},
 };
 
 

@@ -3,6 +3,7 @@
  * sees for a surface.
  */
 #include "camera.h"
+#include "irrcache.h"
 
 #include <math.h>
 
@@ -54,13 +55,14 @@ float camera_footprint(const cam_frame *cf, const camera *c, const float d[3], f
                        const float n[3])
 {
     /* a pixel is 2 ty / H wide on the image plane at distance 1 along f;
-     * its solid angle is that squared times (d.f)^3 */
-    const float s0 = 2.0f * cf->ty / (float)c->height;
-    float df = d[0] * cf->f[0] + d[1] * cf->f[1] + d[2] * cf->f[2];
-    float dn = fabsf(d[0] * n[0] + d[1] * n[1] + d[2] * n[2]);
-    if (dn < 0.05f)
-        dn = 0.05f;
-    return s0 * t * df * sqrtf(df / dn);
+     * the library's rule turns that into its width at the hit */
+    float p[3], fp = 0.0f;
+    int i;
+    for (i = 0; i < 3; i++)
+        p[i] = cf->eye[i] + t * d[i];
+    if (irc_pixel_footprint(cf->eye, cf->f, 2.0f * cf->ty / (float)c->height, p, n, &fp) < 0)
+        return 0.0f; /* no pixel bound */
+    return fp;
 }
 
 /* The point the cache sees for a surface: lifted off it so that hemisphere

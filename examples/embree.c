@@ -161,7 +161,7 @@ static float brute(world *w, host *hs, const float p[3], const float n[3], unsig
 static void pixel(world *w, host *hs, int x, int y)
 {
     float d[3], n[3], p[3], e[3] = {0, 0, 0}, sx = (2.0f * (x + 0.5f) / w->w - 1.0f) * w->tx,
-                                           sy = (1.0f - 2.0f * (y + 0.5f) / w->h) * w->ty, t, df, kd;
+                                           sy = (1.0f - 2.0f * (y + 0.5f) / w->h) * w->ty, t, kd;
     int k;
     for (k = 0; k < 3; k++)
         d[k] = w->f[k] + sx * w->r[k] + sy * w->u[k];
@@ -173,13 +173,10 @@ static void pixel(world *w, host *hs, int x, int y)
     if (w->rays) {
         e[0] = brute(w, hs, p, n, (unsigned)(y * w->w + x) * 2654435761u);
     } else {
-        /* the footprint: sqrt of the area the pixel covers there (a
-         * grazing surface counted as 1/20 of a facing one at most) */
-        float cs = fabsf(dot(d, n));
-        df = dot(d, w->f);
-        if (irc_cache_lookup_or_compute_px(w->cache, p, n,
-                                           t * 2.0f * w->ty / w->h * df * sqrtf(df / (cs > 0.05f ? cs : 0.05f)),
-                                           e, NULL, hs) < 0)
+        /* the footprint: sqrt of the area the pixel covers there */
+        float fp = 0.0f;
+        if (irc_pixel_footprint(w->eye, w->f, 2.0f * w->ty / w->h, p, n, &fp) < 0 ||
+            irc_cache_lookup_or_compute_px(w->cache, p, n, fp, e, NULL, hs) < 0)
             w->failed = 1;
     }
     w->img[y * w->w + x] = kd / PI * e[0];

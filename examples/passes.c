@@ -58,10 +58,11 @@ static int trace(const irc_trace_args *a)
 
 /* The camera ray through (x, y) of the image, in pixels; its hit on the
  * floor (0 if it misses the floor or meets the ball first) and the
- * footprint there: distance x pixel angle / sqrt(cos), the square root of
- * the area a pixel covers on the floor. */
+ * footprint there (irc_pixel_footprint: the square root of the area a
+ * pixel covers on the floor). */
 static int floor_hit(float x, float y, float p[3], float *footprint)
 {
+    static const float up[3] = {0.0f, 0.0f, 1.0f}; /* the floor's normal */
     const float th = tanf(0.5f * fov), pix = 2.0f * th / H;
     float f[3] = {0.0f, 5.0f, -4.0f}, r[3] = {1.0f, 0.0f, 0.0f}, u[3], d[3], l, t;
     int k;
@@ -88,9 +89,7 @@ static int floor_hit(float x, float y, float p[3], float *footprint)
         if (disc > 0.0f && -b - sqrtf(disc) < t)
             return 0;
     }
-    /* the pixel's solid angle is pix^2 (d.f)^3, d.f = 1 / l */
-    *footprint = t * pix / (l * sqrtf(l)) / sqrtf(-d[2]);
-    return 1;
+    return irc_pixel_footprint(eye, f, pix, p, up, footprint) == IRC_OK;
 }
 
 /* Pixel offset of pass k of 4^BITS: each pair of k's bits, lowest first,
@@ -114,13 +113,12 @@ static void shade(job *j, int x, int y, int s)
     /* sample s of a pixel at a point of its own; the first makes records */
     const float jx = s ? (float)((s * 7) % 4) / 4.0f + 0.125f : 0.5f,
                 jy = s ? (float)((s * 5) % 4) / 4.0f + 0.125f : 0.5f;
-    int st = IRC_MISS;
+    int st;
     if (!floor_hit((float)x + jx, (float)y + jy, p, &fp))
         return;
-    if (s)
-        st = irc_cache_lookup(j->cache, p, n, rgb, NULL);
-    if (st == IRC_MISS)
-        st = irc_cache_lookup_or_compute_px(j->cache, p, n, fp, rgb, NULL, NULL);
+    /* every sample through the _px call: it confirms the records it uses
+     * (cfg.check_visibility), which the plain lookup does not */
+    st = irc_cache_lookup_or_compute_px(j->cache, p, n, fp, rgb, NULL, NULL);
     if (st < 0)
         __atomic_add_fetch(&j->errors, 1, __ATOMIC_RELAXED);
     j->e[y][x] += rgb[0];
