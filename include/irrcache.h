@@ -33,10 +33,14 @@
  *     contract may change in any release: irc_occlusion_compute,
  *     irc_cache_lookup_gradient, irc_cache_neighbours, irc_join and
  *     irc_sh_radiance; each says so.
- *   - Determinism: a record is a pure function of (p, n, config, seed).  Its
- *     random numbers come from a hash of the query, so the same query gives
- *     the same record, bit for bit, in any thread and at any time.  Which
- *     records a multi-threaded fill stores still depends on timing.
+ *   - Determinism: a record is a pure function of (p, n, config, seed, and
+ *     the _px call's footprint) for a deterministic trace callback, one
+ *     that answers the same ray with the same hit.  Its random numbers come
+ *     from a hash of the query, so the same query gives the same record,
+ *     bit for bit, in any thread and at any time; a callback that samples
+ *     lights or paths with numbers of its own makes records that differ by
+ *     that noise.  Which records a multi-threaded fill stores still
+ *     depends on timing (fill passes make it not: "Fill passes").
  *   - Errors: every call returns an int: IRC_OK (0), a positive informational
  *     status (IRC_MISS, IRC_NOT_STORED), or a negative irc_status code.  A
  *     call that returns a negative code has left the cache's block byte for
@@ -86,7 +90,12 @@ extern "C" {
 /* The one place the version is defined (the Makefile reads it from here
  * for the shared object's name, irrcache.pc and the CMake package).  A
  * different major version, or a different minor one while the major is 0,
- * is another ABI. */
+ * is another ABI.  A host written for one minor version can refuse to
+ * build against another, where meanings may have changed under unchanged
+ * code (CHANGES.md, "Upgrading"):
+ *     #if IRC_VERSION_MAJOR != 0 || IRC_VERSION_MINOR != 3
+ *     #error "written for irrcache 0.3"
+ *     #endif */
 #define IRC_VERSION_MAJOR 0
 #define IRC_VERSION_MINOR 3
 #define IRC_VERSION_PATCH 0
@@ -1202,7 +1211,9 @@ typedef struct irc_stats {
     uint64_t not_stored;     /* computed by lookup_or_compute but not stored:
                                 the pool was full (IRC_NOT_STORED) */
     uint64_t waits;          /* computes that waited for a scratch slot */
-    uint64_t rays;           /* rays cast (records and occlusion) */
+    uint64_t rays;           /* rays cast through the callback: records',
+                                occlusion's and confirming rays
+                                (cfg.check_visibility) */
     uint64_t index_nodes;    /* index nodes in use */
     uint64_t index_nodes_max;
     size_t record_bytes;     /* bytes per stored record (feature dependent) */

@@ -94,6 +94,7 @@ TEST(test_detail_refined_strata)
         e = sphere_plane_e(&h.s, pd);
     }
     CHECK(fabs(rgb[0] - e) < 0.01 * e, "E %g, closed form %g", rgb[0], e);
+    block_free(&cfg);
     free(h.count);
 }
 
@@ -120,15 +121,18 @@ TEST(test_detail_full_grid_paths)
         twice += h.count[i] > 1;
     }
     CHECK(empty == 0 && twice == 0, "full grid: empty strata %u, doubled %u", empty, twice);
+    block_free(&cfg);
     free(h.count);
     c = detail_cache(&h, &cfg, 32.0f);
     CHECK(c != NULL && irc_cache_lookup_or_compute(c, p, n, rgb, &w, &h) == IRC_OK &&
               h.rays == 1024, "plain call: %u rays", h.rays);
+    block_free(&cfg);
     free(h.count);
     /* the default (0) is off: a record 2 pixels wide still takes 1,024 */
     c = detail_cache(&h, &cfg, 0.0f);
     CHECK(c != NULL && irc_cache_lookup_or_compute_px(c, p, n, 0.5f, rgb, &w, &h) == IRC_OK &&
               h.rays == 1024, "default: %u rays", h.rays);
+    block_free(&cfg);
     free(h.count);
 }
 
@@ -177,6 +181,7 @@ TEST(test_detail_coarse_records)
            coarse, total, mean, sd);
     CHECK(coarse == total, "only %u coarse records", coarse);
     CHECK(fabs(mean) < 4.0 * sd + 1e-4, "biased: %+.4f (sd %.4f)", mean, sd);
+    block_free(&cfg);
     free(h.count);
 }
 
