@@ -30,7 +30,7 @@ static const char usage[] =
     "  --no-clamp              no neighbour clamping (irc_config.clamp_neighbours)\n"
     "  --supersamples S        S more rays a record where strata differ (irc_config.irr.supersamples)\n"
     "  --full-pixels F         records narrower than F pixels take coarser strata (irc_config.irr.full_pixels; -1 never)\n"
-    "  --pixels MIN,MAX        a record's reach in pixels (default 2.5,15; -1: no\n"
+    "  --pixels MIN,MAX        a record's reach in pixels (default 0,15: none,15; -1: no\n"
     "                          bound on that side)\n"
     "  --no-footprint          records ignore the pixel (the plain lookup-or-compute)\n"
     "  --no-check-visibility   lookups use records out of the point's sight too\n"

@@ -26,7 +26,6 @@
 #include "scene.h"
 
 #define THREADS 2
-#define BITS 3       /* fill passes take pixels 8 apart: 64 passes */
 #define STRIDE 4     /* the error lattice: every 4th pixel from 1 */
 #define PI 3.14159265358979323846f
 
@@ -187,13 +186,24 @@ typedef struct job {
     int id;
 } job;
 
+/* Fill passes take pixels P = 2^bits apart in P^2 passes, P the power of
+ * two nearest width / 24 in [8, 32] (irrcache.h, irc_pass_begin): 16 at
+ * 320 pixels. */
+static int pass_bits(int width)
+{
+    int b = 3;
+    while (b < 5 && width > 24 * (3 << b) / 2)
+        b++;
+    return b;
+}
+
 /* Brute force: this thread's rows of the lattice.  The cache: every pass,
  * coarse to fine (pixel offsets as an ordered-dither matrix), thread 0
  * closing one and opening the next between two barriers. */
 static void *work(void *arg)
 {
     world *w = ((job *)arg)->w;
-    const int id = ((job *)arg)->id, P = 1 << BITS;
+    const int id = ((job *)arg)->id, bits = pass_bits(w->w), P = 1 << bits;
     host hs;
     int x, y, k, i, ox, oy, at = 0;
     rtcInitIntersectContext(&hs.ctx);
@@ -204,9 +214,9 @@ static void *work(void *arg)
         return NULL;
     }
     for (k = 0; k < P * P; k++) {
-        for (ox = oy = 0, i = 0; i < BITS; i++) {
-            ox |= ((k >> (2 * i)) & 1) << (BITS - 1 - i);
-            oy |= ((k >> (2 * i + 1)) & 1) << (BITS - 1 - i);
+        for (ox = oy = 0, i = 0; i < bits; i++) {
+            ox |= ((k >> (2 * i)) & 1) << (bits - 1 - i);
+            oy |= ((k >> (2 * i + 1)) & 1) << (bits - 1 - i);
         }
         for (y = oy; y < w->h; y += P)
             for (x = ox; x < w->w; x += P)

@@ -16,7 +16,8 @@
 #define W 96
 #define H 72
 #define WORKERS 4
-#define BITS 3 /* passes take pixels 2^BITS = 8 apart: 64 passes */
+#define BITS 3 /* passes take pixels 2^BITS = 8 apart: 64 passes (the rule of
+                  irc_pass_begin: the power of two nearest W / 24 in [8, 32]) */
 
 static const float eye[3] = {0.0f, -5.0f, 4.0f}, fov = 0.8f; /* radians, vertical */
 

@@ -467,13 +467,16 @@ typedef struct irc_config {
                                 footprint f > 0 gets a R in [min_pixels f,
                                 max_pixels f], then R in [min_radius,
                                 max_radius]; one whose rays all escaped
-                                gets max_pixels f.  Finite; 0 the default
-                                (2.5 and 15: on the Sponza atrium, with the
-                                leak guard off, relative RMSE 0.0477 in
-                                23.8 s where 0.2's settings gave 0.0627 in
-                                68.8 s),
-                                negative: that side unbounded; max_pixels
-                                >= min_pixels (a default max_pixels is at
+                                gets max_pixels f.  Finite; 0 the default:
+                                no lower bound and 15 (pbrt-v2's 2.5-pixel
+                                floor stretched records over detail finer
+                                than they are: on four of six views of the
+                                bench's corpus it held the relative RMSE
+                                at 7-12% whatever a, and without it the
+                                error fell 2.5-3.7x for 3-4x the records:
+                                bench/README.md, "The corpus"), negative:
+                                that side unbounded; max_pixels >=
+                                min_pixels (a default max_pixels is at
                                 least min_pixels) */
     float max_pixels;        /* see min_pixels */
     uint32_t strata_theta;   /* M rows in theta, 1..1024 (default 16) */
@@ -633,11 +636,11 @@ typedef struct irc_cache irc_cache; /* lives inside cfg.buffer; opaque */
  *
  * Sizing max_records: a lookup-or-compute call stores at most one record,
  * so a frame that makes one such call a pixel never needs more records
- * than pixels (the hard bound).  With the _px call at the defaults the
- * records lie 2.5 pixels apart at least: make bench measured 0.016-0.12
- * records a pixel at a = 0.2 and at most 0.19 at a = 0.1 on every scene it
- * renders (the Sponza atrium; the Cornell box 0.02), so max_records =
- * pixels / 4 holds there with room to spare.  When the pool fills,
+ * than pixels (the hard bound): size max_records = pixels.  With the _px
+ * call at the defaults (no lower pixel bound) the bench's corpus made
+ * 0.14-0.43 records a pixel at a = 0.2 and up to 0.54 at a = 0.1
+ * (bench/README.md, "The corpus"), so a quarter of the pixels, enough
+ * with a 2.5-pixel floor, is not.  When the pool fills,
  * inserts fail (IRC_ERR_FULL), lookup_or_compute returns IRC_NOT_STORED
  * and recomputes every later miss, irc_stats.not_stored counts those, and
  * inside a fill pass which records were kept depends on timing (a pass
@@ -901,7 +904,7 @@ IRC_API int irc_cache_lookup_or_compute(irc_cache *cache, const float p[3],
  * differentials; for a pinhole camera about distance x pixel angle /
  * sqrt(|cos|) of the surface to the ray).  A record computed here gets a
  * reach a R in [cfg.min_pixels, cfg.max_pixels] x footprint (by default
- * 2.5 to 15 pixels) before the world bounds [min_radius, max_radius] (its
+ * none to 15 pixels) before the world bounds [min_radius, max_radius] (its
  * gradient is then limited to that radius, as always); so an open scene
  * needs no max_radius, and the records a frame makes are bounded by its
  * pixels.  footprint 0 is the plain call (no pixel bound).  A host that
@@ -1044,9 +1047,11 @@ IRC_API int irc_merge(irc_cache *cache, uint64_t fingerprint, const void *data, 
  * irc_stats.not_stored), and which ones were kept then depends on timing:
  * size the pool so that does not happen.  Within a pass, two misses close
  * together both compute a record where one might have served: a pass
- * should hold no two queries within a record's reach of each other (the
- * demo shades pixels P apart in P^2 passes, P above a record's reach in
- * pixels; all pixels at strides 8, 4, 2, 1 in 4 passes made 1.5x the
+ * should hold no two queries within a record's reach of each other.  The
+ * rule the demo and the examples follow: pixels P apart in P^2 passes,
+ * coarse to fine, P the power of two nearest the image width / 24 in [8,
+ * 32] (8 up to 288 pixels, 16 up to 576, then 32), never from the thread
+ * count (all pixels at strides 8, 4, 2, 1 in 4 passes made 1.5x the
  * records of a free fill, docs/DESIGN.md, "Fill passes").  Lookups in a pass take
  * no lock (nothing they read can change before irc_pass_end).  Not
  * concurrent with other calls on the cache.  Returns IRC_OK, IRC_ERR_STATE when a pass is
