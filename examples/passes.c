@@ -1,7 +1,9 @@
 /* passes.c -- a renderer's loop as the library recommends it: worker
  * threads, deterministic fill passes, and irc_cache_lookup_or_compute_px
- * with each pixel's footprint; then more samples a pixel that only look
- * up, so the frame's records do not grow with its samples.  The scene is
+ * with each pixel's footprint (irc_pixel_footprint); then more samples a
+ * pixel through the same call, which confirms the records it uses and
+ * computes only where none serves, so the frame's records hardly grow
+ * with its samples.  The scene is
  * minimal.c's (a black unit ball at (0, 0, 2) over the floor z = 0 under a
  * uniform sky of radiance 1) seen by a pinhole camera; on the floor at
  * distance r from below the ball's centre E = pi (1 - 2 / (r^2 + 4)^1.5),

@@ -479,9 +479,16 @@ typedef struct irc_config {
                                 min_pixels (a default max_pixels is at
                                 least min_pixels) */
     float max_pixels;        /* see min_pixels */
-    uint32_t strata_theta;   /* M rows in theta, 1..1024 (default 16) */
-    uint32_t strata_phi;     /* N columns in phi, 1..4096 (default 64);
-                                M * N <= IRC_MAX_STRATA */
+    uint32_t strata_theta;   /* M rows in theta, 1..1024 (default 32 for
+                                irradiance records, 16 for SH records) */
+    uint32_t strata_phi;     /* N columns in phi, 1..4096 (default 128,
+                                SH 64); M * N <= IRC_MAX_STRATA.  A
+                                record's noise reaches every pixel it
+                                serves: on the bench's corpus 16 x 64
+                                records held the error at 2.5-5.5% and 32
+                                x 128 halved it (bench/README.md, "The
+                                corpus"); 16 x 64 costs a quarter of the
+                                rays and scratch for ~2x the error */
     uint32_t threads;        /* scratch slots: how many record computations
                                 may run at once, 1..64 (default 1).  Each
                                 costs irc_stats.bytes_scratch / threads.  A
@@ -602,7 +609,8 @@ typedef struct irc_config {
  * Compile-time bounds on irc_footprint(), for static blocks: never less
  * than what irc_footprint() asks for the same numbers (make test checks a
  * grid of configs).  features: the irradiance cache's IRC_FEATURE_* bits;
- * records: max_records; s: strata M * N; t: cfg.threads; b: cfg.max_batch;
+ * records: max_records; s: strata M * N (4096 for an irradiance config's
+ * default, 1024 for an SH config's); t: cfg.threads; b: cfg.max_batch;
  * for SH caches, bands L and channels ch.  The arithmetic is size_t's: on a
  * 32-bit target a bound above 4 GiB wraps (no static block is that large
  * there).  Each thread's slot also holds the record a lookup-or-compute

@@ -5,8 +5,15 @@
 #include "cache.h"
 
 #define IRC__DEF_ACCURACY 0.2f
-#define IRC__DEF_THETA 16u
-#define IRC__DEF_PHI 64u
+/* Strata: 32 x 128 for irradiance records, whose noise is copied to
+ * every pixel they serve (on the bench's corpus, without a pixel floor,
+ * 16 x 64 records held the error at 2.5-5.5% whatever a, and 32 x 128
+ * halved it: bench/README.md, "The corpus"); 16 x 64 for SH records,
+ * whose two hemispheres double the rays and were not measured so. */
+#define IRC__DEF_THETA 32u
+#define IRC__DEF_PHI 128u
+#define IRC__DEF_SH_THETA 16u
+#define IRC__DEF_SH_PHI 64u
 /* A record's reach a R in pixels at its point, from the _px call's
  * footprint (pbrt-v2's maximum pixel spacing; its 2.5-pixel minimum cost
  * 2.5-3.7x the error on four of six corpus views: none). */
@@ -49,8 +56,9 @@ static int irc__radii_resolve(irc_config *out)
 
 static int irc__sampling_resolve(irc_config *out)
 {
-    if (out->strata_theta == 0) out->strata_theta = IRC__DEF_THETA;
-    if (out->strata_phi == 0) out->strata_phi = IRC__DEF_PHI;
+    const int sh = (out->features & (IRC_FEATURE_SH | IRC_FEATURE_SH_GRADIENT)) != 0;
+    if (out->strata_theta == 0) out->strata_theta = sh ? IRC__DEF_SH_THETA : IRC__DEF_THETA;
+    if (out->strata_phi == 0) out->strata_phi = sh ? IRC__DEF_SH_PHI : IRC__DEF_PHI;
     if (out->strata_theta > 1024u || out->strata_phi > 4096u ||
         out->strata_theta * out->strata_phi > IRC_MAX_STRATA)
         return IRC_ERR_CONFIG;
