@@ -245,8 +245,8 @@ render_opts base_opts(const ctx *c)
     o.light_samples = 1;
     o.seed = 7;
     o.accuracy = 0.2f;
-    o.strata_m = 16;
-    o.strata_n = 64;
+    o.strata_m = DEF_M;
+    o.strata_n = DEF_N;
     o.max_records = 400000;
     o.secondary_samples = c->secondary;
     o.bounces = c->bounces;
@@ -473,16 +473,14 @@ static int sweep(ctx *c, const bscene *b, FILE *csv)
     const char *al = getenv("BENCH_A");
     int nb = c->quick ? 3 : 5, na = c->quick ? 3 : 5, ng = c->quick ? 1 : 2;
     const double *as = c->quick ? a_quick : a_full;
-    /* The real scenes: four a, and 8x32 strata (cheap records) as the
-     * second grid instead of 32x128 (their error is not record noise:
-     * 32x128 gave 0.0481 where 16x64 gave 0.0477 on the atrium). */
+    /* The real scenes: four a. */
     const int coarse = b->stride && !c->quick;
     int i, m, g;
     if (coarse) {
         as = a_real;
         na = 4;
     }
-    if (al && *al) { /* BENCH_A=0.4,0.2: these a at 16x64 only */
+    if (al && *al) { /* BENCH_A=0.4,0.2: these a at the default grid only */
         for (na = 0; na < 8 && al && sscanf(al, "%lf", &a_set[na]) == 1; na++)
             if ((al = strchr(al, ',')))
                 al++;
@@ -505,8 +503,8 @@ static int sweep(ctx *c, const bscene *b, FILE *csv)
                 o.mode = MODE_CACHE;
                 o.features = feats[m];
                 o.accuracy = (float)as[i];
-                o.strata_m = coarse ? 16u >> g : 16u << g;
-                o.strata_n = coarse ? 64u >> g : 64u << g;
+                o.strata_m = DEF_M >> g; /* the default, then half each way */
+                o.strata_n = DEF_N >> g;
                 experiment_opts(&o);
                 if (add_run(c, methods[m], as[i], &o, b, csv) < 0)
                     return -1;

@@ -12,6 +12,12 @@
 #define OUT "build/bench"
 #define MAX_RUNS 192
 
+/* The library's default strata for irradiance records: the grid whose
+ * runs the tables call the defaults; the sweeps' second grid is half each
+ * way. */
+#define DEF_M 32u
+#define DEF_N 128u
+
 typedef struct bscene {
     const char *name, *path;
     int w, h, qw, qh; /* full and quick sizes */

@@ -102,7 +102,7 @@ static double rmse_at(const ctx *c, const char *method, double records)
             const run *a = &c->runs[i], *b = &c->runs[j];
             double ra = (double)a->st.records, rb = (double)b->st.records, u;
             if (strcmp(a->method, method) || strcmp(b->method, method) || !(ra <= records) ||
-                !(rb >= records) || ra <= 0.0 || rb <= 0.0 || a->m != 16 || b->m != 16)
+                !(rb >= records) || ra <= 0.0 || rb <= 0.0 || a->m != DEF_M || b->m != DEF_M)
                 continue;
             if (ra == rb)
                 return a->rmse;
@@ -110,7 +110,7 @@ static double rmse_at(const ctx *c, const char *method, double records)
             {
                 int k, inside = 0;
                 for (k = 0; k < c->nruns; k++)
-                    if (!strcmp(c->runs[k].method, method) && c->runs[k].m == 16 &&
+                    if (!strcmp(c->runs[k].method, method) && c->runs[k].m == DEF_M &&
                         c->runs[k].st.records > ra && c->runs[k].st.records < rb)
                         inside = 1;
                 if (inside)
@@ -145,7 +145,7 @@ void table(ctx *c, const bscene *b, FILE *md)
             b->name, c->w, c->h, c->ref_rays, c->stride, c->ref_noise,
             c->secondary ? c->secondary : 1, c->secondary > 1 ? "s" : "");
     fprintf(md, "| method | runs | best rel. RMSE | its p99 / p99.9 / max, px > 10%% | "
-                "time to 5%% (speedup) | time to 2%% (speedup) | records at a = 0.2, 16x64 "
+                "time to 5%% (speedup) | time to 2%% (speedup) | records at a = 0.2, 32x128 "
                 "(their bytes) | cache share there |\n"
                 "|---|---|---|---|---|---|---|---|\n");
     for (m = 0; m < NMETHODS; m++) {
@@ -158,7 +158,7 @@ void table(ctx *c, const bscene *b, FILE *md)
             n++;
             if (!best || r->rmse < best->rmse)
                 best = r;
-            if (m > 0 && fabs(r->param - 0.2) < 1e-6 && r->m == 16)
+            if (m > 0 && fabs(r->param - 0.2) < 1e-6 && r->m == DEF_M)
                 mid = r;
         }
         if (!n)
@@ -176,10 +176,10 @@ void table(ctx *c, const bscene *b, FILE *md)
     }
     for (i = 0; i < c->nruns; i++)
         if (!strcmp(c->runs[i].method, "trans+rot") && fabs(c->runs[i].param - 0.2) < 1e-6 &&
-            c->runs[i].m == 16) {
+            c->runs[i].m == DEF_M) {
             double rec = (double)c->runs[i].st.records, e0 = rmse_at(c, "none", rec),
                    e1 = c->runs[i].rmse, e2 = rmse_at(c, "vis", rec), e3 = rmse_at(c, "hess", rec);
-            fprintf(md, "\nAt %llu records (trans+rot, a = 0.2, 16x64), along the 16x64 sweeps: "
+            fprintf(md, "\nAt %llu records (trans+rot, a = 0.2, 32x128), along the 32x128 sweeps: "
                         "relative RMSE no gradients %.4f, "
                         "translational + rotational %.4f, visibility %.4f, Hessian radii %.4f",
                     (unsigned long long)rec, e0, e1, e2, e3);
@@ -190,14 +190,14 @@ void table(ctx *c, const bscene *b, FILE *md)
         }
 }
 
-/* Each cache method at a = 0.2, 16x64 (the library's defaults for
+/* Each cache method at a = 0.2, 32x128 (the library's defaults for
  * trans+rot) against brute force at the same error: by relative RMSE and
  * by p99, the worst 1% of pixels' share of the squared error, the pixels
  * that leak (and brute force's at the same RMSE), the bias. */
 void defaults_table(const ctx *c, const bscene *b, FILE *md)
 {
     int m, i, bt, bp;
-    fprintf(md, "\n**%s at a = 0.2, 16x64** (the defaults for trans + rot; brute force's time "
+    fprintf(md, "\n**%s at a = 0.2, 32x128** (the defaults for trans + rot; brute force's time "
                 "interpolated to the same error; leaks: pixels above the reference by more than "
                 "25%% of its mean)\n\n"
                 "| method | rel. RMSE | speedup at equal RMSE | p99 | speedup at equal p99 | "
@@ -208,7 +208,7 @@ void defaults_table(const ctx *c, const bscene *b, FILE *md)
         for (i = 0; i < c->nruns; i++) {
             const run *r = &c->runs[i];
             double tr, tp, bl;
-            if (strcmp(r->method, methods[m]) || fabs(r->param - 0.2) > 1e-6 || r->m != 16)
+            if (strcmp(r->method, methods[m]) || fabs(r->param - 0.2) > 1e-6 || r->m != DEF_M)
                 continue;
             tr = time_by(c, "brute", r->rmse, BY_RMSE, &bt);
             tp = time_by(c, "brute", r->p99, BY_P99, &bp);
@@ -237,7 +237,7 @@ void data_files(const ctx *c, const bscene *b, FILE *gp)
 {
     int m, i, first = 1;
     fprintf(gp, "set output '" OUT "/%s.png'\nset title '%s (reference noise %.4f); cache: "
-                "a = 0.4 .. 0.1 at 16x64, then 32x128'\nplot ", b->name, b->name, c->ref_noise);
+                "a = 0.4 .. 0.1 at 32x128, then 16x64'\nplot ", b->name, b->name, c->ref_noise);
     for (m = 0; m < NMETHODS; m++) {
         char path[256];
         FILE *f = NULL;
