@@ -593,6 +593,7 @@ int main(int argc, char **argv)
         free(c.ref);
         scene_free(&c.s);
     }
+    corpus_summary(&c, md);
     fprintf(md, "\nTotal bench time %.0f s.\n", elapsed(&t0));
     fclose(csv);
     fclose(md);

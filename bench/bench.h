@@ -60,7 +60,16 @@ typedef struct ctx {
     double ref_noise;
     run runs[MAX_RUNS];
     int nruns;
+    /* Over the scenes run so far, the corpus's summary (corpus_summary):
+     * sums of log speedup of the defaults at equal relative RMSE, and of
+     * the translational + rotational cache at each error level. */
+    double gm_log, lvl_log[4];
+    int gm_n, lvl_n[4];
 } ctx;
+
+/* The error levels the tables give a time and speedup for. */
+#define NLEVELS 4
+extern const double levels[NLEVELS];
 
 #define NMETHODS 8
 extern const char *const methods[NMETHODS];      /* short names (CSV, BENCH_METHODS) */
@@ -69,7 +78,9 @@ extern const char *const method_names[NMETHODS]; /* the table's */
 /* The table of one scene's runs (bench/README.md, "Speed against error"). */
 void table(ctx *c, const bscene *b, FILE *md);
 /* Each cache method at the defaults against brute force at equal error. */
-void defaults_table(const ctx *c, const bscene *b, FILE *md);
+void defaults_table(ctx *c, const bscene *b, FILE *md);
+/* The geometric means over the scenes run (bench/README.md). */
+void corpus_summary(const ctx *c, FILE *md);
 /* One data file per method for gnuplot, and its lines in plot.gp. */
 void data_files(const ctx *c, const bscene *b, FILE *gp);
 
