@@ -62,7 +62,7 @@ void experiment_opts(render_opts *o)
         else if (!strcmp(name, "guard")) o->leak_guard = v != 0.0 ? IRC_ON : IRC_OFF;
         else if (!strcmp(name, "maxr")) o->max_radius = (float)v;
         else if (!strcmp(name, "clamp")) o->clamp_neighbours = v != 0.0 ? IRC_ON : IRC_OFF;
-        else if (!strcmp(name, "nofp")) o->no_footprint = (int)v;
+        else if (!strcmp(name, "nofp")) o->no_footprint = v != 0.0;
         else if (!strcmp(name, "free")) o->free_fill = v != 0.0;
         else if (!strcmp(name, "ss")) o->supersamples = (uint32_t)v;
         else if (!strcmp(name, "fullpx")) o->full_pixels = (float)v;

@@ -219,7 +219,7 @@ static int irradiance(renderer *r, const float p[3], const float n[3], float fp,
                 ts->dropped++;
             }
         } else {
-            st = irc_cache_lookup_or_compute_px(r->cache, p, n, r->o.no_footprint == 1 ? 0.0f : fp,
+            st = irc_cache_lookup_or_compute_px(r->cache, p, n, r->o.no_footprint ? 0.0f : fp,
                                                 e, NULL, ts);
         }
         clock_enter(ts, was);
@@ -278,7 +278,6 @@ static int shade_pixel(renderer *r, const cam_frame *cf, int x, int y, float out
      * seeds then differ only in their indirect light, which is what the
      * comparisons measure. */
     uint64_t pix = (uint64_t)y << 32 | (uint32_t)x, key = hash64(r->o.seed ^ pix);
-    float facing[3];
     bvh_hit bh;
     surface sf;
     irc_sh sh;
@@ -294,12 +293,7 @@ static int shade_pixel(renderer *r, const cam_frame *cf, int x, int y, float out
     }
     surface_at(r->s, cf->eye, d, &bh, &sf);
     cache_point(&sf, p);
-    {
-        int q;
-        for (q = 0; q < 3; q++)
-            facing[q] = -d[q];
-    }
-    if ((st = irradiance(r, p, sf.nsm, camera_footprint(cf, c, d, bh.t, r->o.no_footprint == 2 ? facing : sf.ng), key, e, &sh,
+    if ((st = irradiance(r, p, sf.nsm, camera_footprint(cf, c, d, bh.t, sf.ng), key, e, &sh,
                          ts)) < 0)
         return st;
     for (i = 0; i < 3; i++)

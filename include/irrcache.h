@@ -468,12 +468,7 @@ typedef struct irc_config {
                                 max_pixels f], then R in [min_radius,
                                 max_radius]; one whose rays all escaped
                                 gets max_pixels f.  Finite; 0 the default:
-                                no lower bound and 15 (pbrt-v2's 2.5-pixel
-                                floor stretched records over detail finer
-                                than they are: on four of six views of the
-                                bench's corpus it held the relative RMSE
-                                at 7-12% whatever a, and without it the
-                                error fell 2.5-3.7x for 3-4x the records:
+                                no lower bound and 15 (why none:
                                 bench/README.md, "The corpus"), negative:
                                 that side unbounded; max_pixels >=
                                 min_pixels (a default max_pixels is at
@@ -484,11 +479,7 @@ typedef struct irc_config {
     uint32_t strata_phi;     /* N columns in phi, 1..4096 (default 128,
                                 SH 64); M * N <= IRC_MAX_STRATA.  A
                                 record's noise reaches every pixel it
-                                serves: on the bench's corpus 16 x 64
-                                records held the error at 2.5-5.5% and 32
-                                x 128 halved it (bench/README.md, "The
-                                corpus"); 16 x 64 costs a quarter of the
-                                rays and scratch for ~2x the error */
+                                serves (bench/README.md, "The corpus") */
     uint32_t threads;        /* scratch slots: how many record computations
                                 may run at once, 1..64 (default 1).  Each
                                 costs irc_stats.bytes_scratch / threads.  A
@@ -568,12 +559,8 @@ typedef struct irc_config {
                                 and refines it, keeping its rays.  Not
                                 with VISIBILITY, HESSIAN or supersamples.
                                 Finite; 0 the default, off, as is any
-                                negative value: a record's noise reaches
-                                every pixel it serves, and on the Sponza
-                                atrium 32 raised the relative RMSE from
-                                0.034 to 0.087 (bench/README.md, "Records
-                                that cost what they serve"); for hosts
-                                that accept ~8% error */
+                                negative value (why: bench/README.md,
+                                "Records that cost what they serve") */
     } irr;
     struct irc_config_sh {   /* SH records (IRC_FEATURE_SH) */
         uint32_t bands;      /* L, bands 0..L-1, L*L coefficients per
@@ -644,11 +631,8 @@ typedef struct irc_cache irc_cache; /* lives inside cfg.buffer; opaque */
  *
  * Sizing max_records: a lookup-or-compute call stores at most one record,
  * so a frame that makes one such call a pixel never needs more records
- * than pixels (the hard bound): size max_records = pixels.  With the _px
- * call at the defaults (no lower pixel bound) the bench's corpus made
- * 0.14-0.43 records a pixel at a = 0.2 and up to 0.54 at a = 0.1
- * (bench/README.md, "The corpus"), so a quarter of the pixels, enough
- * with a 2.5-pixel floor, is not.  When the pool fills,
+ * than pixels (the hard bound): size max_records = pixels (what the
+ * defaults make: bench/README.md, "The corpus").  When the pool fills,
  * inserts fail (IRC_ERR_FULL), lookup_or_compute returns IRC_NOT_STORED
  * and recomputes every later miss, irc_stats.not_stored counts those, and
  * inside a fill pass which records were kept depends on timing (a pass
