@@ -550,8 +550,10 @@ int main(int argc, char **argv)
                  "record_bytes_used,block_bytes,rel_rmse,p99_rel_err,ref_noise,p999_rel_err,max_rel_err,"
                  "pixels_over_10pct,worst1_share,leaks,bias\n");
     fprintf(md, "`make bench%s` on %s (%d threads), %s. Indirect light kd/pi E (one bounce but in bounce scenes) "
-                "only. Speedups are brute force's time to the same error over the method's, "
-                "interpolated along each curve (log-log); plots in `" OUT "/SCENE.png`.\n",
+                "only. Speedups are brute force's time to the same error over the method's: brute "
+                "force's from a power law fitted over its runs (its exponent in each scene's "
+                "title; \"ext\": extrapolated, at most 2x in error beyond its runs), the "
+                "method's interpolated along its curve (log-log); plots in `" OUT "/SCENE.png`.\n",
             c.quick ? " BENCH_QUICK=1" : "", host, c.threads, date);
     fprintf(gp, "set terminal pngcairo size 900,600\nset logscale xy\nset xlabel 'wall "
                 "seconds'\nset ylabel 'relative RMSE'\nset key top right\n");
