@@ -45,7 +45,7 @@ SRC = src/status.c src/version.c src/check.c src/config.c src/kinds.c src/strata
       src/kind_sh.c src/sampler.c src/irradiance.c src/octa.c src/weight.c src/index.c src/query.c src/compact.c \
       src/visibility.c src/hessian.c src/sh.c src/shgrad.c src/snapshot.c src/merge.c \
       src/pass.c src/sight.c src/slots.c src/verify.c src/repair.c src/occlusion.c src/stats.c \
-      src/pixel.c
+      src/pixel.c src/detail.c
 # make LEAVE_OUT="SH VISIBILITY HESSIAN SIGHT SUPERSAMPLE GUARD" (any of them): those parts are
 # not compiled, and util.h's IRC_NO_* switch tells the rest (the same
 # switches, set in a user config header, compile those files empty).

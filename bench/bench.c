@@ -247,7 +247,9 @@ render_opts base_opts(const ctx *c)
     o.accuracy = 0.2f;
     o.strata_m = DEF_M;
     o.strata_n = DEF_N;
-    o.max_records = 400000;
+    /* the header's sizing rule: max_records = pixels (a run that evicts
+     * or leaves records unstored says so) */
+    o.max_records = c->w * c->h;
     o.secondary_samples = c->secondary;
     o.bounces = c->bounces;
     experiment_opts(&o);
@@ -338,6 +340,10 @@ int add_run(ctx *c, const char *method, double param, const render_opts *o, cons
            method, param, r->m, r->n, r->st.wall, r->rmse, r->p99, r->p999, r->maxe, r->over10,
            100.0 * r->worst1, r->leaks, 100.0 * r->bias, (unsigned long long)r->st.records,
            100.0 * r->st.cache_s / (c->threads * r->st.wall));
+    if (r->st.evictions || r->st.not_stored)
+        printf("  %-10s the pool of %d records (one a pixel) filled: %llu evicted, %llu not "
+               "stored\n", method, c->w * c->h, (unsigned long long)r->st.evictions,
+               (unsigned long long)r->st.not_stored);
     return 0;
 }
 

@@ -45,9 +45,9 @@ int wanted_family(const char *name)
 /* BENCH_SET="name=value,...": settings laid over every cache run, for
  * experiments (minpx, maxpx: the pixel bounds, -1 none; guard: 0 or 1;
  * maxr: max_radius, -1 the demo's view rule, 0 the library's; clamp: 0 or
- * 1; nofp: 1 records ignore the footprint; free: 1 free fill; sm, sn: strata; ss:
+ * 1; free: 1 free fill; sm, sn: strata; ss:
  * super-samples; vis: 1 a lookup answered by a record out of sight makes a
- * record instead). */
+ * record instead; fullpx, detail: cfg.irr.full_pixels, detail_pixels). */
 void experiment_opts(render_opts *o)
 {
     const char *l = getenv("BENCH_SET");
@@ -66,6 +66,7 @@ void experiment_opts(render_opts *o)
         else if (!strcmp(name, "free")) o->free_fill = v != 0.0;
         else if (!strcmp(name, "ss")) o->supersamples = (uint32_t)v;
         else if (!strcmp(name, "fullpx")) o->full_pixels = (float)v;
+        else if (!strcmp(name, "detail")) o->detail_pixels = (float)v;
         else if (!strcmp(name, "vis")) o->check_visibility = v != 0.0 ? IRC_ON : IRC_OFF;
         else if (!strcmp(name, "sm")) o->strata_m = (uint32_t)v;
         else if (!strcmp(name, "sn")) o->strata_n = (uint32_t)v;

@@ -30,6 +30,7 @@ static const char usage[] =
     "  --no-clamp              no neighbour clamping (irc_config.clamp_neighbours)\n"
     "  --supersamples S        S more rays a record where strata differ (irc_config.irr.supersamples)\n"
     "  --full-pixels F         records narrower than F pixels take coarser strata (irc_config.irr.full_pixels; -1 never)\n"
+    "  --detail-pixels D       points within D pixels of geometry get their own estimate (irc_config.irr.detail_pixels; -1 never)\n"
     "  --pixels MIN,MAX        a record's reach in pixels (default 0,15: none,15; -1: no\n"
     "                          bound on that side)\n"
     "  --no-footprint          records ignore the pixel (the plain lookup-or-compute)\n"
@@ -161,6 +162,7 @@ static int parse_args(int argc, char **argv, cli *c)
         else if (!strcmp(a, "--leak-guard")) c->o.leak_guard = IRC_ON;
         else if (!strcmp(a, "--no-clamp")) c->o.clamp_neighbours = IRC_OFF;
         else if (!strcmp(a, "--full-pixels")) NEED(parse_float(n, &c->o.full_pixels));
+        else if (!strcmp(a, "--detail-pixels")) NEED(parse_float(n, &c->o.detail_pixels));
         else if (!strcmp(a, "--supersamples")) { NEED(parse_uint(n, 0, IRC_MAX_STRATA, &v)); c->o.supersamples = (uint32_t)v; }
         else if (!strcmp(a, "--no-footprint")) c->o.no_footprint = 1;
         else if (!strcmp(a, "--no-check-visibility")) c->o.check_visibility = IRC_OFF;

@@ -106,6 +106,7 @@ int renderer_init(renderer *r, const scene *s, const render_opts *o, char *err, 
         cfg.strata_phi = o->strata_n;
         cfg.irr.supersamples = o->supersamples;
         cfg.irr.full_pixels = o->full_pixels;
+        cfg.irr.detail_pixels = o->detail_pixels;
         cfg.min_radius = o->min_radius;
         cfg.min_pixels = o->min_pixels;
         cfg.max_pixels = o->max_pixels;
@@ -436,6 +437,8 @@ static void collect(renderer *r, const tstate *ts, int n, double wall, render_st
         st->records = cs.records;
         st->lookups = cs.lookups;
         st->hits = cs.hits;
+        st->evictions = cs.evictions;
+        st->not_stored = cs.not_stored;
         st->cache_bytes = cs.bytes_total;
         st->record_bytes = cs.record_bytes;
     }

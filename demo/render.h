@@ -32,6 +32,7 @@ typedef struct render_opts {
     uint32_t strata_m, strata_n;
     uint32_t supersamples; /* cache: irc_config.irr.supersamples */
     float full_pixels;     /* cache: irc_config.irr.full_pixels */
+    float detail_pixels;   /* cache: irc_config.irr.detail_pixels */
     uint32_t max_records;
     float min_radius, max_radius; /* max < 0: 0.1 x the diagonal of what
                                      the camera sees; 0: the library's */
@@ -96,6 +97,7 @@ typedef struct render_stats {
     uint64_t dropped;     /* frozen: misses whose record was not kept */
     uint64_t records;
     uint64_t lookups, hits;
+    uint64_t evictions, not_stored; /* the first cache's (irc_stats) */
     size_t cache_bytes;   /* the cache's block */
     size_t record_bytes;  /* bytes of one stored record */
     uint64_t level_records[MAX_BOUNCES]; /* records of levels 2, 3, ... */

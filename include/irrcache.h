@@ -561,6 +561,19 @@ typedef struct irc_config {
                                 Finite; 0 the default, off, as is any
                                 negative value (why: bench/README.md,
                                 "Records that cost what they serve") */
+        float detail_pixels; /* detail computed per pixel: the _px call
+                                first casts up to 8 probe rays (60
+                                degrees from n, 45 apart in azimuth);
+                                when one hits within detail_pixels x
+                                footprint, it answers from the point's
+                                own M x N strata (its irradiance alone:
+                                a record's rays, since a record there
+                                would serve about one pixel), stores
+                                nothing and reports weight 0 (counted a
+                                lookup, not a hit), where records would
+                                smear geometry finer than a pixel.
+                                Finite; 0 the default, off, as is any
+                                negative value */
     } irr;
     struct irc_config_sh {   /* SH records (IRC_FEATURE_SH) */
         uint32_t bands;      /* L, bands 0..L-1, L*L coefficients per
@@ -1209,8 +1222,10 @@ typedef struct irc_stats {
                                 the pool was full (IRC_NOT_STORED) */
     uint64_t waits;          /* computes that waited for a scratch slot */
     uint64_t rays;           /* rays cast through the callback: records',
-                                occlusion's and confirming rays
-                                (cfg.check_visibility) */
+                                occlusion's, confirming rays
+                                (cfg.check_visibility) and per-pixel
+                                detail (cfg.irr.detail_pixels: probes
+                                and estimates) */
     uint64_t index_nodes;    /* index nodes in use */
     uint64_t index_nodes_max;
     size_t record_bytes;     /* bytes per stored record (feature dependent) */

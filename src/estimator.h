@@ -45,6 +45,12 @@ float irc__net_visibility(const irc_cache *c, const irc__sample *s);
 
 /* irradiance.c: the irradiance record's estimator */
 int irc__irr_compute(irc__call *k, void *rec);
+/* E alone from the configured strata, for a per-pixel estimate. */
+int irc__irr_estimate(irc__call *k, float e[3]);
+/* detail.c: the _px call's per-pixel answer near geometry; IRC_MISS when
+ * the point is not detail (or the plain path must answer or refuse). */
+int irc__detail_px(irc_cache *c, const float p[3], const float n[3], float footprint,
+                   float rgb[3], float *weight, void *host);
 void irc__gradients(const irc_cache *c, const irc__grid *g, const irc__sample *s,
                     const float mean[3], const float t1[3], const float t2[3], float gt[3][3],
                     float gr[3][3]);

@@ -390,3 +390,21 @@ int irc__irr_compute(irc__call *k, void *rec)
     out->p[2] = k->q.p[2];
     return IRC_OK;
 }
+
+/* A per-pixel estimate (cfg.irr.detail_pixels, detail.c): of a record
+ * only its irradiance, from the configured grid (cosine-weighted strata:
+ * E = pi x the mean radiance of the usable strata). */
+int irc__irr_estimate(irc__call *k, float e[3])
+{
+    irc__grid g;
+    irc__totals t;
+    float t1[3], t2[3];
+    int st, ch;
+    irc__grid_at(k->c, 0u, &g);
+    if ((st = irc__hemisphere(k, &g, t1, t2, 0u)) < 0)
+        return st;
+    irc__totals_of(&g, (const irc__sample *)(void *)k->slot, &t);
+    for (ch = 0; ch < 3; ch++)
+        e[ch] = IRC_PI * t.sum[ch] / (float)t.used;
+    return IRC_OK;
+}

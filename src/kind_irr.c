@@ -378,6 +378,7 @@ static int irc__irr_features(irc_config *cfg)
  * relative RMSE 0.0342 -> 0.087 with 32, 0.079 with 8 and a 1-pixel
  * floor (bench/README.md, "Records that cost what they serve"). */
 #define IRC__DEF_FULL_PIXELS (-1.0f)
+#define IRC__DEF_DETAIL_PIXELS (-1.0f)
 
 static int irc__irr_resolve(irc_config *cfg)
 {
@@ -400,6 +401,12 @@ static int irc__irr_resolve(irc_config *cfg)
         cfg->irr.full_pixels = IRC__DEF_FULL_PIXELS;
     if (cfg->irr.full_pixels < 0.0f)
         cfg->irr.full_pixels = -1.0f;
+    if (!(cfg->irr.detail_pixels > -IRC__CAP && cfg->irr.detail_pixels < IRC__CAP))
+        return IRC_ERR_CONFIG;
+    if (cfg->irr.detail_pixels == 0.0f)
+        cfg->irr.detail_pixels = IRC__DEF_DETAIL_PIXELS;
+    if (cfg->irr.detail_pixels < 0.0f)
+        cfg->irr.detail_pixels = -1.0f;
     irc__switch_defaults(cfg, IRC_ON, IRC_ON);
     cfg->irr.leak_guard = cfg->irr.leak_guard == IRC_ON;
     return IRC_OK;
@@ -505,6 +512,9 @@ int irc_cache_lookup_or_compute(irc_cache *c, const float p[3], const float n[3]
 int irc_cache_lookup_or_compute_px(irc_cache *c, const float p[3], const float n[3],
                                    float footprint, float rgb[3], float *weight, void *host)
 {
+    const int st = irc__detail_px(c, p, n, footprint, rgb, weight, host);
+    if (st != IRC_MISS)
+        return st;
     return irc__lookup_or_compute(c, &irc__kind_irr, footprint, p, n, rgb, weight, host);
 }
 

@@ -185,7 +185,7 @@ TEST(test_detail_coarse_records)
     free(h.count);
 }
 
-/* full_pixels must be finite; negative means off and is kept so. */
+/* full_pixels and detail_pixels must be finite; negative means off. */
 TEST(test_detail_config)
 {
     tscene s;
@@ -199,6 +199,12 @@ TEST(test_detail_config)
     CHECK(irc_footprint(&cfg, 16, &bytes) == IRC_ERR_CONFIG, "nan accepted");
     cfg.irr.full_pixels = -3.0f;
     CHECK(irc_footprint(&cfg, 16, &bytes) == IRC_OK, "negative refused");
+    cfg.irr.detail_pixels = INFINITY;
+    CHECK(irc_footprint(&cfg, 16, &bytes) == IRC_ERR_CONFIG, "detail inf accepted");
+    cfg.irr.detail_pixels = NAN;
+    CHECK(irc_footprint(&cfg, 16, &bytes) == IRC_ERR_CONFIG, "detail nan accepted");
+    cfg.irr.detail_pixels = -2.0f;
+    CHECK(irc_footprint(&cfg, 16, &bytes) == IRC_OK, "detail negative refused");
     cfg = scene_config(&s, IRC_FEATURE_SH, 0, 0);
     cfg.irr.full_pixels = 8.0f;
     CHECK(irc_footprint(&cfg, 16, &bytes) == IRC_ERR_CONFIG, "an SH cache took an irradiance field");
@@ -293,4 +299,142 @@ TEST(test_pixel_footprint)
         CHECK(irc_pixel_footprint(eye, fwd, s, behind, n, &fp) == IRC_ERR_RANGE, "behind");
         CHECK(fp == 7.0f, "a refused call wrote %g", fp);
     }
+}
+
+/* Per-pixel detail (cfg.irr.detail_pixels) in the box-plane scene made a
+ * wall: a black slab 0.5 high along y standing on z = 0 at x in [0, 0.2],
+ * under a uniform sky.  Beside its face, E = pi (1 - F) with F the face's
+ * form factor (box_plane_e), falling toward pi/2 at the face.  One hand
+ * record at x = -0.3 with a reach over everything stands for the records
+ * a renderer makes a few pixels from the wall. */
+static irc_cache *wall_cache(tscene *s, irc_config *cfg, float detail, uint32_t batch)
+{
+    static const double lo[3] = {0.0, -5.0, 0.0}, hi[3] = {0.2, 5.0, 0.5};
+    const double at[3] = {-0.3, 0.0, 0.0};
+    irc_record r;
+    irc_cache *c;
+    scene_box_plane(s);
+    memcpy(s->box_lo, lo, sizeof lo);
+    memcpy(s->box_hi, hi, sizeof hi);
+    *cfg = scene_config(s, 0, 16, 64);
+    cfg->check_visibility = IRC_OFF;
+    cfg->max_batch = batch;
+    cfg->irr.detail_pixels = detail;
+    c = block_cache(cfg, 16, 0);
+    if (!c)
+        return NULL;
+    disk_record(&r, (float)box_plane_e(s, at), 2.0f);
+    r.p[0] = -0.3f;
+    if (irc_cache_insert(c, &r) != IRC_OK) {
+        block_free(cfg);
+        return NULL;
+    }
+    return c;
+}
+
+/* 32 _px calls at distance delta from the wall (footprint 0.01): the mean
+ * of their errors against the closed form (*mean) over its standard error,
+ * and the largest weight reported. */
+static double wall_z(irc_cache *c, const tscene *s, double delta, double *wmax, int *bad,
+                     double *mean)
+{
+    const float n[3] = {0, 0, 1};
+    double sum = 0.0, sq = 0.0, m, var;
+    int i;
+    *wmax = 0.0;
+    *bad = 0;
+    for (i = 0; i < 32; i++) {
+        const float p[3] = {(float)-delta, -0.5f + (float)i / 32.0f, 0.0f};
+        const double q[3] = {p[0], p[1], 0.0};
+        float rgb[3], w = -1.0f;
+        double d;
+        if (irc_cache_lookup_or_compute_px(c, p, n, 0.01f, rgb, &w, NULL) != IRC_OK)
+            (*bad)++;
+        d = rgb[0] - box_plane_e(s, q);
+        sum += d;
+        sq += d * d;
+        if (w > *wmax)
+            *wmax = w;
+    }
+    *mean = m = sum / 32.0;
+    var = (sq / 32.0 - m * m) / 31.0;
+    return var > 0.0 ? m / sqrt(var) : (m == 0.0 ? 0.0 : 1e9);
+}
+
+/* Near the wall (the probe toward it hits within 4 pixels) the _px call
+ * answers from the point's own 16 x 64 strata: unbiased against the closed
+ * form, weight 0, nothing stored; farther out the record answers.  With
+ * detail off the record (0.79 above the truth at the wall) and records
+ * computed among the calls answer, more than 0.25 (16% of E) above the
+ * truth on average: what the switch is for. */
+TEST(test_detail_pixels_wall)
+{
+    tscene s;
+    irc_config cfg;
+    irc_stats st;
+    irc_cache *c = wall_cache(&s, &cfg, 4.0f, 8);
+    double z, wmax, mean;
+    int bad;
+    CHECK(c != NULL, "init");
+    if (!c)
+        return;
+    z = wall_z(c, &s, 0.005, &wmax, &bad, &mean);
+    CHECK(bad == 0, "%d calls failed", bad);
+    CHECK(fabs(z) < 4.0, "near the wall: mean error %.2f standard errors from pi (1 - F)", z);
+    CHECK(wmax == 0.0, "a detail answer reported weight %g", wmax);
+    CHECK(irc_cache_stats(c, &st) == IRC_OK && st.records == 1 && st.computes == 0,
+          "detail answers stored or computed records (%llu, %llu)",
+          (unsigned long long)st.records, (unsigned long long)st.computes);
+    /* 32 calls of 8 probes (one batch) and 16 x 64 strata each */
+    CHECK(st.rays == 32u * (8u + 1024u), "rays %llu", (unsigned long long)st.rays);
+    CHECK(st.lookups == 32 && st.hits == 0, "lookups %llu, hits %llu",
+          (unsigned long long)st.lookups, (unsigned long long)st.hits);
+    /* 0.2 from the face: the probe hits at 0.23, beyond 4 x 0.01 */
+    z = wall_z(c, &s, 0.2, &wmax, &bad, &mean);
+    CHECK(bad == 0 && wmax > 0.0, "away from the wall the record did not answer (weight %g)",
+          wmax);
+    block_free(&cfg);
+
+    c = wall_cache(&s, &cfg, 0.0f, 8);
+    CHECK(c != NULL, "init (off)");
+    if (!c)
+        return;
+    z = wall_z(c, &s, 0.005, &wmax, &bad, &mean);
+    CHECK(bad == 0 && wmax > 0.0 && mean > 0.25,
+          "off: the record should answer at the wall, far above the truth (mean error %.3f, "
+          "weight %g)", mean, wmax);
+    block_free(&cfg);
+}
+
+/* With one ray a trace call, probes stop at the first that hits (the one
+ * toward the wall comes first): 1 + 1,024 rays.  A callback error in a probe
+ * returns as a record's would, nothing counted; a negative footprint is
+ * refused before any probe. */
+TEST(test_detail_pixels_calls)
+{
+    tscene s;
+    irc_config cfg;
+    irc_stats st;
+    irc_cache *c = wall_cache(&s, &cfg, 4.0f, 1);
+    const float p[3] = {-0.005f, 0.0f, 0.0f}, n[3] = {0, 0, 1};
+    float rgb[3] = {7, 7, 7}, w;
+    CHECK(c != NULL, "init");
+    if (!c)
+        return;
+    CHECK(irc_cache_lookup_or_compute_px(c, p, n, 0.01f, rgb, &w, NULL) == IRC_OK, "call");
+    CHECK(irc_cache_stats(c, &st) == IRC_OK && st.rays == 1025, "rays %llu",
+          (unsigned long long)st.rays);
+    s.return_code = -77;
+    CHECK(irc_cache_lookup_or_compute_px(c, p, n, 0.01f, rgb, &w, NULL) == -77,
+          "the host's error lost");
+    s.return_code = 0;
+    CHECK(irc_cache_lookup_or_compute_px(c, p, n, -0.01f, rgb, &w, NULL) == IRC_ERR_RANGE,
+          "negative footprint");
+    CHECK(irc_cache_lookup_or_compute_px(c, p, n, NAN, rgb, &w, NULL) == IRC_ERR_NONFINITE,
+          "NaN footprint");
+    CHECK(irc_cache_stats(c, &st) == IRC_OK && st.rays == 1025 && st.lookups == 1 &&
+              st.records == 1,
+          "refused calls counted (rays %llu, lookups %llu)", (unsigned long long)st.rays,
+          (unsigned long long)st.lookups);
+    block_free(&cfg);
 }
