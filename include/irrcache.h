@@ -571,9 +571,13 @@ typedef struct irc_config {
                                 would serve about one pixel), stores
                                 nothing and reports weight 0 (counted a
                                 lookup, not a hit), where records would
-                                smear geometry finer than a pixel.
-                                Finite; 0 the default, off, as is any
-                                negative value */
+                                smear geometry finer than a pixel.  Such
+                                points leave no record: a frame drawn
+                                later from a frozen, loaded cache with
+                                irc_cache_lookup misses there.
+                                Finite; 0 the default: 0.5; negative:
+                                off (why: bench/README.md, "Detail
+                                computed per pixel") */
     } irr;
     struct irc_config_sh {   /* SH records (IRC_FEATURE_SH) */
         uint32_t bands;      /* L, bands 0..L-1, L*L coefficients per

@@ -210,6 +210,9 @@ int irc__find_in_sight(irc__call *k, void *out, float *weight);
 int irc__enter(const irc_cache *c, const irc__kind *want);
 int irc__compute(irc_cache *c, const irc__kind *want, const float p[3], const float n[3],
                  void *out, void *host, int (*fn)(irc__call *k, void *out), int record);
+int irc__compute_quiet(irc_cache *c, const irc__kind *want, const float p[3], const float n[3],
+                       void *out, void *host, int (*fn)(irc__call *k, void *out),
+                       uint32_t *rays, int *waited);
 int irc__insert(irc_cache *c, const irc__kind *want, const void *rec);
 /* The caller holds the write lock: forget drops the index, the list links
  * and CLOCK's bits, keeping the records; clear drops the records too. */
@@ -229,9 +232,11 @@ int irc__lookup_once(irc_cache *c, const irc__acc *ops, const irc__query *q, voi
                      float *weight, void *acc);
 int irc__lookup(irc_cache *c, const irc__kind *want, const irc__acc *ops, const float p[3],
                 const float n[3], void *out, float *weight);
-/* The record it computes on a miss is built in the claimed slot. */
+/* The record it computes on a miss is built in the claimed slot; rays0:
+ * rays the call cast before (counted with its own, only if it succeeds). */
 int irc__lookup_or_compute(irc_cache *c, const irc__kind *want, float footprint, const float p[3],
-                           const float n[3], void *out, float *weight, void *host);
+                           const float n[3], void *out, float *weight, void *host,
+                           uint32_t rays0);
 int irc__record_get(irc_cache *c, const irc__kind *want, uint32_t id, void *out);
 /* stats.c: adds v to counter which (IRC__C_*) in the caller's stripe. */
 void irc__count(irc_cache *c, int which, uint64_t v);

@@ -27,7 +27,7 @@ typedef struct irc__detail {
     float e[3];
 } irc__detail;
 
-static void irc__probe_dir(const irc__call *k, const float t1[3], const float t2[3], uint32_t i,
+static void irc__detail_dir(const irc__call *k, const float t1[3], const float t2[3], uint32_t i,
                            float d[3])
 {
     static const float cs[IRC__PROBES] = {1.0f, 0.70710678f, 0.0f, -0.70710678f,
@@ -39,7 +39,7 @@ static void irc__probe_dir(const irc__call *k, const float t1[3], const float t2
 }
 
 /* Casts the probes (stopping at the first that hits within reach). */
-static int irc__probe(irc__call *k, irc__detail *dt)
+static int irc__detail_probe(irc__call *k, irc__detail *dt)
 {
     irc_cache *c = k->c;
     irc_ray *rays = irc__slot_rays(c, k->slot);
@@ -54,7 +54,7 @@ static int irc__probe(irc__call *k, irc__detail *dt)
         int st;
         for (j = 0; j < cnt; j++) {
             IRC_MEMCPY(rays[j].org, k->q.p, sizeof rays[j].org);
-            irc__probe_dir(k, t1, t2, i + j, rays[j].dir);
+            irc__detail_dir(k, t1, t2, i + j, rays[j].dir);
         }
         if ((st = irc__cast(k, rays, hits, cnt)) < 0)
             return st;
@@ -73,25 +73,31 @@ static int irc__probe(irc__call *k, irc__detail *dt)
 static int irc__detail_run(irc__call *k, void *out)
 {
     irc__detail *dt = (irc__detail *)out;
-    int st = irc__probe(k, dt);
+    int st = irc__detail_probe(k, dt);
     if (st < 0 || !dt->near)
         return st;
     return irc__irr_estimate(k, dt->e);
 }
 
 int irc__detail_px(irc_cache *c, const float p[3], const float n[3], float footprint,
-                   float rgb[3], float *weight, void *host)
+                   float rgb[3], float *weight, void *host, uint32_t *probes)
 {
     irc__detail dt;
-    int st;
+    uint32_t rays;
+    int st, waited;
+    *probes = 0;
     if (irc__enter(c, &irc__kind_irr) < 0 || !rgb || !irc__finite(footprint) ||
         !(footprint > 0.0f) || !(c->cfg.irr.detail_pixels > 0.0f))
         return IRC_MISS; /* the plain path answers, or refuses */
     dt.reach = c->cfg.irr.detail_pixels * footprint;
-    if ((st = irc__compute(c, &irc__kind_irr, p, n, &dt, host, irc__detail_run, 0)) < 0)
+    st = irc__compute_quiet(c, &irc__kind_irr, p, n, &dt, host, irc__detail_run, &rays, &waited);
+    if (st < 0)
         return st;
-    if (!dt.near)
+    if (!dt.near) {
+        *probes = rays;
         return IRC_MISS;
+    }
+    irc__count(c, IRC__C_RAYS, rays);
     irc__count(c, IRC__C_LOOKUPS, 1);
     rgb[0] = dt.e[0];
     rgb[1] = dt.e[1];

@@ -48,9 +48,10 @@ int irc__irr_compute(irc__call *k, void *rec);
 /* E alone from the configured strata, for a per-pixel estimate. */
 int irc__irr_estimate(irc__call *k, float e[3]);
 /* detail.c: the _px call's per-pixel answer near geometry; IRC_MISS when
- * the point is not detail (or the plain path must answer or refuse). */
+ * the point is not detail (or the plain path must answer or refuse), with
+ * the probes' rays in *probes for that path to count if it succeeds. */
 int irc__detail_px(irc_cache *c, const float p[3], const float n[3], float footprint,
-                   float rgb[3], float *weight, void *host);
+                   float rgb[3], float *weight, void *host, uint32_t *probes);
 void irc__gradients(const irc_cache *c, const irc__grid *g, const irc__sample *s,
                     const float mean[3], const float t1[3], const float t2[3], float gt[3][3],
                     float gr[3][3]);

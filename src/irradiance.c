@@ -406,5 +406,6 @@ int irc__irr_estimate(irc__call *k, float e[3])
     irc__totals_of(&g, (const irc__sample *)(void *)k->slot, &t);
     for (ch = 0; ch < 3; ch++)
         e[ch] = IRC_PI * t.sum[ch] / (float)t.used;
-    return IRC_OK;
+    /* radiances near FLT_MAX sum past it: refused as such a record is */
+    return irc__finite3(e) ? IRC_OK : IRC_ERR_NONFINITE;
 }

@@ -378,7 +378,11 @@ static int irc__irr_features(irc_config *cfg)
  * relative RMSE 0.0342 -> 0.087 with 32, 0.079 with 8 and a 1-pixel
  * floor (bench/README.md, "Records that cost what they serve"). */
 #define IRC__DEF_FULL_PIXELS (-1.0f)
-#define IRC__DEF_DETAIL_PIXELS (-1.0f)
+/* cfg.irr.detail_pixels by default: half a pixel.  On the Cornell box it
+ * cut the error 8x (a ceiling row beside the light's edge); on six real
+ * views it kept the error and cost 0.85-1.0x the time (bench/README.md,
+ * "Detail computed per pixel"). */
+#define IRC__DEF_DETAIL_PIXELS 0.5f
 
 static int irc__irr_resolve(irc_config *cfg)
 {
@@ -512,10 +516,11 @@ int irc_cache_lookup_or_compute(irc_cache *c, const float p[3], const float n[3]
 int irc_cache_lookup_or_compute_px(irc_cache *c, const float p[3], const float n[3],
                                    float footprint, float rgb[3], float *weight, void *host)
 {
-    const int st = irc__detail_px(c, p, n, footprint, rgb, weight, host);
+    uint32_t probes;
+    const int st = irc__detail_px(c, p, n, footprint, rgb, weight, host, &probes);
     if (st != IRC_MISS)
         return st;
-    return irc__lookup_or_compute(c, &irc__kind_irr, footprint, p, n, rgb, weight, host);
+    return irc__lookup_or_compute(c, &irc__kind_irr, footprint, p, n, rgb, weight, host, probes);
 }
 
 int irc_cache_record(irc_cache *c, uint32_t id, irc_record *out)

@@ -87,16 +87,32 @@ static void irc__count_compute(irc_cache *c, const irc__call *k, int record, int
     irc__count(c, IRC__C_RAYS, k->rays);
 }
 
+/* Runs fn in a claimed slot; its rays in *rays and whether it waited in
+ * *waited, counted by the caller (nothing of a failed call is). */
+int irc__compute_quiet(irc_cache *c, const irc__kind *want, const float p[3], const float n[3],
+                       void *out, void *host, int (*fn)(irc__call *k, void *out),
+                       uint32_t *rays, int *waited)
+{
+    irc__call k;
+    uint32_t t;
+    int st;
+    k.footprint = 0.0f;
+    *waited = 0;
+    *rays = 0;
+    if ((st = irc__open(c, want, out, p, n, &k.q)) < 0 ||
+        (st = irc__slot_claim(c, &t, waited)) < 0 ||
+        (st = irc__run(c, &k, t, host, fn, out)) < 0)
+        return st;
+    *rays = k.rays;
+    return IRC_OK;
+}
+
 int irc__compute(irc_cache *c, const irc__kind *want, const float p[3], const float n[3],
                  void *out, void *host, int (*fn)(irc__call *k, void *out), int record)
 {
     irc__call k;
-    uint32_t t;
-    int st, waited = 0;
-    k.footprint = 0.0f;
-    if ((st = irc__open(c, want, out, p, n, &k.q)) < 0 ||
-        (st = irc__slot_claim(c, &t, &waited)) < 0 ||
-        (st = irc__run(c, &k, t, host, fn, out)) < 0)
+    int st, waited;
+    if ((st = irc__compute_quiet(c, want, p, n, out, host, fn, &k.rays, &waited)) < 0)
         return st;
     irc__count_compute(c, &k, record, waited);
     return IRC_OK;
@@ -429,11 +445,11 @@ static int irc__miss(irc_cache *c, irc__call *k, void *out, float *weight, void 
 
 int irc__lookup_or_compute(irc_cache *c, const irc__kind *want, float footprint,
                            const float p[3], const float n[3], void *out, float *weight,
-                           void *host)
+                           void *host, uint32_t rays0)
 {
     irc__call k;
     irc__marks marks;
-    uint32_t rays = 0;
+    uint32_t rays = rays0;
     int st;
     if ((st = irc__open(c, want, out, p, n, &k.q)) < 0)
         return st;

@@ -197,7 +197,7 @@ static int occ_lookup(irc_cache *c, const float p[3], const float n[3], float *o
 }
 static int occ_lookup_or_compute(irc_cache *c, const float p[3], const float n[3], float *open)
 {
-    return irc__lookup_or_compute(c, &irc__kind_occ, 0.0f, p, n, open, NULL, NULL);
+    return irc__lookup_or_compute(c, &irc__kind_occ, 0.0f, p, n, open, NULL, NULL, 0u);
 }
 static int occ_record_get(irc_cache *c, uint32_t id, occ_record *out)
 {

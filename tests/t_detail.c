@@ -58,6 +58,7 @@ static irc_cache *detail_cache(detail_host *h, irc_config *cfg, float full_pixel
     cfg->max_pixels = -1.0f;
     cfg->check_visibility = IRC_OFF;
     cfg->irr.full_pixels = full_pixels;
+    cfg->irr.detail_pixels = -1.0f; /* the probes are not the grid's rays */
     return block_cache(cfg, 64, 0);
 }
 
@@ -395,7 +396,7 @@ TEST(test_detail_pixels_wall)
           wmax);
     block_free(&cfg);
 
-    c = wall_cache(&s, &cfg, 0.0f, 8);
+    c = wall_cache(&s, &cfg, -1.0f, 8);
     CHECK(c != NULL, "init (off)");
     if (!c)
         return;
@@ -409,7 +410,9 @@ TEST(test_detail_pixels_wall)
 /* With one ray a trace call, probes stop at the first that hits (the one
  * toward the wall comes first): 1 + 1,024 rays.  A callback error in a probe
  * returns as a record's would, nothing counted; a negative footprint is
- * refused before any probe. */
+ * refused before any probe; an estimate past FLT_MAX is refused; a call
+ * that fails after its probes counts none of them.  The zero config's
+ * reach is half a pixel. */
 TEST(test_detail_pixels_calls)
 {
     tscene s;
@@ -432,9 +435,46 @@ TEST(test_detail_pixels_calls)
           "negative footprint");
     CHECK(irc_cache_lookup_or_compute_px(c, p, n, NAN, rgb, &w, NULL) == IRC_ERR_NONFINITE,
           "NaN footprint");
+    /* a sky so bright that 1,024 strata sum past FLT_MAX: refused, as a
+     * record of it would be */
+    s.sky_a[0] = s.sky_a[1] = s.sky_a[2] = 3e37f;
+    CHECK(irc_cache_lookup_or_compute_px(c, p, n, 0.01f, rgb, &w, NULL) == IRC_ERR_NONFINITE,
+          "an estimate past float answered");
+    s.sky_a[0] = s.sky_a[1] = s.sky_a[2] = 1.0f;
+    /* x = -1: no probe hits within reach and the record does not reach, so
+     * a record is computed, and its first ray (the 9th) is refused: the
+     * call fails, and its 8 probes are counted nowhere */
+    {
+        const float far[3] = {-1.0f, 0.0f, 0.0f};
+        s.fail_every = 9;
+        s.fail_kind = FAIL_BAD_STATUS;
+        s.calls = 0;
+        CHECK(irc_cache_lookup_or_compute_px(c, far, n, 0.01f, rgb, &w, NULL) ==
+                  IRC_ERR_CALLBACK,
+              "a refused ray after the probes");
+        s.fail_every = 0;
+    }
     CHECK(irc_cache_stats(c, &st) == IRC_OK && st.rays == 1025 && st.lookups == 1 &&
               st.records == 1,
           "refused calls counted (rays %llu, lookups %llu)", (unsigned long long)st.rays,
           (unsigned long long)st.lookups);
+    block_free(&cfg);
+
+    /* The default, half a pixel (0.005 here): the probe toward the wall
+     * hits at 0.00115 from x = -0.001 (detail: 1 + 1,024 rays) and at
+     * 0.0115 from x = -0.01 (all 8 probes, then the record answers). */
+    c = wall_cache(&s, &cfg, 0.0f, 1);
+    CHECK(c != NULL, "init (default)");
+    if (!c)
+        return;
+    {
+        const float near[3] = {-0.001f, 0.0f, 0.0f}, off[3] = {-0.01f, 0.0f, 0.0f};
+        CHECK(irc_cache_lookup_or_compute_px(c, near, n, 0.01f, rgb, &w, NULL) == IRC_OK &&
+                  irc_cache_stats(c, &st) == IRC_OK && st.rays == 1025 && w == 0.0f,
+              "default, near: rays %llu, weight %g", (unsigned long long)st.rays, w);
+        CHECK(irc_cache_lookup_or_compute_px(c, off, n, 0.01f, rgb, &w, NULL) == IRC_OK &&
+                  irc_cache_stats(c, &st) == IRC_OK && st.rays == 1025 + 8 && w > 0.0f,
+              "default, a pixel off: rays %llu, weight %g", (unsigned long long)st.rays, w);
+    }
     block_free(&cfg);
 }
