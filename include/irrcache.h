@@ -574,8 +574,10 @@ typedef struct irc_config {
                                 smear geometry finer than a pixel.  Such
                                 points leave no record: a frame drawn
                                 later from a frozen, loaded cache with
-                                irc_cache_lookup misses there.
-                                Finite; 0 the default: 0.5; negative:
+                                irc_cache_lookup misses there.  With no
+                                slot free (no_wait) or from inside the
+                                cache's own callback it answers as
+                                without detail.  Finite; 0 the default: 0.5; negative:
                                 off (why: bench/README.md, "Detail
                                 computed per pixel") */
     } irr;

@@ -91,6 +91,11 @@ int irc__detail_px(irc_cache *c, const float p[3], const float n[3], float footp
         return IRC_MISS; /* the plain path answers, or refuses */
     dt.reach = c->cfg.irr.detail_pixels * footprint;
     st = irc__compute_quiet(c, &irc__kind_irr, p, n, &dt, host, irc__detail_run, &rays, &waited);
+    /* No slot (cfg.no_wait) or the caller's own (from inside its
+     * callback): the plain path answers what records cover, as without
+     * detail. */
+    if (st == IRC_ERR_BUSY || st == IRC_ERR_NESTED)
+        return IRC_MISS;
     if (st < 0)
         return st;
     if (!dt.near) {

@@ -384,6 +384,19 @@ static int irc__irr_features(irc_config *cfg)
  * "Detail computed per pixel"). */
 #define IRC__DEF_DETAIL_PIXELS 0.5f
 
+/* A count of pixels in the irradiance config: finite; 0 takes def, and a
+ * negative value (off) is kept as -1. */
+static int irc__pixels_resolve(float *v, float def)
+{
+    if (!(*v > -IRC__CAP && *v < IRC__CAP))
+        return IRC_ERR_CONFIG;
+    if (*v == 0.0f)
+        *v = def;
+    if (*v < 0.0f)
+        *v = -1.0f;
+    return IRC_OK;
+}
+
 static int irc__irr_resolve(irc_config *cfg)
 {
     const uint32_t strata = cfg->strata_theta * cfg->strata_phi;
@@ -399,18 +412,9 @@ static int irc__irr_resolve(irc_config *cfg)
         cfg->irr.supersamples > strata ||
         (cfg->irr.supersamples && (cfg->features & IRC_FEATURE_VISIBILITY)))
         return IRC_ERR_CONFIG;
-    if (!(cfg->irr.full_pixels > -IRC__CAP && cfg->irr.full_pixels < IRC__CAP))
+    if (irc__pixels_resolve(&cfg->irr.full_pixels, IRC__DEF_FULL_PIXELS) < 0 ||
+        irc__pixels_resolve(&cfg->irr.detail_pixels, IRC__DEF_DETAIL_PIXELS) < 0)
         return IRC_ERR_CONFIG;
-    if (cfg->irr.full_pixels == 0.0f)
-        cfg->irr.full_pixels = IRC__DEF_FULL_PIXELS;
-    if (cfg->irr.full_pixels < 0.0f)
-        cfg->irr.full_pixels = -1.0f;
-    if (!(cfg->irr.detail_pixels > -IRC__CAP && cfg->irr.detail_pixels < IRC__CAP))
-        return IRC_ERR_CONFIG;
-    if (cfg->irr.detail_pixels == 0.0f)
-        cfg->irr.detail_pixels = IRC__DEF_DETAIL_PIXELS;
-    if (cfg->irr.detail_pixels < 0.0f)
-        cfg->irr.detail_pixels = -1.0f;
     irc__switch_defaults(cfg, IRC_ON, IRC_ON);
     cfg->irr.leak_guard = cfg->irr.leak_guard == IRC_ON;
     return IRC_OK;

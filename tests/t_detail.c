@@ -308,7 +308,8 @@ TEST(test_pixel_footprint)
  * form factor (box_plane_e), falling toward pi/2 at the face.  One hand
  * record at x = -0.3 with a reach over everything stands for the records
  * a renderer makes a few pixels from the wall. */
-static irc_cache *wall_cache(tscene *s, irc_config *cfg, float detail, uint32_t batch)
+static irc_cache *wall_cache(tscene *s, irc_config *cfg, float detail, uint32_t batch,
+                             irc_trace_fn trace)
 {
     static const double lo[3] = {0.0, -5.0, 0.0}, hi[3] = {0.2, 5.0, 0.5};
     const double at[3] = {-0.3, 0.0, 0.0};
@@ -321,6 +322,8 @@ static irc_cache *wall_cache(tscene *s, irc_config *cfg, float detail, uint32_t 
     cfg->check_visibility = IRC_OFF;
     cfg->max_batch = batch;
     cfg->irr.detail_pixels = detail;
+    if (trace)
+        cfg->trace = trace;
     c = block_cache(cfg, 16, 0);
     if (!c)
         return NULL;
@@ -373,7 +376,7 @@ TEST(test_detail_pixels_wall)
     tscene s;
     irc_config cfg;
     irc_stats st;
-    irc_cache *c = wall_cache(&s, &cfg, 4.0f, 8);
+    irc_cache *c = wall_cache(&s, &cfg, 4.0f, 8, NULL);
     double z, wmax, mean;
     int bad;
     CHECK(c != NULL, "init");
@@ -396,7 +399,7 @@ TEST(test_detail_pixels_wall)
           wmax);
     block_free(&cfg);
 
-    c = wall_cache(&s, &cfg, -1.0f, 8);
+    c = wall_cache(&s, &cfg, -1.0f, 8, NULL);
     CHECK(c != NULL, "init (off)");
     if (!c)
         return;
@@ -418,7 +421,7 @@ TEST(test_detail_pixels_calls)
     tscene s;
     irc_config cfg;
     irc_stats st;
-    irc_cache *c = wall_cache(&s, &cfg, 4.0f, 1);
+    irc_cache *c = wall_cache(&s, &cfg, 4.0f, 1, NULL);
     const float p[3] = {-0.005f, 0.0f, 0.0f}, n[3] = {0, 0, 1};
     float rgb[3] = {7, 7, 7}, w;
     CHECK(c != NULL, "init");
@@ -463,7 +466,7 @@ TEST(test_detail_pixels_calls)
     /* The default, half a pixel (0.005 here): the probe toward the wall
      * hits at 0.00115 from x = -0.001 (detail: 1 + 1,024 rays) and at
      * 0.0115 from x = -0.01 (all 8 probes, then the record answers). */
-    c = wall_cache(&s, &cfg, 0.0f, 1);
+    c = wall_cache(&s, &cfg, 0.0f, 1, NULL);
     CHECK(c != NULL, "init (default)");
     if (!c)
         return;
@@ -476,5 +479,46 @@ TEST(test_detail_pixels_calls)
                   irc_cache_stats(c, &st) == IRC_OK && st.rays == 1025 + 8 && w > 0.0f,
               "default, a pixel off: rays %llu, weight %g", (unsigned long long)st.rays, w);
     }
+    block_free(&cfg);
+}
+
+/* A _px call from inside the cache's own callback, at a point its record
+ * covers: the probes cannot take a slot (IRC_ERR_NESTED), so the record
+ * answers, as it would without detail. */
+typedef struct nest_host {
+    tscene s; /* first: scene_trace reads the context as a tscene */
+    irc_cache *c;
+    int status, depth;
+} nest_host;
+
+static int nest_trace(const irc_trace_args *a)
+{
+    nest_host *h = (nest_host *)a->context;
+    if (h->depth == 0) {
+        const float p[3] = {-0.3f, 0.1f, 0.0f}, n[3] = {0, 0, 1};
+        float rgb[3], w;
+        h->depth = 1;
+        h->status = irc_cache_lookup_or_compute_px(h->c, p, n, 0.01f, rgb, &w, NULL);
+    }
+    return scene_trace(a);
+}
+
+TEST(test_detail_pixels_nested)
+{
+    nest_host h;
+    irc_config cfg;
+    irc_cache *c;
+    const float q[3] = {-1.5f, 0.0f, 0.0f}, n[3] = {0, 0, 1};
+    float rgb[3], w;
+    memset(&h, 0, sizeof h);
+    /* the context is &h.s, which is &h */
+    c = wall_cache(&h.s, &cfg, 4.0f, 8, nest_trace);
+    CHECK(c != NULL, "init");
+    if (!c)
+        return;
+    h.c = c;
+    h.status = 1;
+    CHECK(irc_cache_lookup_or_compute_px(c, q, n, 0.01f, rgb, &w, &h) == IRC_OK, "outer call");
+    CHECK(h.status == IRC_OK, "the nested call at a covered point returned %d", h.status);
     block_free(&cfg);
 }
