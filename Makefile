@@ -370,6 +370,9 @@ $(BUILD)/bench_core: bench/bench_core.c bench/bench_util.h tests/scenes.c tests/
 $(BUILD)/bench_lookups: bench/lookups.c bench/bench_util.h $(LIBA)
 	$(CC) $(TEST_CFLAGS) -O2 -g $(CFLAGS) bench/lookups.c $(LIBA) -o $@ -lm
 
+$(BUILD)/bench_anchor: bench/anchor.c bench/bench_util.h $(LIBA)
+	$(CC) $(TEST_CFLAGS) -O2 -g $(CFLAGS) bench/anchor.c $(LIBA) -o $@ -lm
+
 $(BUILD)/bench_records: bench/records.c bench/bench_util.h $(LIBA)
 	$(CC) $(TEST_CFLAGS) -O2 -g $(CFLAGS) bench/records.c $(LIBA) -o $@ -lm
 
@@ -411,6 +414,11 @@ bench-host: $(BUILD)/bench_host
 
 # One lookup workload for profilers (bench/README.md: "Where the lookup time goes"):
 # rates, entries scanned and passed, and a checksum of the answers.
+# The lookup anchor (bench/README.md, "The lookup anchor"): instructions a
+# lookup of irrcache and of a pbrt-v2-style octree on the same records.
+bench-anchor: $(BUILD)/bench_anchor
+	sh bench/anchor.sh $(BUILD)/bench_anchor 100000 $(BUILD)/bench/anchor.csv
+
 bench-lookups: $(BUILD)/bench_lookups
 	for o in scanline random; do for n in 100000 1000000; do for f in "" pass; do \
 	  $(BUILD)/bench_lookups $$o 200000 $$n $$f count || exit 1; done; done; done
@@ -482,7 +490,7 @@ uninstall:
 clean:
 	rm -rf build build-*
 
-.PHONY: amalgamation embree-example all lib cross embedded-test embedded-host size examples test coverage demo real-scenes fig15 adaptive glossy sh-experiments sh-animation fuzz fuzz-long replay bench-core bench-host bench-lookups bench-records bench bench-bounces bench-fill farm-demo install uninstall clean
+.PHONY: amalgamation embree-example all lib cross embedded-test embedded-host size examples test coverage demo real-scenes fig15 adaptive glossy sh-experiments sh-animation fuzz fuzz-long replay bench-core bench-host bench-anchor bench-lookups bench-records bench bench-bounces bench-fill farm-demo install uninstall clean
 
 # Which records answer the worst pixels of a Sponza render, and why
 # (bench/README.md, "On real geometry"); needs make bench's cached references.
