@@ -380,7 +380,7 @@ static int irc__irr_features(irc_config *cfg)
 #define IRC__DEF_FULL_PIXELS (-1.0f)
 /* cfg.irr.detail_pixels by default: half a pixel.  On the Cornell box it
  * cut the error 8x (a ceiling row beside the light's edge); on six real
- * views it kept the error and cost 0.85-1.0x the time (bench/README.md,
+ * views the error stayed within 7% for 0.77-0.99x the time (bench/README.md,
  * "Detail computed per pixel"). */
 #define IRC__DEF_DETAIL_PIXELS 0.5f
 
