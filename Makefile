@@ -367,10 +367,10 @@ fuzz-long:
 $(BUILD)/bench_core: bench/bench_core.c bench/bench_util.h tests/scenes.c tests/scenes.h $(DEMO_LIB_SRC) demo/*.h $(LIBA)
 	$(CC) $(TEST_CFLAGS) -Idemo -O2 -g $(CFLAGS) bench/bench_core.c tests/scenes.c $(DEMO_LIB_SRC) $(LIBA) -o $@ -lm -lpthread
 
-$(BUILD)/bench_lookups: bench/lookups.c bench/bench_util.h $(LIBA)
+$(BUILD)/bench_lookups: bench/lookups.c bench/bench_util.h bench/box.h $(LIBA)
 	$(CC) $(TEST_CFLAGS) -O2 -g $(CFLAGS) bench/lookups.c $(LIBA) -o $@ -lm
 
-$(BUILD)/bench_anchor: bench/anchor.c bench/bench_util.h $(LIBA)
+$(BUILD)/bench_anchor: bench/anchor.c bench/bench_util.h bench/box.h $(LIBA)
 	$(CC) $(TEST_CFLAGS) -O2 -g $(CFLAGS) bench/anchor.c $(LIBA) -o $@ -lm
 
 $(BUILD)/bench_records: bench/records.c bench/bench_util.h $(LIBA)

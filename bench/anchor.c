@@ -24,6 +24,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "bench_util.h"
+#include "box.h"
 
 #define MAX_DEPTH 16
 
@@ -46,32 +47,6 @@ typedef struct octree {
 } octree;
 
 static unsigned long long rng = 1;
-
-static int no_trace(const irc_trace_args *a)
-{
-    (void)a;
-    return -1;
-}
-
-static void face_point(int f, double u, double v, float p[3], float n[3])
-{
-    int axis = f % 3, side = f / 3, a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
-    p[axis] = (float)side;
-    p[a1] = (float)u;
-    p[a2] = (float)v;
-    n[0] = n[1] = n[2] = 0.0f;
-    n[axis] = side ? 1.0f : -1.0f;
-}
-
-/* bench/lookups.c's queries, in the same order. */
-static void query(int scanline, uint32_t i, float p[3], float n[3])
-{
-    if (scanline)
-        face_point((int)(i >> 8) % 6, (double)(i & 255) / 4096.0 + 0.3,
-                   (double)((i >> 8) % 97) / 100.0, p, n);
-    else
-        face_point((int)(bench_xorshift(&rng) * 6), bench_xorshift(&rng), bench_xorshift(&rng), p, n);
-}
 
 static int32_t node_new(octree *t)
 {
@@ -216,11 +191,10 @@ int main(int argc, char **argv)
     irc_cache *c;
     irc_record r, *kept;
     octree t;
-    size_t bytes;
     uint32_t count, i, nk = 0;
     long nl, hit[2] = {-1, -1};
     int scanline, pass, k;
-    double reach, sums[2] = {0.0, 0.0};
+    double sums[2] = {0.0, 0.0};
     if (argc < 4 || argc > 5 || (strcmp(argv[1], "scanline") && strcmp(argv[1], "random")) ||
         (argc == 5 && strcmp(argv[4], "pass"))) {
         fprintf(stderr, "usage: %s scanline|random LOOKUPS RECORDS [pass]\n", argv[0]);
@@ -230,27 +204,15 @@ int main(int argc, char **argv)
     nl = atol(argv[2]);
     count = (uint32_t)atol(argv[3]);
     pass = argc == 5;
-    memset(&cfg, 0, sizeof cfg);
-    cfg.trace = no_trace;
-    cfg.accuracy = 0.2f;
-    cfg.features = IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION;
-    cfg.port = &irc_port_none;
-    if (count == 0 || irc_footprint(&cfg, count, &bytes) != IRC_OK ||
-        !(cfg.buffer = malloc(bytes)) || !(kept = malloc(sizeof *kept * count))) {
+    if (!(c = box_cache(count, &cfg)) || !(kept = malloc(sizeof *kept * count))) {
         fprintf(stderr, "bad record count\n");
         return 2;
     }
-    cfg.buffer_size = bytes;
-    if (irc_init(&cfg, count, &c) != IRC_OK || (pass && irc_pass_begin(c) != IRC_OK))
+    if (pass && irc_pass_begin(c) != IRC_OK)
         return 1;
     /* bench/lookups.c's fill, record for record */
-    reach = sqrt(36.0 / (3.14159265 * count));
-    memset(&r, 0, sizeof r);
     for (i = 0; i < count; i++) {
-        face_point((int)(bench_xorshift(&rng) * 6), bench_xorshift(&rng), bench_xorshift(&rng), r.p, r.n);
-        r.e[0] = r.e[1] = r.e[2] = (float)(0.5 + bench_xorshift(&rng));
-        r.grad_t[0][0] = 0.1f;
-        r.radius = (float)(reach / 0.2 * exp((bench_xorshift(&rng) - 0.5) * 1.4));
+        box_record(&rng, count, &r);
         if (irc_cache_insert(c, &r) != IRC_OK)
             return 1;
     }
@@ -289,7 +251,7 @@ int main(int argc, char **argv)
         t0 = bench_now();
         for (i = 0; i < (uint32_t)nl; i++) {
             float p[3], n[3], rgb[3] = {0, 0, 0}, w;
-            query(scanline, i, p, n);
+            box_query(scanline, i, &rng, p, n);
             if (k)
                 hits += lookup(&t, p, n, rgb, &accepted);
             else

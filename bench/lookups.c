@@ -25,19 +25,14 @@
 #include <string.h>
 #include <time.h>
 #include "bench_util.h"
+#include "box.h"
 #include "cache.h" /* irc__index_query: entries scanned and passed */
 #include "index.h"
 
 static unsigned long long rng = 1;
 
 
-static int no_trace(const irc_trace_args *a)
-{
-    (void)a;
-    return -1;
-}
 
-static void face_point(int f, double u, double v, float p[3], float n[3]);
 
 /* A record's position as a 63-bit Morton key: 21 bits an axis of
  * coordinates in [0, 1]. */
@@ -66,37 +61,16 @@ static void count_passed(void *ud, uint32_t id)
     ++*(unsigned long long *)ud;
 }
 
-/* The i-th query of the workload (random order draws from rng). */
-static void query(int scanline, uint32_t i, float p[3], float n[3])
-{
-    if (scanline)
-        face_point((int)(i >> 8) % 6, (double)(i & 255) / 4096.0 + 0.3,
-                   (double)((i >> 8) % 97) / 100.0, p, n);
-    else
-        face_point((int)(bench_xorshift(&rng) * 6), bench_xorshift(&rng), bench_xorshift(&rng), p, n);
-}
-
-static void face_point(int f, double u, double v, float p[3], float n[3])
-{
-    int axis = f % 3, side = f / 3, a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
-    p[axis] = (float)side;
-    p[a1] = (float)u;
-    p[a2] = (float)v;
-    n[0] = n[1] = n[2] = 0.0f;
-    n[axis] = side ? 1.0f : -1.0f;
-}
-
 int main(int argc, char **argv)
 {
     irc_config cfg;
     irc_cache *c;
     irc_record r;
     irc_stats st;
-    size_t bytes;
     uint32_t count, i;
     long nl, hits = 0;
     unsigned long long scanned = 0, passed = 0;
-    double reach, sum = 0.0, t0, t1;
+    double sum = 0.0, t0, t1;
     int scanline, pass = 0, curve = 0, counting = 0, a;
     irc_record *all;
     for (a = 4; a < argc; a++) {
@@ -116,28 +90,14 @@ int main(int argc, char **argv)
     scanline = !strcmp(argv[1], "scanline");
     nl = atol(argv[2]);
     count = (uint32_t)atol(argv[3]);
-    memset(&cfg, 0, sizeof cfg);
-    cfg.trace = no_trace;
-    cfg.accuracy = 0.2f;
-    cfg.features = IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION;
-    cfg.port = &irc_port_none;
-    if (count == 0 || irc_footprint(&cfg, count, &bytes) != IRC_OK ||
-        !(cfg.buffer = malloc(bytes)) || !(all = malloc(sizeof *all * count))) {
+    if (!(c = box_cache(count, &cfg)) || !(all = malloc(sizeof *all * count))) {
         fprintf(stderr, "bad record count\n");
         return 2;
     }
-    cfg.buffer_size = bytes;
-    if (irc_init(&cfg, count, &c) != IRC_OK)
-        return 1;
-    reach = sqrt(36.0 / (3.14159265 * count));
-    memset(&r, 0, sizeof r);
     if (pass && irc_pass_begin(c) != IRC_OK)
         return 1;
     for (i = 0; i < count; i++) {
-        face_point((int)(bench_xorshift(&rng) * 6), bench_xorshift(&rng), bench_xorshift(&rng), r.p, r.n);
-        r.e[0] = r.e[1] = r.e[2] = (float)(0.5 + bench_xorshift(&rng));
-        r.grad_t[0][0] = 0.1f;
-        r.radius = (float)(reach / 0.2 * exp((bench_xorshift(&rng) - 0.5) * 1.4));
+        box_record(&rng, count, &r);
         all[i] = r;
     }
     if (curve)
@@ -151,14 +111,14 @@ int main(int argc, char **argv)
     t0 = bench_now();
     for (i = 0; i < (uint32_t)nl; i++) {
         float p[3], n[3], rgb[3], w;
-        query(scanline, i, p, n);
+        box_query(scanline, i, &rng, p, n);
         hits += irc_cache_lookup(c, p, n, rgb, &w) == IRC_OK;
         sum += rgb[0];
     }
     t1 = bench_now();
     for (i = 0; counting && i < (uint32_t)nl; i++) {
         float p[3], n[3];
-        query(scanline, i, p, n);
+        box_query(scanline, i, &rng, p, n);
         scanned += irc__index_query(c, p, count_passed, &passed);
     }
     irc_cache_stats(c, &st);
