@@ -918,7 +918,11 @@ IRC_API int irc_cache_lookup_or_compute(irc_cache *cache, const float p[3],
  * none to 15 pixels) before the world bounds [min_radius, max_radius] (its
  * gradient is then limited to that radius, as always); so an open scene
  * needs no max_radius, and the records a frame makes are bounded by its
- * pixels.  footprint 0 is the plain call (no pixel bound).  A host that
+ * pixels.  footprint 0 is the plain call (no pixel bound).  First, with
+ * cfg.irr.detail_pixels (on by default), up to 8 probe rays decide whether
+ * the point lies within detail_pixels x footprint of geometry; if so it
+ * is answered from its own hemisphere, stored nowhere, weight 0 (see
+ * there).  A host that
  * computes with irc_record_compute and inserts itself sets the radius
  * (and minor_radius) of the record the same way before irc_cache_insert.
  * Returns as irc_cache_lookup_or_compute; IRC_ERR_RANGE (nothing done)
