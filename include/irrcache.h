@@ -561,25 +561,18 @@ typedef struct irc_config {
                                 Finite; 0 the default, off, as is any
                                 negative value (why: bench/README.md,
                                 "Records that cost what they serve") */
-        float detail_pixels; /* detail computed per pixel: the _px call
-                                first casts up to 8 probe rays (60
-                                degrees from n, 45 apart in azimuth);
-                                when one hits within detail_pixels x
-                                footprint, it answers from the point's
-                                own M x N strata (its irradiance alone:
-                                a record's rays, since a record there
-                                would serve about one pixel), stores
-                                nothing and reports weight 0 (counted a
-                                lookup, not a hit), where records would
-                                smear geometry finer than a pixel.  Such
-                                points leave no record: a frame drawn
-                                later from a frozen, loaded cache with
-                                irc_cache_lookup misses there.  With no
-                                slot free (no_wait) or from inside the
-                                cache's own callback it answers as
-                                without detail.  Finite; 0 the default: 0.5; negative:
-                                off (why: bench/README.md, "Detail
-                                computed per pixel") */
+        float detail_pixels; /* the _px call's per-pixel detail: up to 8
+                                probe rays first; a point with a hit
+                                within detail_pixels x footprint is
+                                answered from its own M x N strata (E
+                                alone), stored nowhere (a frozen cache
+                                later misses there), weight 0, counted a
+                                lookup but not a hit.  With every slot
+                                taken (no_wait) or inside the cache's own
+                                callback: answered as without detail.
+                                Finite; 0: 0.5; negative: off (why:
+                                bench/README.md, "Detail computed per
+                                pixel") */
     } irr;
     struct irc_config_sh {   /* SH records (IRC_FEATURE_SH) */
         uint32_t bands;      /* L, bands 0..L-1, L*L coefficients per
@@ -918,13 +911,11 @@ IRC_API int irc_cache_lookup_or_compute(irc_cache *cache, const float p[3],
  * none to 15 pixels) before the world bounds [min_radius, max_radius] (its
  * gradient is then limited to that radius, as always); so an open scene
  * needs no max_radius, and the records a frame makes are bounded by its
- * pixels.  footprint 0 is the plain call (no pixel bound).  First, with
- * cfg.irr.detail_pixels (on by default), up to 8 probe rays decide whether
- * the point lies within detail_pixels x footprint of geometry; if so it
- * is answered from its own hemisphere, stored nowhere, weight 0 (see
- * there).  A host that
- * computes with irc_record_compute and inserts itself sets the radius
- * (and minor_radius) of the record the same way before irc_cache_insert.
+ * pixels.  footprint 0 is the plain call (no pixel bound).  Points near
+ * finer geometry get their own estimate first (cfg.irr.detail_pixels).
+ * A host that computes with irc_record_compute and inserts itself sets
+ * the radius (and minor_radius) of the record the same way before
+ * irc_cache_insert.
  * Returns as irc_cache_lookup_or_compute; IRC_ERR_RANGE (nothing done)
  * when footprint is negative, IRC_ERR_NONFINITE when it is not finite.
  */
