@@ -169,6 +169,34 @@ static void stop_in_lock(irc_cache *c, int how)
     kill(getpid(), SIGKILL);
 }
 
+/* The posix port asks the system for its process id once and keeps it:
+ * a child of fork() must not go on counting itself in under its parent's
+ * id, or its death holding the read lock would go unseen (a survivor that
+ * thought the count its own would wait on it forever).  The parent asks
+ * first, so the id is kept when it forks; the child and a grandchild must
+ * each see their own. */
+TEST(test_port_owner_after_fork)
+{
+    int status = -1;
+    pid_t pid;
+    CHECK(irc_port_posix.owner() == (uint64_t)getpid(), "the parent's owner token");
+    pid = fork();
+    if (pid == 0) {
+        pid_t grand;
+        int bad = irc_port_posix.owner() != (uint64_t)getpid();
+        grand = fork();
+        if (grand == 0)
+            _exit(irc_port_posix.owner() != (uint64_t)getpid());
+        bad += grand < 0 || waitpid(grand, &status, 0) != grand || !WIFEXITED(status) ||
+               WEXITSTATUS(status) != 0;
+        _exit(bad);
+    }
+    CHECK(pid > 0 && waitpid(pid, &status, 0) == pid && WIFEXITED(status) &&
+              WEXITSTATUS(status) == 0,
+          "a forked child or grandchild took its parent's owner token");
+    CHECK(irc_port_posix.owner() == (uint64_t)getpid(), "the parent's token after the fork");
+}
+
 TEST(test_share_killed_in_lock)
 {
     tscene s;

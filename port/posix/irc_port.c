@@ -4,6 +4,7 @@
  * the GCC/Clang __atomic builtins on the block's 64-bit words.
  */
 #include <errno.h>
+#include <pthread.h>
 #include <sched.h>
 #include <signal.h>
 #include <string.h>
@@ -51,8 +52,33 @@ typedef struct posix_lock {
 } posix_lock;
 
 /* An owner is a process id; kill(pid, 0) tells whether it still runs
- * (EPERM: it does, as another user's). */
-static uint64_t posix_owner(void) { return (uint64_t)getpid(); }
+ * (EPERM: it does, as another user's).  The id is asked of the system
+ * once per process: a lookup takes and gives back a read count under it,
+ * and getpid is a system call (glibc caches nothing), two a lookup.  A
+ * child made by fork() forgets it (pthread_atfork's child handler runs
+ * before fork returns there); if the handler cannot be registered the
+ * id is asked every time.  A child made by a raw clone system call, which
+ * runs no handler, would keep its parent's id: use fork or posix_spawn. */
+static pid_t posix_pid;         /* 0: not known in this process */
+static int posix_pid_kept = -1; /* 1: the handler is registered, 0: it failed */
+static pthread_once_t posix_pid_once = PTHREAD_ONCE_INIT;
+static void posix_pid_forget(void) { __atomic_store_n(&posix_pid, 0, __ATOMIC_RELAXED); }
+static void posix_pid_watch(void)
+{
+    __atomic_store_n(&posix_pid_kept, pthread_atfork(NULL, NULL, posix_pid_forget) == 0,
+                     __ATOMIC_RELEASE);
+}
+static uint64_t posix_owner(void)
+{
+    pid_t p = __atomic_load_n(&posix_pid, __ATOMIC_RELAXED);
+    if (p)
+        return (uint64_t)p;
+    pthread_once(&posix_pid_once, posix_pid_watch);
+    p = getpid();
+    if (__atomic_load_n(&posix_pid_kept, __ATOMIC_ACQUIRE) == 1)
+        __atomic_store_n(&posix_pid, p, __ATOMIC_RELAXED);
+    return (uint64_t)p;
+}
 static int posix_owner_alive(uint64_t tok)
 {
     return kill((pid_t)tok, 0) == 0 || errno != ESRCH;
