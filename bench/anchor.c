@@ -264,9 +264,16 @@ int main(int argc, char **argv)
         printf("%s order, %u records (%s), %s: %ld lookups, %ld hits, %.3f M/s", argv[1], nk,
                pass ? "one pass" : "free fill", side, nl, hits,
                nl > 0 && t1 > t0 ? nl / (t1 - t0) / 1e6 : 0.0);
-        if (k)
+        if (k) {
             printf(", %.2f records accepted a lookup, %u nodes, %.2f references a record",
                    nl > 0 ? (double)accepted / nl : 0.0, t.n, (double)refs / nk);
+        } else {
+            irc_stats st;
+            if (irc_cache_stats(c, &st) == IRC_OK)
+                printf(", %llu of %llu nodes, %.2f references a record (of %.2f)",
+                       (unsigned long long)st.index_nodes, (unsigned long long)st.index_nodes_max,
+                       (double)st.index_refs / nk, (double)st.index_refs_max / nk);
+        }
         printf(", sum %.9g\n", sum);
         sums[k] = sum;
         hit[k] = hits;

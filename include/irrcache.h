@@ -621,12 +621,12 @@ typedef struct irc_config {
                     (size_t)(s) * (((features) & IRC_FEATURE_VISIBILITY) ? 456u : \
                                           ((features) & IRC_FEATURE_HESSIAN) ? 88u : 56u) + \
                     (size_t)(b) * 56u) + \
-     (size_t)(records) * (((features) & IRC_FEATURE_HESSIAN) ? 85u : 77u) +     \
+     (size_t)(records) * (((features) & IRC_FEATURE_HESSIAN) ? 230u : 222u) +   \
      ((size_t)(records) / 8u + 16u) * 128u)
 #define IRC_SH_FOOTPRINT_BOUND(records, bands, ch, s, t, b)                      \
     (8192u + (size_t)(s) * 40u +                                                 \
      (size_t)(t) * (192u + sizeof(irc_sh) + (size_t)(s) * 112u + (size_t)(b) * 56u) + \
-     (size_t)(records) * (32u + 16u * (size_t)(bands) * (bands) * (ch) + 4u + 1u) + \
+     (size_t)(records) * (177u + 16u * (size_t)(bands) * (bands) * (ch) + 4u + 1u) + \
      ((size_t)(records) / 8u + 16u) * 128u)
 
 /* ------------------------------------------------------------------------ */
@@ -1229,6 +1229,11 @@ typedef struct irc_stats {
                                 and estimates) */
     uint64_t index_nodes;    /* index nodes in use */
     uint64_t index_nodes_max;
+    uint64_t index_refs;     /* index references in use: a record is listed
+                                in every node its reach's box overlaps at
+                                its level, 1 to 8 */
+    uint64_t index_refs_max; /* when they run short records are listed in
+                                fewer, larger nodes: lookups slow down */
     size_t record_bytes;     /* bytes per stored record (feature dependent) */
     size_t bytes_records;    /* block bytes for records */
     size_t bytes_index;      /* block bytes for the index */

@@ -19,7 +19,7 @@
 
 /* What a block must agree on to be re-attached (irc_attach): the layout's
  * version, pointer and size_t widths, byte order. */
-#define IRC__LAYOUT_VERSION 16u
+#define IRC__LAYOUT_VERSION 17u
 #define IRC__ABI                                                           \
     (IRC__LAYOUT_VERSION | (uint32_t)sizeof(void *) << 8 |                 \
      (uint32_t)sizeof(size_t) << 16 | (uint32_t)sizeof(double) << 24)
@@ -61,18 +61,23 @@ struct irc_cache {
     uint32_t slot_samples;   /* samples a scratch slot holds (the kind's) */
     uint32_t keep_geom;      /* the sampler keeps directions and hit normals */
     uint32_t node_cap;       /* nodes in the pool (1 + 8 k) */
+    uint32_t ref_cap;        /* references in the pool (index.c) */
     size_t lock_bytes;       /* room reserved for the port's lock */
     size_t slot_bytes;       /* scratch bytes per thread slot */
     size_t slot_rec;         /* where in a slot its record lies */
     size_t soff[IRC__S_COUNT];/* the slot's parts (IRC__S_*) */
     size_t total_bytes;      /* bytes of the block in use from the cache on */
     /* Offsets from the address of home. */
-    size_t o_lock, o_scratch, o_records, o_ix, o_nodes, o_ctr,
+    size_t o_lock, o_scratch, o_records, o_ix, o_nodes, o_refs, o_ctr,
            o_used,           /* o_used 0: no CLOCK */
            o_gtab;           /* the strata's table (gradient.c) */
     /* Mutable under the write lock; read and written through home. */
     uint32_t count;          /* records in slots [0, count) */
     uint32_t nodes_used;
+    uint32_t refs_used;      /* references ever taken from the pool's end */
+    uint32_t ref_free;       /* first reference given back, IRC__NIL = none */
+    uint32_t refs_live;      /* references in lists */
+    uint32_t indexed;        /* records with references */
     uint32_t hand;           /* CLOCK hand */
     uint32_t root_set;
     uint32_t depth;          /* the index's deepest node level */
@@ -110,6 +115,10 @@ static inline irc__ixe *irc__ix(const irc_cache *c)
 static inline irc__node *irc__nodes(const irc_cache *c)
 {
     return (irc__node *)(void *)irc__part(c, c->o_nodes);
+}
+static inline irc__ref *irc__refs(const irc_cache *c)
+{
+    return (irc__ref *)(void *)irc__part(c, c->o_refs);
 }
 static inline uint64_t *irc__stripe(const irc_cache *c, uint32_t s)
 {

@@ -4,12 +4,12 @@
  * A node's list links records by id, and ids are given in the order
  * records arrive, so the entries a lookup scans lie scattered over the
  * index and the records it accepts over the pool: one cache miss each.
- * Compaction gives every record the id of its place in the index's own
- * order (depth first, children by octant, a node's list before its
- * children, each list in its order), moving the records, their index
- * entries and their CLOCK bits there.  Afterwards each list is a run of
- * consecutive ids, so a lookup's entries share lines, and records near in
- * space sit near in the pool.  The tree is untouched and each list keeps
+ * Compaction moves every reference to its place in the index's own order
+ * (depth first, children by octant, a node's list before its children,
+ * each list in its order), so that each list is a run a lookup reads
+ * line after line, and gives every record the id of its home reference in
+ * that order, moving the records, their index entries and their CLOCK
+ * bits there, so that records near in space sit near in the pool.  The tree is untouched and each list keeps
  * its order, so every query visits the same records in the same order as
  * before: lookups are bit-identical.  Record ids change (irrcache.h, at
  * irc_pass_end and irc_merge).
@@ -50,50 +50,53 @@ static void irc__walk_nodes(irc_cache *c, irc__node_fn fn, void *ud)
     }
 }
 
-/* Pass 1: the records the index holds, counted. */
-static void irc__count_list(irc_cache *c, irc__node *n, void *ud)
+/* Pass 1: each record's new id, in its entry's refs: the order of its
+ * home reference in the walk (IRC__NIL: none met). */
+static void irc__number_homes(irc_cache *c, irc__node *n, void *ud)
 {
-    uint32_t id;
-    for (id = n->head; id != IRC__NIL; id = irc__ix(c)[id].next)
-        ++*(uint32_t *)ud;
+    uint32_t *k = (uint32_t *)ud, r;
+    const irc__ref *refs = irc__refs(c);
+    for (r = n->head; r != IRC__NIL; r = refs[r].next)
+        if (refs[r].id & IRC__REF_HOME && (refs[r].id & ~IRC__REF_HOME) < c->home->count)
+            irc__ix(c)[refs[r].id & ~IRC__REF_HOME].refs = (*k)++;
 }
 
-/* Pass 2: each record's new id, in its entry's link (the list is read
- * before it is overwritten); the node's head becomes its first new id. */
+/* Pass 2: each reference's new place, in its link (the list is read
+ * before it is overwritten; the last of a list marked IRC__REF_HOME, no
+ * place being that large), the node's head its first new place. */
 static void irc__number_list(irc_cache *c, irc__node *n, void *ud)
 {
-    uint32_t *k = (uint32_t *)ud, id = n->head, nid;
-    if (id == IRC__NIL)
+    uint32_t *k = (uint32_t *)ud, r = n->head, nr;
+    irc__ref *refs = irc__refs(c);
+    if (r == IRC__NIL)
         return;
     n->head = *k;
-    for (; id != IRC__NIL; id = nid) {
-        nid = irc__ix(c)[id].next;
-        irc__ix(c)[id].next = (*k)++;
+    for (; r != IRC__NIL; r = nr) {
+        nr = refs[r].next;
+        refs[r].next = (*k)++ | (nr == IRC__NIL ? IRC__REF_HOME : 0u);
     }
 }
 
-/* Pass 4: lists as runs.  A list ends where the next list (in walk order,
- * so in id order) begins, the last at count. */
-typedef struct irc__runs {
-    uint32_t open; /* first id of the list not yet closed, or IRC__NIL */
-} irc__runs;
-
-static void irc__close_run(irc_cache *c, uint32_t first, uint32_t end)
+/* Pass 3: references to their places, cycle by cycle, each list then a
+ * run linked in order; the pool's given-back references after them. */
+static void irc__permute_refs(irc_cache *c, uint32_t live)
 {
-    uint32_t id;
-    for (id = first; id + 1 < end; id++)
-        irc__ix(c)[id].next = id + 1;
-    irc__ix(c)[end - 1].next = IRC__NIL;
-}
-
-static void irc__link_list(irc_cache *c, irc__node *n, void *ud)
-{
-    irc__runs *r = (irc__runs *)ud;
-    if (n->head == IRC__NIL)
-        return;
-    if (r->open != IRC__NIL)
-        irc__close_run(c, r->open, n->head);
-    r->open = n->head;
+    irc__ref *refs = irc__refs(c), e;
+    uint32_t i, to, r, nr, k = live;
+    for (r = c->home->ref_free; r != IRC__NIL; r = nr) {
+        nr = refs[r].next;
+        refs[r].next = k++;
+    }
+    for (i = 0; i < live; i++)
+        while ((to = refs[i].next & ~IRC__REF_HOME) != i) {
+            e = refs[i];
+            refs[i] = refs[to];
+            refs[to] = e;
+        }
+    for (i = 0; i < live; i++)
+        refs[i].next = (refs[i].next & IRC__REF_HOME) ? IRC__NIL : i + 1u;
+    c->home->refs_used = live;
+    c->home->ref_free = IRC__NIL;
 }
 
 static void irc__swap_used(irc_cache *c, uint32_t a, uint32_t b)
@@ -109,37 +112,80 @@ static void irc__swap_used(irc_cache *c, uint32_t a, uint32_t b)
     }
 }
 
-/* Pass 3: the permutation applied in place, cycle by cycle: each swap
- * puts one record (with its entry and bit) at its new id for good. */
-static void irc__permute(irc_cache *c, uint32_t count)
+/* Each record's count of references, from the lists. */
+static void irc__count_list(irc_cache *c, irc__node *n, void *ud)
+{
+    const irc__ref *refs = irc__refs(c);
+    uint32_t r;
+    (void)ud;
+    for (r = n->head; r != IRC__NIL; r = refs[r].next)
+        if ((refs[r].id & ~IRC__REF_HOME) < c->home->count)
+            irc__ix(c)[refs[r].id & ~IRC__REF_HOME].refs++;
+}
+
+static void irc__recount(irc_cache *c, uint32_t count)
+{
+    uint32_t i;
+    for (i = 0; i < count; i++)
+        irc__ix(c)[i].refs = 0;
+    irc__walk_nodes(c, irc__count_list, NULL);
+}
+
+/* Pass 4: the records' permutation applied in place, cycle by cycle: each
+ * swap puts one record (with its entry and bit) at its new id for good;
+ * the references renamed first. */
+static void irc__permute(irc_cache *c, uint32_t count, uint32_t live)
 {
     irc__ixe *ix = irc__ix(c), e;
+    irc__ref *refs = irc__refs(c);
     uint32_t i, to;
+    for (i = 0; i < live; i++)
+        refs[i].id = ix[refs[i].id & ~IRC__REF_HOME].refs | (refs[i].id & IRC__REF_HOME);
     for (i = 0; i < count; i++)
-        while ((to = ix[i].next) != i) {
+        while ((to = ix[i].refs) != i) {
             irc__rec_swap(c, i, to);
             e = ix[i];
             ix[i] = ix[to];
             ix[to] = e;
             irc__swap_used(c, i, to);
         }
+    irc__recount(c, count);
+}
+
+/* Every record below count has one home, and every reference of the pool
+ * below refs_used is in a list or given back: else there is no
+ * permutation, and the index is left as it is. */
+static int irc__homes_numbered(irc_cache *c)
+{
+    const irc_cache *h = c->home;
+    uint32_t r, n = 0, k = 0;
+    for (r = h->ref_free; r != IRC__NIL && n <= h->refs_used; r = irc__refs(c)[r].next)
+        n++;
+    if (h->indexed != h->count || n + h->refs_live != h->refs_used)
+        return 0;
+    for (r = 0; r < h->count; r++)
+        irc__ix(c)[r].refs = IRC__NIL;
+    irc__walk_nodes(c, irc__number_homes, &k);
+    for (r = 0; r < h->count; r++)
+        if (irc__ix(c)[r].refs == IRC__NIL)
+            break;
+    return k == h->count && r == h->count;
 }
 
 void irc__index_compact(irc_cache *c)
 {
-    uint32_t n = 0, k = 0;
-    irc__runs runs;
-    irc__walk_nodes(c, irc__count_list, &n);
-    /* Every slot below count is indexed; if not, ids cannot be a
-     * permutation, and the lists are left as they are. */
-    IRC_ASSERT(n == c->home->count);
-    if (n != c->home->count || n == 0)
+    const uint32_t count = c->home->count, live = c->home->refs_live;
+    uint32_t k = 0;
+    if (count == 0)
         return;
+    if (!irc__homes_numbered(c)) {
+        IRC_ASSERT(0);
+        irc__recount(c, count);
+        return;
+    }
     irc__walk_nodes(c, irc__number_list, &k);
-    irc__permute(c, n);
-    runs.open = IRC__NIL;
-    irc__walk_nodes(c, irc__link_list, &runs);
-    irc__close_run(c, runs.open, n);
+    irc__permute_refs(c, live);
+    irc__permute(c, count, live);
 }
 
 /* Inserted one after another, records split the leaves they land in
@@ -157,6 +203,7 @@ void irc__index_clear(irc_cache *c)
 {
     IRC_MEMSET(irc__ix(c), 0, (size_t)c->capacity * sizeof(irc__ixe));
     IRC_MEMSET(irc__nodes(c), 0, (size_t)c->home->nodes_used * sizeof(irc__node));
+    IRC_MEMSET(irc__refs(c), 0, (size_t)c->home->refs_used * sizeof(irc__ref));
     irc__index_reset(c);
 }
 

@@ -1,30 +1,46 @@
 /*
- * index.c -- an octree over record positions, inside the caller's block.
+ * index.c -- an octree over record reaches, inside the caller's block.
  *
- * A record sits in the deepest node whose children are at least as large as
- * its reach a*R_i (a loose octree: a subtree's records reach at most one
- * node size past its cube).  Cubes lie on a power-of-two grid, so every
- * centre is exact in double and placement never depends on rounding.
- * Each node keeps the largest reach in its subtree, and a query descends
- * only into children whose cube lies within that reach of the query point,
- * which is exact: a record whose sphere holds p lies in a cube no farther
- * from p than the record's reach.  In a node's list a query tests each
- * record's index entry (cache.h, irc__ixe: position and reach in 16-bit
- * steps of the node's cube, rounded so the test admits a superset) and
- * hands over only the records that pass, for the caller's exact test.
+ * A record's reach a*R_i spans a box; the record is referenced (index.h,
+ * irc__ref) in every node its box overlaps at its level, the deepest
+ * whose cells are at least as wide as the box, so at most two a side and
+ * eight in all, or in a leaf above that level where the tree is not yet
+ * that deep.  Those nodes' cubes cover the box, so every point the record
+ * may serve lies in one of them, and a lookup follows the one path of
+ * nodes that holds its point, from the root down, testing each list
+ * (pbrt-v2's irradiance cache keeps its octree so).  One of a record's
+ * references, its home, sits in the node whose cube holds its position:
+ * walks over a range take only homes, which the cube tests prune exactly
+ * as before, and see each record once.
  *
- * A leaf with more than IRC__SPLIT records splits when the node pool has a
- * block of 8 free.  The root is not tied to a grid through the origin: a
- * scene centred on the origin would otherwise need a cube that holds 0 in
- * its interior, which no cube of such a grid does, and its records would
- * pile up in the root's list.  While the root is a leaf it is resized
- * freely; when it first splits it is fitted to its records' positions
- * (not their reaches, which may be 1e30); afterwards it doubles toward
- * records that land outside it, the old root becoming one of its children.
- * Centres stay exact because the root's half edge is kept at least 1/32 of
- * its centre's largest coordinate, splits stop at depth IRC__DEPTH and
- * growth at IRC__LEVELS.
- * When the pool is spent, lists grow instead: slower, never wrong.
+ * Coordinates are turned into integers, 2^-58 root edges from the root's
+ * low corner (query.c), and a cell at depth d spans 2^(58 - d) of them:
+ * which cells a box overlaps, and which cell holds a point, are integer
+ * comparisons, and a lookup's point rounds down exactly (query.c), so it
+ * always meets the nodes its record's box was placed in.  The box is
+ * widened by a relative 1e-5 and 1e-6 of the position's size, more than
+ * the roundings of the box's ends in double and of the exact test a
+ * candidate then passes.  A record whose box is not inside the root, or
+ * whose reach is wider than the root, is referenced once, in the root's
+ * list, which every walk scans.
+ *
+ * A leaf with more than IRC__SPLIT references splits when the node pool
+ * has a block of 8 free; the references of records whose level lies
+ * deeper move to the children their boxes overlap.  The root is not tied
+ * to a grid through the origin: a scene centred on the origin would
+ * otherwise need a cube that holds 0 in its interior, which no cube of
+ * such a grid does.  While the root is a leaf it is resized freely; when
+ * it first splits it is fitted to its records' positions (not their
+ * reaches, which may be 1e30); afterwards it doubles toward records that
+ * land outside it, the old root becoming one of its children.  Centres
+ * stay exact because the root's half edge is kept at least 1/32 of its
+ * centre's largest coordinate, splits stop at depth IRC__DEPTH and growth
+ * at IRC__LEVELS.
+ *
+ * References come from a pool of the block's (layout.c) that always
+ * keeps one for each record not yet indexed: when it runs short a record
+ * is placed a level up, in fewer and larger nodes, and leaves stop
+ * splitting.  Slower then, never wrong.
  */
 #include "cache.h"
 #include "index.h"
@@ -39,11 +55,26 @@
  * past 1e30, where a squared distance is past FLT_MAX anyway) stay in the
  * root's list, always candidates. */
 #define IRC__ROOT_MAX 0x1p99
+#define IRC__ONE ((int64_t)1 << 58) /* the root's edge in integer units */
+#define IRC__FRONT 27               /* cells a box can overlap at one depth */
 
 typedef struct irc__cube {
     double c[3];
     double h; /* half the edge */
 } irc__cube;
+
+/* A record's box in integer units (inside: within the root), and the
+ * cell point of its position. */
+typedef struct irc__box {
+    int64_t lo[3], hi[3], at[3];
+    int inside;
+} irc__box;
+
+/* A node met on a walk at some depth: its index and low corner. */
+typedef struct irc__cell {
+    uint32_t node;
+    int64_t lo[3];
+} irc__cell;
 
 static void irc__node_empty(irc__node *n)
 {
@@ -56,75 +87,254 @@ void irc__index_reset(irc_cache *c)
 {
     irc__node_empty(&irc__nodes(c)[0]);
     c->home->nodes_used = 1;
+    c->home->refs_used = 0;
+    c->home->ref_free = IRC__NIL;
+    c->home->refs_live = 0;
+    c->home->indexed = 0;
     c->home->root_set = 0;
     c->home->depth = 0;
 }
 
-static double irc__reach(const irc_cache *c, uint32_t id)
+static void irc__root_cube(const irc_cache *c, irc__cube *q)
 {
-    return (double)c->cfg.accuracy * (double)irc__rec_at(c, id)->r;
+    q->c[0] = c->home->root_c[0];
+    q->c[1] = c->home->root_c[1];
+    q->c[2] = c->home->root_c[2];
+    q->h = c->home->root_h;
 }
 
-static int irc__inside(const irc__cube *q, const float p[3])
+/* The cube of the cell of depth d with low corner lo (units). */
+static void irc__cell_cube(const irc_cache *c, const int64_t lo[3], int d, irc__cube *q)
 {
-    return IRC_FABS((double)p[0] - q->c[0]) <= q->h && IRC_FABS((double)p[1] - q->c[1]) <= q->h &&
-           IRC_FABS((double)p[2] - q->c[2]) <= q->h;
-}
-
-/* The root holds no point on its upper faces.  When it grows, the old
- * root becomes a child, and a face it shares with a new sibling is its
- * lower face on every axis but those it grows up along, where it is its
- * upper face; the octant rule sends a point on a shared face to the
- * upper side.  So no record is ever where removal, following that rule,
- * would not look (test_index_grow_faces). */
-static int irc__in_root(const irc__cube *q, const float p[3])
-{
+    const double unit = 2.0 * c->home->root_h * 0x1p-58;
     int i;
+    q->h = IRC_LDEXP(c->home->root_h, -d);
     for (i = 0; i < 3; i++)
-        if (!((double)p[i] >= q->c[i] - q->h && (double)p[i] < q->c[i] + q->h))
-            return 0;
-    return 1;
+        q->c[i] = c->home->root_c[i] - c->home->root_h + (double)lo[i] * unit + q->h;
 }
 
-static int irc__octant(const irc__cube *q, const float p[3])
+/* The half edge of the box a record of this reach is placed by: wider
+ * than the reach by what the roundings need (file comment). */
+static double irc__half(const float p[3], double reach)
 {
-    return ((double)p[0] >= q->c[0]) | ((double)p[1] >= q->c[1]) << 1 |
-           ((double)p[2] >= q->c[2]) << 2;
+    double m = IRC_FABS((double)p[0]);
+    if (IRC_FABS((double)p[1]) > m) m = IRC_FABS((double)p[1]);
+    if (IRC_FABS((double)p[2]) > m) m = IRC_FABS((double)p[2]);
+    return reach * (1.0 + 1e-5) + m * 1e-6 + 1e-30;
 }
 
-static void irc__child_cube(const irc__cube *q, int oct, irc__cube *out)
+/* floor((x - lo) K) in units for the root's low corner lo, K = 2^57 / h:
+ * x K is exact in double (a power of two), lo K an exact integer
+ * (irc__index_root_sane), so the floor is the one a lookup's point takes
+ * (query.c); (x - lo) K would round to lo's precision.  Clamped to
+ * 2^61, far outside the root. */
+static int64_t irc__units(double x, double k, double lok)
 {
+    double v = IRC_FLOOR(x * k);
+    v = v < -0x1p61 ? -0x1p61 : v > 0x1p61 ? 0x1p61 : v;
+    return (int64_t)v - (int64_t)lok;
+}
+
+/* The box clipped to the root (inside: it needed no clipping). */
+static void irc__box_of(const irc_cache *c, const float p[3], double half, irc__box *b)
+{
+    const double k = 0x1p57 / c->home->root_h; /* units a length */
+    const int64_t top = IRC__ONE - 1;
     int i;
-    out->h = 0.5 * q->h;
+    b->inside = 1;
+    for (i = 0; i < 3; i++) {
+        const double lok = (c->home->root_c[i] - c->home->root_h) * k;
+        const int64_t x0 = irc__units((double)p[i] - half, k, lok),
+                      x1 = irc__units((double)p[i] + half, k, lok),
+                      xc = irc__units((double)p[i], k, lok);
+        b->inside &= x0 >= 0 && x1 <= top;
+        b->lo[i] = x0 < 0 ? 0 : x0 > top ? top : x0;
+        b->hi[i] = x1 < 0 ? 0 : x1 > top ? top : x1;
+        b->at[i] = xc < 0 ? 0 : xc > top ? top : xc;
+    }
+}
+
+/* The deepest level whose cells' edge is at least the box's 2 half: the
+ * box then overlaps at most two a side. */
+#ifndef IRC__LEVEL_ROOM
+#define IRC__LEVEL_ROOM 1.0
+#endif
+static int irc__level(const irc_cache *c, double half, int cap)
+{
+    double h = c->home->root_h;
+    int d = 0;
+    while (d < cap && 0.5 * h >= half * IRC__LEVEL_ROOM) {
+        h *= 0.5;
+        d++;
+    }
+    return d;
+}
+
+/* Sets a reference's position and reach in the steps of cube q's frame,
+ * the position rounded to the nearest step (at most half a step off per
+ * axis) and the reach up, so a query's test on references (query.c) can
+ * only admit more than the exact test. */
+static void irc__quantize(irc__ref *e, const irc__cube *q, const float p[3], double reach)
+{
+    const double inv = 16383.75 / q->h, r = -IRC_FLOOR(-reach * inv);
+    int i, in = r < (double)IRC__IX_ANY;
     for (i = 0; i < 3; i++)
-        out->c[i] = q->c[i] + (oct >> i & 1 ? out->h : -out->h);
-}
-
-/* Sets id's entry for the list of the node with cube q.  The position is
- * rounded to the nearest step (at most half a step off per axis) and the
- * reach up, so a query's test on entries (irc__scan) can only admit more
- * than the exact test. */
-static void irc__quantize(const irc_cache *c, uint32_t id, const irc__cube *q, double reach)
-{
-    irc__ixe *e = &irc__ix(c)[id];
-    const float *p = irc__rec_at(c, id)->p;
-    double inv = 32767.5 / q->h, r = -IRC_FLOOR(-reach * inv);
-    int i;
-    if (!irc__inside(q, p) || !(r < (double)IRC__IX_ANY)) {
+        in &= IRC_FABS((double)p[i] - q->c[i]) <= 2.0 * q->h;
+    if (!in) {
         e->q[0] = e->q[1] = e->q[2] = 0;
         e->rq = IRC__IX_ANY;
         return;
     }
     for (i = 0; i < 3; i++)
-        e->q[i] = (uint16_t)IRC_FLOOR(((double)p[i] - (q->c[i] - q->h)) * inv + 0.5);
+        e->q[i] = (uint16_t)IRC_FLOOR(((double)p[i] - (q->c[i] - 2.0 * q->h)) * inv + 0.5);
     e->rq = (uint16_t)r;
 }
 
-/* Records in a list, counted up to limit. */
-static uint32_t irc__list_len(const irc_cache *c, uint32_t id, uint32_t limit)
+/* References an insertion may take beyond the one kept for it. */
+static uint32_t irc__spare(const irc_cache *c)
+{
+    const irc_cache *h = c->home;
+    return c->ref_cap - h->refs_live - (c->capacity - h->indexed);
+}
+
+static uint32_t irc__ref_take(irc_cache *c)
+{
+    irc_cache *h = c->home;
+    uint32_t r = h->ref_free;
+    if (r != IRC__NIL)
+        h->ref_free = irc__refs(c)[r].next;
+    else
+        r = h->refs_used++;
+    h->refs_live++;
+    return r;
+}
+
+static void irc__ref_give(irc_cache *c, uint32_t r)
+{
+    irc__refs(c)[r].next = c->home->ref_free;
+    c->home->ref_free = r;
+    c->home->refs_live--;
+}
+
+/* A new reference to id at the head of node's list, whose cube is q. */
+static void irc__ref_push(irc_cache *c, uint32_t node, const irc__cube *q, uint32_t id,
+                          int home)
+{
+    const uint32_t r = irc__ref_take(c);
+    irc__ref *e = &irc__refs(c)[r];
+    irc__node *n = &irc__nodes(c)[node];
+    irc__quantize(e, q, irc__rec_at(c, id)->p, (double)irc__ix(c)[id].reach);
+    e->id = id | (home ? IRC__REF_HOME : 0u);
+    e->next = n->head;
+    n->head = r;
+}
+
+/* Calls fn on the nodes a box overlaps down to depth L: every one (all
+ * set) or those where its references go, the leaves above L and the
+ * nodes of depth L.  Depth by depth, at most IRC__FRONT at each (a box of
+ * its level overlaps at most 8; removal's widened box, 27). */
+typedef void (*irc__cell_fn)(irc_cache *c, const irc__cell *x, int d, void *ud);
+
+static void irc__cover(irc_cache *c, const irc__box *b, int L, int all, irc__cell_fn fn,
+                       void *ud)
+{
+    irc__cell f[2][IRC__FRONT];
+    int nf = 1, cur = 0, d;
+    f[0][0].node = 0;
+    f[0][0].lo[0] = f[0][0].lo[1] = f[0][0].lo[2] = 0;
+    for (d = 0; nf; d++, cur ^= 1) {
+        int nn = 0, k;
+        for (k = 0; k < nf; k++) {
+            const irc__cell *x = &f[cur][k];
+            const irc__node *n = &irc__nodes(c)[x->node];
+            const int64_t e = IRC__ONE >> (d + 1);
+            unsigned oct;
+            if (all || d >= L || !n->child)
+                fn(c, x, d, ud);
+            if (d >= L || !n->child || d >= IRC__LEVELS)
+                continue;
+            for (oct = 0; oct < 8; oct++) {
+                irc__cell y;
+                int i, in = 1;
+                for (i = 0; i < 3; i++) {
+                    y.lo[i] = x->lo[i] + ((oct >> i & 1) ? e : 0);
+                    in &= b->lo[i] < y.lo[i] + e && b->hi[i] >= y.lo[i];
+                }
+                y.node = n->child + oct;
+                if (in && nn < IRC__FRONT)
+                    f[cur ^ 1][nn++] = y;
+            }
+        }
+        nf = nn;
+    }
+}
+
+static int irc__holds(const irc__cell *x, int d, const int64_t at[3])
+{
+    const int64_t e = IRC__ONE >> d;
+    return at[0] - x->lo[0] < e && at[1] - x->lo[1] < e && at[2] - x->lo[2] < e &&
+           at[0] >= x->lo[0] && at[1] >= x->lo[1] && at[2] >= x->lo[2];
+}
+
+/* The reaches on the path to the home of a record at cell point at, down
+ * to depth d, grown to cover reach. */
+static void irc__reach_path(irc_cache *c, const int64_t at[3], int d, float reach)
+{
+    irc__node *n = &irc__nodes(c)[0];
+    int k;
+    for (k = 0;; k++) {
+        if (reach > n->reach)
+            n->reach = reach;
+        if (k == d || !n->child)
+            return;
+        n = &irc__nodes(c)[n->child + (uint32_t)((at[0] >> (57 - k) & 1) |
+                                                 (at[1] >> (57 - k) & 1) << 1 |
+                                                 (at[2] >> (57 - k) & 1) << 2)];
+    }
+}
+
+/* One placement: counts the nodes (push unset) or references the record
+ * in each, noting the leaves that may now split. */
+typedef struct irc__place {
+    uint32_t id, count, n_leaves, push;
+    irc__cell leaves[8];
+    int depths[8];
+    const irc__box *b;
+} irc__place;
+
+static void irc__place_at(irc_cache *c, const irc__cell *x, int d, void *ud)
+{
+    irc__place *pl = (irc__place *)ud;
+    irc__cube q;
+    int home;
+    pl->count++;
+    if (!pl->push)
+        return;
+    home = irc__holds(x, d, pl->b->at);
+    irc__cell_cube(c, x->lo, d, &q);
+    irc__ref_push(c, x->node, &q, pl->id, home);
+    if (home)
+        irc__reach_path(c, pl->b->at, d, irc__ix(c)[pl->id].reach);
+    if (!irc__nodes(c)[x->node].child && d < IRC__DEPTH && pl->n_leaves < 8) {
+        pl->leaves[pl->n_leaves] = *x;
+        pl->depths[pl->n_leaves++] = d;
+    }
+}
+
+/* A record's box and the level it goes to (0 for a box not inside the
+ * root: its one reference goes to the root's list). */
+static int irc__placement(const irc_cache *c, uint32_t id, irc__box *b)
+{
+    const float *p = irc__rec_at(c, id)->p;
+    const double half = irc__half(p, (double)irc__ix(c)[id].reach);
+    irc__box_of(c, p, half, b);
+    return b->inside ? irc__level(c, half, IRC__DEPTH) : 0;
+}
+
+static uint32_t irc__list_len(const irc_cache *c, uint32_t r, uint32_t limit)
 {
     uint32_t n = 0;
-    for (; id != IRC__NIL && n < limit; id = irc__ix(c)[id].next)
+    for (; r != IRC__NIL && n < limit; r = irc__refs(c)[r].next)
         n++;
     return n;
 }
@@ -140,70 +350,96 @@ static uint32_t irc__block_alloc(irc_cache *c)
     return b;
 }
 
-static void irc__root_cube(const irc_cache *c, irc__cube *q)
+/* The children of cell x (depth d) that box b overlaps, as bits. */
+static unsigned irc__overlapped(const irc__cell *x, int d, const irc__box *b)
 {
-    q->c[0] = c->home->root_c[0];
-    q->c[1] = c->home->root_c[1];
-    q->c[2] = c->home->root_c[2];
-    q->h = c->home->root_h;
-}
-
-static void irc__push(irc_cache *c, irc__node *n, const irc__cube *q, uint32_t id,
-                      double reach)
-{
-    irc__quantize(c, id, q, reach);
-    irc__ix(c)[id].next = n->head;
-    n->head = id;
-    if (reach > (double)n->reach)
-        n->reach = (float)reach;
-}
-
-/* The node a record belongs in by the placement rule; the path's reaches
- * grow to cover it when grow is set. */
-static irc__node *irc__home(irc_cache *c, const float p[3], double reach,
-                            int grow, irc__cube *q, int *depth)
-{
-    irc__node *n = &irc__nodes(c)[0];
-    irc__root_cube(c, q);
-    *depth = 0;
-    for (;;) {
-        if (grow && reach > (double)n->reach)
-            n->reach = (float)reach;
-        if (!n->child || !irc__inside(q, p) || 0.5 * q->h < reach ||
-            *depth >= IRC__DEPTH) {
-            return n;
-        } else {
-            int oct = irc__octant(q, p);
-            irc__cube cq;
-            irc__child_cube(q, oct, &cq);
-            *q = cq;
-            n = &irc__nodes(c)[n->child + (uint32_t)oct];
-            ++*depth;
+    const int64_t e = IRC__ONE >> (d + 1);
+    unsigned oct, mask = 0;
+    for (oct = 0; oct < 8; oct++) {
+        int i, in = 1;
+        for (i = 0; i < 3; i++) {
+            const int64_t lo = x->lo[i] + ((oct >> i & 1) ? e : 0);
+            in &= b->lo[i] < lo + e && b->hi[i] >= lo;
         }
+        mask |= (unsigned)in << oct;
     }
+    return mask;
 }
 
-static void irc__split(irc_cache *c, irc__node *n, const irc__cube *q, int depth)
+static unsigned irc__bits(unsigned m)
 {
-    uint32_t b = irc__block_alloc(c), id, keep = IRC__NIL, nid;
-    if (!b)
+    unsigned n = 0;
+    for (; m; m &= m - 1)
+        n++;
+    return n;
+}
+
+/* Whether a reference in a node of depth d moves down when it splits:
+ * its record's level lies deeper.  Sets the children it goes to. */
+static int irc__moves(const irc_cache *c, uint32_t id, const irc__cell *x, int d, unsigned *mask)
+{
+    irc__box b;
+    if (irc__placement(c, id, &b) <= d)
+        return 0;
+    *mask = irc__overlapped(x, d, &b);
+    return *mask != 0;
+}
+
+/* Splits leaf x of depth d when the pool has a block and the references
+ * its records' moves take. */
+static void irc__split(irc_cache *c, const irc__cell *x, int d)
+{
+    irc__node *n = &irc__nodes(c)[x->node];
+    irc__ref *refs = irc__refs(c);
+    uint32_t r, nr, keep = IRC__NIL, extra = 0, moving = 0, len = 0, b;
+    unsigned mask;
+    if (c->node_cap - c->home->nodes_used < 8u)
+        return;
+    for (r = n->head; r != IRC__NIL; r = refs[r].next, len++)
+        if (irc__moves(c, refs[r].id & ~IRC__REF_HOME, x, d, &mask)) {
+            extra += irc__bits(mask) - 1u;
+            moving++;
+        }
+    /* Not for a list that would mostly stay: its nodes would be spent
+     * on nothing. */
+    if (2u * moving <= len || extra > irc__spare(c) || !(b = irc__block_alloc(c)))
         return;
     n->child = b;
-    if ((uint32_t)depth + 1u > c->home->depth)
-        c->home->depth = (uint32_t)depth + 1u;
-    for (id = n->head; id != IRC__NIL; id = nid) {
-        double reach = irc__reach(c, id);
-        const float *p = irc__rec_at(c, id)->p;
-        nid = irc__ix(c)[id].next;
-        if (0.5 * q->h >= reach && irc__inside(q, p)) {
-            int oct = irc__octant(q, p);
-            irc__cube cq;
-            irc__child_cube(q, oct, &cq);
-            irc__push(c, &irc__nodes(c)[b + (uint32_t)oct], &cq, id, reach);
-        } else {
-            irc__ix(c)[id].next = keep;
-            keep = id;
+    if ((uint32_t)d + 1u > c->home->depth)
+        c->home->depth = (uint32_t)d + 1u;
+    for (r = n->head; r != IRC__NIL; r = nr) {
+        const uint32_t id = refs[r].id & ~IRC__REF_HOME;
+        irc__box bx;
+        unsigned oct;
+        int homed;
+        nr = refs[r].next;
+        if (!irc__moves(c, id, x, d, &mask)) {
+            refs[r].next = keep;
+            keep = r;
+            continue;
         }
+        irc__placement(c, id, &bx);
+        homed = !(refs[r].id & IRC__REF_HOME);
+        for (oct = 0; oct < 8; oct++) {
+            irc__cell y;
+            irc__cube q;
+            int i, home;
+            if (!(mask >> oct & 1u))
+                continue;
+            for (i = 0; i < 3; i++)
+                y.lo[i] = x->lo[i] + ((oct >> i & 1) ? IRC__ONE >> (d + 1) : 0);
+            y.node = b + oct;
+            /* the child that holds the position; the last one if rounding
+             * put it in none (its box's ends are computed afresh) */
+            home = !homed && (irc__holds(&y, d + 1, bx.at) || mask >> oct == 1u);
+            homed |= home;
+            irc__cell_cube(c, y.lo, d + 1, &q);
+            irc__ref_push(c, y.node, &q, id, home);
+            if (home && irc__ix(c)[id].reach > irc__nodes(c)[y.node].reach)
+                irc__nodes(c)[y.node].reach = irc__ix(c)[id].reach;
+        }
+        irc__ix(c)[id].refs += irc__bits(mask) - 1u;
+        irc__ref_give(c, r);
     }
     n->head = keep;
 }
@@ -257,41 +493,84 @@ static void irc__root_fit(irc_cache *c, const double lo[3], const double hi[3])
     IRC_ASSERT(irc__index_root_sane(c->home)); /* what the walk relies on */
 }
 
-/* Refits a leaf root to the positions it holds and p. */
+/* The root holds no point on its upper faces: a point on a face shared by
+ * two cells belongs to the upper one (its integer image, query.c). */
+static int irc__in_root(const irc__cube *q, const float p[3])
+{
+    int i;
+    for (i = 0; i < 3; i++)
+        if (!((double)p[i] >= q->c[i] - q->h && (double)p[i] < q->c[i] + q->h))
+            return 0;
+    return 1;
+}
+
+/* Refits a leaf root to the positions it holds and p, and to their
+ * reaches' boxes where a box is no wider than the positions' spread (a
+ * wider one is placed in the root's list whatever the root); its
+ * references, all homes, are quantized again. */
 static void irc__root_refit(irc_cache *c, const float p[3])
 {
-    double lo[3], hi[3];
+    double lo[3], hi[3], span = 0.0;
     irc__cube q;
-    uint32_t id;
+    irc__ref *refs = irc__refs(c);
+    const uint32_t head = irc__nodes(c)[0].head;
+    uint32_t r;
     int i;
     for (i = 0; i < 3; i++)
         lo[i] = hi[i] = (double)p[i];
-    for (id = irc__nodes(c)[0].head; id != IRC__NIL; id = irc__ix(c)[id].next)
+    for (r = head; r != IRC__NIL; r = refs[r].next)
         for (i = 0; i < 3; i++) {
-            double x = (double)irc__rec_at(c, id)->p[i];
+            double x = (double)irc__rec_at(c, refs[r].id & ~IRC__REF_HOME)->p[i];
             if (x < lo[i]) lo[i] = x;
             if (x > hi[i]) hi[i] = x;
         }
+    for (i = 0; i < 3; i++)
+        if (hi[i] - lo[i] > span)
+            span = hi[i] - lo[i];
+    for (r = head; r != IRC__NIL; r = refs[r].next) {
+        const float *x = irc__rec_at(c, refs[r].id & ~IRC__REF_HOME)->p;
+        const double half = irc__half(x, (double)irc__ix(c)[refs[r].id & ~IRC__REF_HOME].reach);
+        for (i = 0; half <= span && i < 3; i++) {
+            if ((double)x[i] - half < lo[i]) lo[i] = (double)x[i] - half;
+            if ((double)x[i] + half > hi[i]) hi[i] = (double)x[i] + half;
+        }
+    }
     irc__root_fit(c, lo, hi);
     irc__root_cube(c, &q);
-    for (id = irc__nodes(c)[0].head; id != IRC__NIL; id = irc__ix(c)[id].next)
-        irc__quantize(c, id, &q, irc__reach(c, id));
+    for (r = head; r != IRC__NIL; r = refs[r].next) {
+        const uint32_t id = refs[r].id & ~IRC__REF_HOME;
+        irc__quantize(&refs[r], &q, irc__rec_at(c, id)->p, (double)irc__ix(c)[id].reach);
+    }
 }
 
 /* Doubles a root that has children toward p: the old root becomes the
- * child on the side away from p.  The records the old root held that no
- * longer fit a child (too large, or outside its cube) move up. */
+ * child on the side away from p.  The references the old root held whose
+ * boxes are not inside it move up. */
 static int irc__grow(irc_cache *c, const float p[3])
 {
     irc__cube old, now;
-    uint32_t b, id, nid, keep = IRC__NIL;
+    irc__ref *refs = irc__refs(c);
+    uint32_t b, r, nr, keep = IRC__NIL, up = IRC__NIL;
     irc__node *was, *nodes;
     int i, oct = 0;
     if (2.0 * c->home->root_h > IRC__ROOT_MAX || c->home->depth >= IRC__LEVELS ||
         !(b = irc__block_alloc(c)))
         return 0;
-    c->home->depth++;
     nodes = irc__nodes(c);
+    for (r = nodes[0].head; r != IRC__NIL; r = nr) {
+        irc__box bx;
+        nr = refs[r].next;
+        irc__placement(c, refs[r].id & ~IRC__REF_HOME, &bx);
+        if (bx.inside) {
+            refs[r].next = keep;
+            keep = r;
+        } else {
+            refs[r].next = up;
+            up = r;
+        }
+    }
+    nodes[0].head = keep;
+    c->home->depth++;
     irc__root_cube(c, &old);
     for (i = 0; i < 3; i++) {
         /* up only where p lies past the upper face (irc__in_root) */
@@ -306,16 +585,13 @@ static int irc__grow(irc_cache *c, const float p[3])
     nodes[0].child = b;
     nodes[0].reach = was->reach;
     irc__root_cube(c, &now);
-    for (id = was->head; id != IRC__NIL; id = nid) {
-        nid = irc__ix(c)[id].next;
-        if (irc__reach(c, id) > old.h || !irc__inside(&old, irc__rec_at(c, id)->p)) {
-            irc__push(c, &nodes[0], &now, id, irc__reach(c, id));
-        } else {
-            irc__ix(c)[id].next = keep;
-            keep = id;
-        }
+    for (r = up; r != IRC__NIL; r = nr) {
+        const uint32_t id = refs[r].id & ~IRC__REF_HOME;
+        nr = refs[r].next;
+        irc__quantize(&refs[r], &now, irc__rec_at(c, id)->p, (double)irc__ix(c)[id].reach);
+        refs[r].next = nodes[0].head;
+        nodes[0].head = r;
     }
-    was->head = keep;
     IRC_ASSERT(irc__index_root_sane(c->home));
     return 1;
 }
@@ -347,52 +623,114 @@ static void irc__root_cover(irc_cache *c, const float p[3])
 void irc__index_insert(irc_cache *c, uint32_t id)
 {
     const float *p = irc__rec_at(c, id)->p;
-    double reach = irc__reach(c, id);
-    irc__cube q;
-    irc__node *n;
-    int depth;
+    irc__ixe *e = &irc__ix(c)[id];
+    irc__place pl;
+    irc__box b;
+    uint32_t k;
+    int L;
+    double half;
+    IRC_ASSERT(e->refs == 0);
+    e->reach = (float)((double)c->cfg.accuracy * (double)irc__rec_at(c, id)->r);
+    half = irc__half(p, (double)e->reach);
     irc__root_cover(c, p);
     if (!irc__nodes(c)[0].child && c->home->root_h < IRC__ROOT_MAX &&
         irc__list_len(c, irc__nodes(c)[0].head, IRC__SPLIT) >= IRC__SPLIT)
         irc__root_refit(c, p);
-    n = irc__home(c, p, reach, 1, &q, &depth);
-    irc__push(c, n, &q, id, reach);
-    if (!n->child && depth < IRC__DEPTH && irc__inside(&q, p) &&
-        irc__list_len(c, n->head, IRC__SPLIT + 1u) > IRC__SPLIT)
-        irc__split(c, n, &q, depth);
+    if (half < c->home->root_h) {
+        /* the box's corners too, rounded outward: a box the root cuts
+         * (records on the face it was fitted to) would be placed in the
+         * root's list */
+        float lo[3], hi[3];
+        int i;
+        for (i = 0; i < 3; i++) {
+            lo[i] = (float)((double)p[i] - half * (1.0 + 1e-6) - 1e-30);
+            hi[i] = (float)((double)p[i] + half * (1.0 + 1e-6) + 1e-30);
+        }
+        irc__root_cover(c, lo);
+        irc__root_cover(c, hi);
+    }
+    L = irc__placement(c, id, &b);
+    IRC_MEMSET(&pl, 0, sizeof pl);
+    pl.id = id;
+    pl.b = &b;
+    /* A level up while the references it takes are more than the pool
+     * can spare: at the root it takes one, which the pool keeps. */
+    for (;;) {
+        pl.count = 0;
+        if (b.inside)
+            irc__cover(c, &b, L, 0, irc__place_at, &pl);
+        if (pl.count <= irc__spare(c) + 1u || L == 0)
+            break;
+        L--;
+    }
+    pl.push = 1;
+    pl.count = 0;
+    if (b.inside) {
+        irc__cover(c, &b, L, 0, irc__place_at, &pl);
+    } else {
+        irc__cube q;
+        irc__root_cube(c, &q);
+        irc__ref_push(c, 0, &q, id, 1);
+        if (e->reach > irc__nodes(c)[0].reach)
+            irc__nodes(c)[0].reach = e->reach;
+        pl.count = 1;
+    }
+    e->refs = pl.count;
+    c->home->indexed++;
+    /* A leaf is tried for a split when its list passes SPLIT and every
+     * SPLIT references after: one that may not split (no nodes or
+     * references to spare, or a list mostly of its own level) is not
+     * tried again each time, and a child that took a long list from its
+     * parent's split is split in its turn. */
+    for (k = 0; k < pl.n_leaves; k++) {
+        const uint32_t len = irc__list_len(c, irc__nodes(c)[pl.leaves[k].node].head, IRC__NIL);
+        if (len > IRC__SPLIT && (len - 1u) % IRC__SPLIT == 0)
+            irc__split(c, &pl.leaves[k], pl.depths[k]);
+    }
 }
 
-/* Unlinks id from the first list on the path to its home that holds it:
- * neighbour clamping may have shrunk its reach since it was placed, which
- * only moves its home deeper along the same path. */
-static int irc__unlink(irc_cache *c, irc__node *n, uint32_t id)
+/* Removal: every list of a node the record's box (widened: the root may
+ * have grown since, and the box's ends round another way; clipped to the
+ * root, whose list is always searched) overlaps, unlinked of its
+ * references. */
+typedef struct irc__unlink {
+    uint32_t id, found;
+} irc__unlink;
+
+static void irc__unlink_at(irc_cache *c, const irc__cell *x, int d, void *ud)
 {
-    uint32_t *link = &n->head;
-    while (*link != IRC__NIL && *link != id)
-        link = &irc__ix(c)[*link].next;
-    if (*link != id)
-        return 0;
-    *link = irc__ix(c)[id].next;
-    return 1;
+    irc__unlink *u = (irc__unlink *)ud;
+    irc__ref *refs = irc__refs(c);
+    uint32_t *link = &irc__nodes(c)[x->node].head;
+    (void)d;
+    while (*link != IRC__NIL) {
+        const uint32_t r = *link;
+        if ((refs[r].id & ~IRC__REF_HOME) == u->id) {
+            *link = refs[r].next;
+            irc__ref_give(c, r);
+            u->found++;
+        } else {
+            link = &refs[r].next;
+        }
+    }
 }
 
 void irc__index_remove(irc_cache *c, uint32_t id)
 {
     const float *p = irc__rec_at(c, id)->p;
-    irc__node *n = &irc__nodes(c)[0];
-    irc__cube q;
-    int depth = 0, found;
-    irc__root_cube(c, &q);
-    while (!(found = irc__unlink(c, n, id)) && n->child && irc__inside(&q, p) &&
-           depth < IRC__LEVELS) {
-        int oct = irc__octant(&q, p);
-        irc__cube cq;
-        irc__child_cube(&q, oct, &cq);
-        q = cq;
-        n = &irc__nodes(c)[n->child + (uint32_t)oct];
-        depth++;
-    }
-    IRC_ASSERT(found);
-    (void)found;
+    irc__ixe *e = &irc__ix(c)[id];
+    const double half = irc__half(p, (double)e->reach);
+    irc__unlink u;
+    irc__box b;
+    u.id = id;
+    u.found = 0;
+    /* Down to its level as the root now stands (deeper by the root's
+     * growths than when it was placed, never by more). */
+    irc__box_of(c, p, half * (1.0 + 1e-4), &b);
+    irc__cover(c, &b, irc__level(c, half, IRC__LEVELS), 1, irc__unlink_at, &u);
+    IRC_ASSERT(u.found == e->refs);
+    if (e->refs)
+        c->home->indexed--;
+    e->refs = 0;
     /* Reaches are left as they are: an upper bound stays exact. */
 }

@@ -1,6 +1,6 @@
 /*
- * index.h -- the octree over record positions (index.c) and its
- * compaction into query order (compact.c).
+ * index.h -- the octree over record reaches (index.c), its walks
+ * (query.c) and its compaction into query order (compact.c).
  */
 #ifndef IRC_INDEX_H
 #define IRC_INDEX_H
@@ -10,31 +10,43 @@
 /* Octree node.  Its cube is implied by the path from the root.  12 bytes. */
 typedef struct irc__node {
     uint32_t child;  /* first of 8 consecutive children, 0 = leaf */
-    uint32_t head;   /* first record stored at this node (IRC__NIL = none) */
-    float reach;     /* largest a*R_i of any record in this subtree */
+    uint32_t head;   /* first reference in this node's list, IRC__NIL = none */
+    float reach;     /* largest reach a*R_i of a record whose home lies in
+                        this subtree (-1: none); range walks prune by it */
 } irc__node;
 
 /* The deepest node below the root, growth included: a root that grows
  * makes every node one deeper, and refuses to once that would pass this
  * (records then stay in the root's list); a walk's stack holds a frame a
- * level (index.c, compact.c). */
+ * level (index.c, query.c, compact.c). */
 #define IRC__LEVELS 48
 
-/* A record's entry in the index, by id: its list link and its position and
- * reach a*R_i quantized against the cube (centre c, half edge h) of the
- * node whose list holds it, in steps of 2h/65535.  A query tests these
- * before it touches the record, and most candidates fail the test: it
- * reads 12 bytes, not a record's line.  Entries sit at their records'
- * ids, so one lookup's entries share lines only as far as their ids are
- * near: after a pass's end each list is a run of ids (compact.c).  12
- * bytes. */
-#define IRC__IX_ANY 0xffffu  /* rq: no bound in this cube's steps (a root
-                                record outside the cube, or a reach of
-                                2h or more): always a candidate */
-typedef struct irc__ixe {
-    uint16_t q[3];   /* (x - (c - h)) / step, rounded to nearest */
+/* A reference to a record in the list of a node whose cube its reach's box
+ * overlaps (index.c).  The record's position and reach a*R_i quantized
+ * against the node's cube widened to twice its edge (centre c, half edge
+ * h: [c - 2h, c + 2h] in steps of 4h/65535), which holds the position of
+ * every record placed in it by its level, so that a lookup tests these 8
+ * bytes and touches the record only when they pass.  16 bytes. */
+#define IRC__IX_ANY 0xffffu  /* rq: no bound in the cube's steps (a root
+                                reference to a record outside the frame,
+                                or a reach of 4h or more): always a
+                                candidate */
+#define IRC__REF_HOME 0x80000000u /* id: the reference in the node whose cube
+                                     holds the record's position, the one
+                                     range walks take */
+typedef struct irc__ref {
+    uint16_t q[3];   /* (x - (c - 2h)) / step, rounded to nearest */
     uint16_t rq;     /* reach / step, rounded up */
-    uint32_t next;   /* next record in the same list, IRC__NIL = last */
+    uint32_t id;     /* the record, | IRC__REF_HOME for its home */
+    uint32_t next;   /* next reference in the list, IRC__NIL = last */
+} irc__ref;
+
+/* A record's index entry, by id: the reach its references were placed for
+ * (clamping may shrink its radius since; removal finds them by this) and
+ * how many it has (0: not indexed).  8 bytes. */
+typedef struct irc__ixe {
+    float reach;
+    uint32_t refs;
 } irc__ixe;
 
 /* index.c */
@@ -49,7 +61,7 @@ void irc__index_compact(irc_cache *c); /* compact.c */
  * inserted into an empty index in a scattered order. */
 void irc__index_clear(irc_cache *c);
 void irc__index_rebuild(irc_cache *c);
-/* Returns the index entries it scanned (the work; tests check it). */
+/* query.c.  Returns the references it scanned (the work; tests check it). */
 uint32_t irc__index_query(const irc_cache *c, const float p[3], irc__visit_fn fn,
                           void *ud);
 /* 1 if a block's root cube is one the index could have made (layout.c's

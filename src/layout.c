@@ -6,7 +6,7 @@
  * the cache, which sits on the first 64-byte boundary after byte 0; from
  * there on:
  *   struct irc_cache | lock | scratch slots | records | index entries | nodes |
- *   counter stripes | CLOCK bits (only with eviction) | the strata's table
+ *   references | counter stripes | CLOCK bits (only with eviction) | the strata's table
  *   (the columns' angles for the sampler and the gradients' weights)
  * each part on a 64-byte boundary, reached by its offset from the cache.
  * So the footprint carries 64 bytes of slack, and irc_attach can find the
@@ -18,10 +18,10 @@
 #include "estimator.h"
 
 typedef struct irc__layout {
-    uint64_t lock, scratch, records, ix, nodes, ctr, used, gtab, total;
+    uint64_t lock, scratch, records, ix, nodes, refs, ctr, used, gtab, total;
     uint64_t slot_bytes, slot_rec, lock_bytes;
     uint64_t soff[IRC__S_COUNT];
-    uint32_t rec_size, off[IRC__PARTS], n_parts, node_cap, samples, keep_geom;
+    uint32_t rec_size, off[IRC__PARTS], n_parts, node_cap, ref_cap, samples, keep_geom;
     irc__recpart parts[IRC__PARTS];
 } irc__layout;
 
@@ -30,17 +30,37 @@ static uint64_t irc__up(uint64_t x)
     return (x + (IRC__ALIGN - 1)) & ~(uint64_t)(IRC__ALIGN - 1);
 }
 
-/* Index pool: the root plus one block of 8 children per 32 records, so
- * that the index (a 12-byte entry per record, 12-byte nodes) stays within
- * 16 bytes a record.  A leaf splits when more than 16 records sit in it,
- * and records lie on surfaces, which fill about half of a split's 8
- * children: records on a unit box (bench/bench_core.c) used 0.23 nodes a
- * record at 1e5 records, 0.26 at 1e6.  When the pool runs out, leaves
- * simply grow longer (lookups stay exact, only slower).  irc_stats reports
- * the nodes used. */
+/* Index pool: the root plus one block of 8 children per 8 records.  A
+ * leaf splits when more than 16 references sit in it and most of them
+ * belong deeper; records lie on surfaces, which fill about half of a
+ * split's 8 children: records on a unit box (bench/anchor.c) used 0.59
+ * nodes a record filled freely and all of the pool built in a pass (1.58
+ * with four times the pool, for 1.6% fewer instructions a lookup).  When
+ * the pool runs out, leaves simply grow longer (lookups stay exact, only
+ * slower).  irc_stats reports the nodes used. */
+#ifndef IRC__NODE_DIV
+#define IRC__NODE_DIV 4u
+#endif
 static uint32_t irc__node_cap(uint32_t capacity)
 {
-    return 1u + 8u * (capacity / 32u + 8u);
+    return 1u + 8u * (capacity / IRC__NODE_DIV + 8u);
+}
+
+/* Reference pool: eight a record, as many as a record can take (a box no
+ * wider than the cells of its level overlaps at most two a side), so the
+ * pool never runs short of a full cache's (index.c keeps one in reserve
+ * for every record not yet indexed, and places records a level up, in
+ * fewer and larger nodes, when it would: lookups stay exact, only slower;
+ * a block made by a build with IRC__REFS below 8 may).  The box workload
+ * of bench/anchor.c takes 5.1-5.9 a record.  irc_stats reports the
+ * references used. */
+#ifndef IRC__REFS
+#define IRC__REFS 8u
+#endif
+static uint32_t irc__ref_cap(uint32_t capacity)
+{
+    const uint64_t n = (uint64_t)capacity * IRC__REFS + 64u;
+    return n < 0xffffff00u ? (uint32_t)n : 0xffffff00u; /* below IRC__NIL */
 }
 
 /* Record bytes: the 32-byte head, then the parts the kind lists, one
@@ -92,6 +112,7 @@ static void irc__layout_of(const irc_config *cfg, uint32_t capacity, irc__layout
     l->slot_bytes += irc__up(k->record_bytes);
     l->slot_bytes += IRC__ALIGN; /* the owner's head (cache.h irc__slot_owner) */
     l->node_cap = irc__node_cap(capacity);
+    l->ref_cap = irc__ref_cap(capacity);
     l->lock_bytes = irc__up(cfg->port->lock_size ? cfg->port->lock_size : 1);
     l->lock = at;
     at += l->lock_bytes;
@@ -103,6 +124,8 @@ static void irc__layout_of(const irc_config *cfg, uint32_t capacity, irc__layout
     at += irc__up((uint64_t)capacity * sizeof(irc__ixe));
     l->nodes = at;
     at += irc__up((uint64_t)l->node_cap * sizeof(irc__node));
+    l->refs = at;
+    at += irc__up((uint64_t)l->ref_cap * sizeof(irc__ref));
     l->ctr = at;
     at += (uint64_t)IRC__STRIPES * IRC__ALIGN;
     l->used = at;
@@ -170,6 +193,7 @@ static void irc__set_parts(irc_cache *c, const irc__layout *l)
     c->slot_samples = l->samples;
     c->keep_geom = l->keep_geom;
     c->node_cap = l->node_cap;
+    c->ref_cap = l->ref_cap;
     c->lock_bytes = (size_t)l->lock_bytes;
     c->slot_bytes = (size_t)l->slot_bytes;
     c->slot_rec = (size_t)l->slot_rec;
@@ -181,6 +205,7 @@ static void irc__set_parts(irc_cache *c, const irc__layout *l)
     c->o_records = (size_t)l->records;
     c->o_ix = (size_t)l->ix;
     c->o_nodes = (size_t)l->nodes;
+    c->o_refs = (size_t)l->refs;
     c->o_ctr = (size_t)l->ctr;
     c->o_used = c->cfg.evict == IRC_EVICT_CLOCK ? (size_t)l->used : 0;
     c->o_gtab = (size_t)l->gtab;
@@ -284,11 +309,11 @@ static int irc__parts_same(const irc_cache *a, const irc_cache *b)
 {
     return irc__tables_same(a, b) && a->slot_samples == b->slot_samples &&
            a->keep_geom == b->keep_geom &&
-           a->node_cap == b->node_cap && a->lock_bytes == b->lock_bytes &&
+           a->node_cap == b->node_cap && a->ref_cap == b->ref_cap && a->lock_bytes == b->lock_bytes &&
            a->slot_bytes == b->slot_bytes && a->slot_rec == b->slot_rec &&
            a->total_bytes == b->total_bytes && a->o_lock == b->o_lock &&
            a->o_scratch == b->o_scratch && a->o_records == b->o_records && a->o_ix == b->o_ix &&
-           a->o_nodes == b->o_nodes && a->o_ctr == b->o_ctr && a->o_used == b->o_used &&
+           a->o_nodes == b->o_nodes && a->o_refs == b->o_refs && a->o_ctr == b->o_ctr && a->o_used == b->o_used &&
            a->o_gtab == b->o_gtab;
 }
 
@@ -296,6 +321,9 @@ static int irc__parts_same(const irc_cache *a, const irc_cache *b)
 static int irc__mutable_sane(const irc_cache *h)
 {
     return h->count <= h->capacity && h->nodes_used >= 1u && h->nodes_used <= h->node_cap &&
+           h->refs_used <= h->ref_cap && h->refs_live <= h->refs_used &&
+           (h->ref_free == IRC__NIL || h->ref_free < h->refs_used) && h->indexed <= h->count &&
+           h->refs_live + (h->capacity - h->indexed) <= h->ref_cap &&
            h->hand < h->capacity && h->depth <= IRC__LEVELS && h->root_set <= 1u &&
            h->pass_open <= 1u && h->pass_base <= h->capacity && h->pending <= h->capacity - h->pass_base &&
            h->packed <= h->pending &&

@@ -1,28 +1,31 @@
 /*
- * query.c -- the index's walk: hands over every record whose reach may
- * hold a point (a superset, which the caller tests exactly), or every
- * record within a range of it.
+ * query.c -- the index's walks: a lookup follows the one path of nodes
+ * that holds its point (index.c places a record in every node its reach
+ * may serve from), and a range walk enters every node within a range of
+ * a point, or within the reach of the records homed below it, taking
+ * records at their homes.  Each hands over a superset of the records
+ * asked for, which the caller tests exactly.
  *
- * The walk needs no double and no cube centre: the point is turned once
- * into integers, 2^-IRC__FX root edges from the root's low corner, and a
- * node's low corner is an integer of the same units, moved exactly on the
- * way down and up.  A node's relative point, its cube's half edges from
- * its centre, is that difference rounded once to float: the rounding the
- * old double walk had.  On a single-precision FPU (Cortex-M4F) a double
- * operation is a library call, and the double walk spent half a lookup in
- * them.
+ * The walks need no double and no cube centre: the point is turned once
+ * into integers, 2^-IRC__FX root edges from the root's low corner, rounded
+ * down exactly (the product of a float and a power of two is exact, and so
+ * is its floor), so the path's octants are the integer's bits and a point
+ * on a face shared by two cells takes the upper one, as index.c places.  A
+ * node's low corner is an integer of the same units, and a node's relative
+ * point, its cube's half edges from its centre, is the difference rounded
+ * once to float.  On a single-precision FPU (Cortex-M4F) a double
+ * operation is a library call.
  *
- * Exactness.  The integer point is off by under 2 units: p and the
- * root's low corner scaled to units are exact floats (the root's rules,
- * irc__index_root_sane), and only their truncations to integers round.
- * At depth d a half edge is 2^(57 - d) units; the scan widens its bound
- * by 2^(d - 32) steps of 2 / 65535 half edges and the children's test by
- * 2^(d - 46) child half edges, room for 2^9 units, negligible above depth
- * 30 and at the depth limit a wider candidate set, never a narrower one.
- * A point farther than 4 root edges from the root is clamped toward it per
- * axis, which only shortens its distance to anything inside the root
- * (every list's entries but the root's records outside it, which are
- * always candidates).
+ * Exactness.  The integer point is the exact floor but where p's product
+ * underflows (|p| below 2^-100 of the root), under a unit off.  At depth
+ * d a half edge is 2^(57 - d) units; the scan widens its bound by
+ * 2^(d - 32) steps of 4 / 65535 half edges and the children's test by
+ * 2^(d - 46) child half edges, negligible above depth 30 and at the depth
+ * limit a wider candidate set, never a narrower one.  A point farther than
+ * 4 root edges from the root is clamped toward it per axis, which only
+ * shortens its distance to anything inside the root's frame (every list's
+ * references but the root's to records outside it, which are always
+ * candidates); such a point's path is the root alone.
  */
 #include "cache.h"
 #include "index.h"
@@ -47,6 +50,7 @@ typedef struct irc__probe {
     float f;       /* scan: the range in steps of the root's cube */
     float s;       /* children: reach to child half edges of the root */
     float g;       /* children: the range in child half edges of the root */
+    uint32_t home; /* IRC__REF_HOME: take records at their homes only */
     irc__visit_fn fn;
     void *ud;
 } irc__probe;
@@ -70,27 +74,36 @@ static float irc__factor(float x)
     return x > 0x1p-100f ? x : 0x1p-100f;
 }
 
-/* A float of magnitude below 2^63 to an integer, truncated, from its bits:
- * on a 32-bit core the cast is a library call that goes through double. */
+/* A float of magnitude below 2^63 to an integer, rounded down, from its
+ * bits: on a 32-bit core the cast is a library call that goes through
+ * double, and it truncates. */
 static int64_t irc__to_int64(float x)
 {
     uint32_t b;
-    int64_t m;
+    int64_t m, f = 0;
     int ex;
     IRC_MEMCPY(&b, &x, sizeof b);
-    if (!(b >> 23 & 0xffu))
-        return 0; /* zero or denormal: below 1 */
+    if (!(b & 0x7fffffffu))
+        return 0;
     ex = (int)(b >> 23 & 0xffu) - 150; /* |x| = m 2^ex */
-    m = (int64_t)((b & 0x7fffffu) | 0x800000u);
-    m = ex >= 0 ? m << ex : ex > -24 ? m >> -ex : 0;
-    return b >> 31 ? -m : m;
+    m = (int64_t)((b & 0x7fffffu) | (b >> 23 & 0xffu ? 0x800000u : 0u));
+    if (ex >= 0) {
+        m <<= ex;
+    } else if (ex > -24) {
+        f = m & (((int64_t)1 << -ex) - 1);
+        m >>= -ex;
+    } else {
+        f = m;
+        m = 0;
+    }
+    return b >> 31 ? -m - (f != 0) : m;
 }
 
 /* The point's offset from the root's low corner in units.  lo is a float
  * within 34 half edges h = 2^E of the origin, -99 <= E <= 99
  * (irc__index_root_sane), so p and lo times 2^(57 - E) are exact floats,
- * below 2^62.1 where it matters, and only the truncations to integers
- * round, under a unit each.  Clamped to [-4, 5] root edges from lo (file
+ * below 2^62.1 where it matters (p's unless it underflows), lo's an
+ * integer, and the floor of their difference is exact.  Clamped to [-4, 5] root edges from lo (file
  * comment), both bounds exact too. */
 static int64_t irc__fixed(float p, float lo, int e)
 {
@@ -118,9 +131,10 @@ static void irc__probe_set(const irc_cache *c, const float p[3], float range, fl
      * well inside the margins 1e-5 and 4e-6 each carries. */
     inv_h = irc__pow2f(-e);
     pr->m = ranged ? 0.0f : scale * (1.0f + 1e-5f);
-    pr->f = ranged ? irc__factor(range * (32767.5f * (1.0f + 1e-5f)) * inv_h) : 0.0f;
+    pr->f = ranged ? irc__factor(range * (16383.75f * (1.0f + 1e-5f)) * inv_h) : 0.0f;
     pr->s = ranged ? 0.0f : irc__factor(scale * (2.0f * (1.0f + 4e-6f)) * inv_h);
     pr->g = ranged ? irc__factor(range * (2.0f * (1.0f + 4e-6f)) * inv_h) : 0.0f;
+    pr->home = 0;
     pr->fn = fn;
     pr->ud = ud;
 }
@@ -156,48 +170,52 @@ static void irc__rel(const irc__probe *pr, const int64_t lo[3], int d, float r[3
 #endif
 }
 
-/* Hands over the records of a list whose entries pass the probe's test in
- * the list's steps; r is the probe's point relative to the list's cube of
- * depth d.  The test admits a superset of the exact one: the entry's
- * position is at most sqrt(3)/2 steps off (the 1 added to the bound); the
- * point's float roundings, in r and in (r + 1) 32767.5, are within 0.02
- * steps while |r| < 2 (the slack left by the 1), and relative ones beyond,
- * covered with the float rounding of the test itself by the 1e-5 relative
- * margin; the integer point's error by the 2^(d - 32) (file comment). */
-static uint32_t irc__scan(const irc_cache *c, uint32_t id, int d, const float r3[3],
+/* Hands over the records of a list whose references pass the probe's
+ * test in the list's steps; r is the probe's point relative to the list's
+ * cube of depth d.  The test admits a superset of the exact one: the
+ * reference's position is at most sqrt(3)/2 steps off (the 1 added to the
+ * bound); the point's float roundings, in r and in (r + 2) 16383.75, are
+ * within 0.01 steps while |r| < 4 (the slack left by the 1), and relative
+ * ones beyond, covered with the float rounding of the test itself by the
+ * 1e-5 relative margin; the integer point's error by the 2^(d - 32) (file
+ * comment). */
+static uint32_t irc__scan(const irc_cache *c, uint32_t r, int d, const float r3[3],
                           const irc__probe *pr)
 {
     uint32_t n = 0;
-    const irc__ixe *ix = irc__ix(c);
-    const float b0 = (r3[0] + 1.0f) * 32767.5f, b1 = (r3[1] + 1.0f) * 32767.5f,
-                b2 = (r3[2] + 1.0f) * 32767.5f;
+    const irc__ref *refs = irc__refs(c);
+    const float b0 = (r3[0] + 2.0f) * 16383.75f, b1 = (r3[1] + 2.0f) * 16383.75f,
+                b2 = (r3[2] + 2.0f) * 16383.75f;
     /* The bound is m rq + f steps: a reach times scale, or the range. */
     const float m = pr->m, f = pr->f * irc__pow2f(d) + 1.0f + irc__pow2f(d - 32);
+    const uint32_t home = pr->home;
 #ifdef IRC__VEC4
-    /* The entry's four 16-bit fields converted at once; the same
+    /* The reference's four 16-bit fields converted at once; the same
      * operations in the same order as below. */
     const irc__v4f b = {b0, b1, b2, 0.0f};
-    for (; id != IRC__NIL; id = ix[id].next) {
-        const irc__ixe *e = &ix[id];
+    for (; r != IRC__NIL; r = refs[r].next) {
+        const irc__ref *e = &refs[r];
         const irc__v4i qi = {e->q[0], e->q[1], e->q[2], e->rq};
         const irc__v4f q = __builtin_convertvector(qi, irc__v4f);
         irc__v4f dv = b - q;
         dv *= dv;
         n++;
         {
-            const float r = q[3] * m + f;
-            if (dv[0] + dv[1] + dv[2] <= r * r || e->rq == IRC__IX_ANY)
-                pr->fn(pr->ud, id);
+            const float bound = q[3] * m + f;
+            if ((dv[0] + dv[1] + dv[2] <= bound * bound || e->rq == IRC__IX_ANY) &&
+                (e->id & home) == home)
+                pr->fn(pr->ud, e->id & ~IRC__REF_HOME);
         }
     }
 #else
-    for (; id != IRC__NIL; id = ix[id].next) {
-        const irc__ixe *e = &ix[id];
+    for (; r != IRC__NIL; r = refs[r].next) {
+        const irc__ref *e = &refs[r];
         float dx = b0 - e->q[0], dy = b1 - e->q[1], dz = b2 - e->q[2];
-        float r = (float)e->rq * m + f;
+        float bound = (float)e->rq * m + f;
         n++;
-        if (dx * dx + dy * dy + dz * dz <= r * r || e->rq == IRC__IX_ANY)
-            pr->fn(pr->ud, id);
+        if ((dx * dx + dy * dy + dz * dz <= bound * bound || e->rq == IRC__IX_ANY) &&
+            (e->id & home) == home)
+            pr->fn(pr->ud, e->id & ~IRC__REF_HOME);
     }
 #endif
     return n;
@@ -356,13 +374,42 @@ int irc__index_root_sane(const irc_cache *h)
     return 1;
 }
 
+/* A lookup's walk: the lists of the nodes that hold the point, root first
+ * (the order lookups sum in); a point outside the root meets the root's
+ * list alone. */
+static uint32_t irc__path(const irc_cache *c, const irc__probe *pr)
+{
+    const irc__node *nodes = irc__nodes(c), *n = &nodes[0];
+    const int inside = ((pr->p[0] | pr->p[1] | pr->p[2]) >> IRC__FX) == 0;
+    int64_t lo[3] = {0, 0, 0};
+    uint32_t scanned = 0;
+    float r3[3];
+    int d;
+    for (d = 0;; d++) {
+        const int sh = IRC__FX - 1 - d;
+        unsigned oct;
+        if (n->head != IRC__NIL) {
+            irc__rel(pr, lo, d, r3);
+            scanned += irc__scan(c, n->head, d, r3, pr);
+        }
+        if (!n->child || !inside || d >= IRC__LEVELS)
+            return scanned;
+        oct = (unsigned)(pr->p[0] >> sh & 1) | (unsigned)(pr->p[1] >> sh & 1) << 1 |
+              (unsigned)(pr->p[2] >> sh & 1) << 2;
+        lo[0] |= pr->p[0] & ((int64_t)1 << sh);
+        lo[1] |= pr->p[1] & ((int64_t)1 << sh);
+        lo[2] |= pr->p[2] & ((int64_t)1 << sh);
+        n = &nodes[n->child + oct];
+    }
+}
+
 uint32_t irc__index_query(const irc_cache *c, const float p[3], irc__visit_fn fn, void *ud)
 {
     irc__probe pr;
     if (!c->home->root_set)
         return 0;
     irc__probe_set(c, p, -1.0f, 1.0f, fn, ud, &pr);
-    return irc__descend(c, &pr);
+    return irc__path(c, &pr);
 }
 
 /* range >= 0: records within range of p; range < 0: records whose radius
@@ -374,5 +421,6 @@ void irc__index_range(const irc_cache *c, const float p[3], float range, irc__vi
     if (!c->home->root_set)
         return;
     irc__probe_set(c, p, range >= 0.0f ? range : -1.0f, 1.0f / c->cfg.accuracy, fn, ud, &pr);
+    pr.home = IRC__REF_HOME;
     (void)irc__descend(c, &pr);
 }

@@ -43,6 +43,7 @@ int irc_cache_stats(irc_cache *c, irc_stats *out)
     IRC_MEMSET(out, 0, sizeof *out);
     out->records = c->home->count;
     out->index_nodes = c->home->nodes_used;
+    out->index_refs = c->home->refs_live;
     irc__read_unlock(c);
     out->capacity = c->capacity;
     out->inserts = irc__counter(c, IRC__C_INSERTS);
@@ -54,10 +55,12 @@ int irc_cache_stats(irc_cache *c, irc_stats *out)
     out->waits = irc__counter(c, IRC__C_WAITS);
     out->rays = irc__counter(c, IRC__C_RAYS);
     out->index_nodes_max = c->node_cap;
+    out->index_refs_max = c->ref_cap;
     out->record_bytes = c->rec_size;
     out->bytes_records = (size_t)c->capacity * c->rec_size;
     out->bytes_index = (size_t)c->capacity * sizeof(irc__ixe) +
                        (size_t)c->node_cap * sizeof(irc__node) +
+                       (size_t)c->ref_cap * sizeof(irc__ref) +
                        (c->o_used ? ((size_t)c->capacity + 63u) / 64u * 8u : 0u);
     out->bytes_scratch = (size_t)c->cfg.threads * c->slot_bytes;
     out->bytes_total = c->total_bytes;

@@ -53,33 +53,69 @@ int irc__rec_sane(const irc_cache *c, uint32_t id)
 }
 
 /* A node's own fields: its children a block of 8 inside the pool, its
- * list's head a stored record, its reach finite (-1: empty). */
+ * list's head a reference taken from the pool, its reach finite (-1:
+ * empty). */
 static int irc__node_sane(const irc_cache *c, const irc__node *n)
 {
     const uint32_t used = c->home->nodes_used;
     if (n->child && (n->child > used || used - n->child < 8u || (n->child - 1u) % 8u))
         return 0;
-    if (n->head != IRC__NIL && n->head >= c->home->count)
+    if (n->head != IRC__NIL && n->head >= c->home->refs_used)
         return 0;
     return irc__finite(n->reach);
+}
+
+/* A list's references: each taken from the pool, to a stored record;
+ * together the lists may not hold more than the pool's live count. */
+static int irc__list_sane(const irc_cache *c, uint32_t r, uint32_t *entries)
+{
+    const irc__ref *refs = irc__refs(c);
+    for (; r != IRC__NIL; r = refs[r].next)
+        if (r >= c->home->refs_used || (refs[r].id & ~IRC__REF_HOME) >= c->home->count ||
+            ++*entries > c->home->refs_live)
+            return 0;
+    return 1;
+}
+
+/* The records' entries: a finite reach, and as many references as the
+ * pool's live count and indexed records as the header says. */
+static int irc__entries_sane(const irc_cache *c)
+{
+    const irc__ixe *ix = irc__ix(c);
+    uint64_t refs = 0;
+    uint32_t id, indexed = 0;
+    for (id = 0; id < c->home->count; id++) {
+        if (!(ix[id].reach >= 0.0f) || !irc__finite(ix[id].reach))
+            return 0;
+        refs += ix[id].refs;
+        indexed += ix[id].refs != 0;
+    }
+    return refs == c->home->refs_live && indexed == c->home->indexed;
+}
+
+/* The pool's given-back chain: references below refs_used, as many as are
+ * not live. */
+static int irc__free_sane(const irc_cache *c)
+{
+    uint32_t r, n = 0;
+    for (r = c->home->ref_free; r != IRC__NIL; r = irc__refs(c)[r].next)
+        if (r >= c->home->refs_used || ++n > c->home->refs_used - c->home->refs_live)
+            return 0;
+    return n == c->home->refs_used - c->home->refs_live;
 }
 
 /* The tree from the root, depth first with a stack of one frame a level:
  * a node met twice (a cycle, or a block shared by two parents) shows as
  * more visits than nodes, or a path deeper than the index allows.  The
- * records' lists are walked on the way; together they may not hold more
- * entries than there are records. */
+ * lists are walked on the way; together they hold the pool's live
+ * references, and those not in them are in its chain of given-back ones. */
 static int irc__tree_sane(const irc_cache *c)
 {
     const irc__node *nodes = irc__nodes(c);
-    const irc__ixe *ix = irc__ix(c);
-    uint32_t stack[IRC__LEVELS + 2], top = 0, visits = 1, entries = 0, id;
+    uint32_t stack[IRC__LEVELS + 2], top = 0, visits = 1, entries = 0;
     unsigned char next[IRC__LEVELS + 2];
-    if (!irc__node_sane(c, &nodes[0]))
+    if (!irc__node_sane(c, &nodes[0]) || !irc__list_sane(c, nodes[0].head, &entries))
         return 0;
-    for (id = nodes[0].head; id != IRC__NIL; id = ix[id].next)
-        if (id >= c->home->count || ++entries > c->home->count)
-            return 0;
     stack[0] = 0;
     next[0] = 0;
     while (top != (uint32_t)-1) {
@@ -90,15 +126,13 @@ static int irc__tree_sane(const irc_cache *c)
             continue;
         }
         k = n->child + next[top]++;
-        if (++visits > c->home->nodes_used || top + 1u > IRC__LEVELS || !irc__node_sane(c, &nodes[k]))
+        if (++visits > c->home->nodes_used || top + 1u > IRC__LEVELS ||
+            !irc__node_sane(c, &nodes[k]) || !irc__list_sane(c, nodes[k].head, &entries))
             return 0;
-        for (id = nodes[k].head; id != IRC__NIL; id = ix[id].next)
-            if (id >= c->home->count || ++entries > c->home->count)
-                return 0;
         stack[++top] = k;
         next[top] = 0;
     }
-    return 1;
+    return entries == c->home->refs_live && irc__free_sane(c) && irc__entries_sane(c);
 }
 
 int irc__block_sane(const irc_cache *c)

@@ -284,17 +284,25 @@ static held *hold_all(const irc_cache *c)
     return h;
 }
 
-/* Depth first, as queries visit: each list must be the run of ids that
- * follows the previous list's.  Returns the records seen; *bad counts
- * lists that are not. */
-static uint32_t runs_check(const irc_cache *c, const irc__node *n, uint32_t at, uint32_t *bad)
+/* Depth first, as queries visit: each list must be the run of references
+ * that follows the previous list's, and each record's id the order of its
+ * home reference.  Returns the references seen; *bad counts references
+ * and homes out of order. */
+typedef struct runs {
+    uint32_t ref, home, bad;
+} runs;
+
+static uint32_t runs_check(const irc_cache *c, const irc__node *n, runs *k)
 {
-    uint32_t id, o;
-    for (id = n->head; id != IRC__NIL; id = irc__ix(c)[id].next)
-        *bad += id != at++;
+    uint32_t r, o;
+    for (r = n->head; r != IRC__NIL; r = irc__refs(c)[r].next) {
+        k->bad += r != k->ref++;
+        if (irc__refs(c)[r].id & IRC__REF_HOME)
+            k->bad += (irc__refs(c)[r].id & ~IRC__REF_HOME) != k->home++;
+    }
     for (o = 0; n->child && o < 8; o++)
-        at = runs_check(c, &irc__nodes(c)[n->child + o], at, bad);
-    return at;
+        runs_check(c, &irc__nodes(c)[n->child + o], k);
+    return k->ref;
 }
 
 /* An empty pass's end compacts: records renumbered in the index's walk
@@ -307,7 +315,8 @@ TEST(test_index_compact)
     unsigned long long st = 777;
     enum { N = 6000, Q = 3000 };
     static float before[Q][5], after[Q][5], qp[Q][3], qn[Q][3];
-    uint32_t i, bad = 0, added = 1, seen;
+    uint32_t i, added = 1, seen;
+    runs rk = {0, 0, 0};
     held *h0, *h1;
     irc_cache *c;
     cfg.evict = IRC_EVICT_CLOCK;
@@ -323,15 +332,16 @@ TEST(test_index_compact)
             qp[i][k] = r->p[k] + (float)((xrand(&st) - 0.5) * 0.2 * r->r);
         before[i][4] = (float)irc_cache_lookup(c, qp[i], qn[i], before[i], &before[i][3]);
     }
-    seen = runs_check(c, &irc__nodes(c)[0], 0, &bad);
-    CHECK(seen == N && bad > N / 2, "filled freely, lists are scattered (%u of %u out of run)",
-          bad, seen);
+    seen = runs_check(c, &irc__nodes(c)[0], &rk);
+    CHECK(seen == c->refs_live && rk.home == N && rk.bad > N / 2,
+          "filled freely, lists are scattered (%u of %u out of run)", rk.bad, seen);
     h0 = hold_all(c);
     CHECK(irc_pass_begin(c) == IRC_OK && irc_pass_end(c, &added) == IRC_OK && added == 0,
           "empty pass");
-    bad = 0;
-    seen = runs_check(c, &irc__nodes(c)[0], 0, &bad);
-    CHECK(seen == N && bad == 0, "after the pass: %u of %u records out of run", bad, seen);
+    memset(&rk, 0, sizeof rk);
+    seen = runs_check(c, &irc__nodes(c)[0], &rk);
+    CHECK(seen == c->refs_live && rk.home == N && rk.bad == 0,
+          "after the pass: %u of %u references or homes out of run", rk.bad, seen);
     h1 = hold_all(c);
     CHECK(memcmp(h0, h1, sizeof *h0 * N) == 0, "records or CLOCK bits changed in the move");
     for (i = 0; i < Q; i++)
@@ -361,7 +371,8 @@ TEST(test_index_grow_faces)
     irc_record r;
     irc_stats st;
     irc_cache *c;
-    uint32_t i, bad = 0, seen, lost = 0;
+    uint32_t i, seen, lost = 0;
+    runs k = {0, 0, 0};
     cfg.evict = IRC_EVICT_CLOCK;
     c = block_cache(&cfg, 40, 0);
     CHECK(c != NULL, "init");
@@ -387,10 +398,12 @@ TEST(test_index_grow_faces)
         CHECK(irc_cache_insert(c, &r) == IRC_OK, "insert %u", i);
         lost += irc_cache_neighbours(c, r.p, up, ids, 4, &n) != IRC_OK || n != 1;
     }
-    seen = runs_check(c, &irc__nodes(c)[0], 0, &bad);
-    CHECK(irc_cache_stats(c, &st) == IRC_OK && st.records == 40 && seen == 40 &&
+    seen = runs_check(c, &irc__nodes(c)[0], &k);
+    CHECK(irc_cache_stats(c, &st) == IRC_OK && st.records == 40 && k.home == 40 &&
+              seen == c->refs_live && irc__block_sane(c) &&
               st.evictions == 27 + 6 + 80 - 40 && lost == 0,
-          "%u entries in the index for %u records, %u not found", seen, (unsigned)st.records, lost);
+          "%u homes in the index for %u records, %u not found", k.home, (unsigned)st.records,
+          lost);
     block_free(&cfg);
 }
 
