@@ -366,7 +366,7 @@ static unsigned irc__overlapped(const irc__cell *x, int d, const irc__box *b)
     return mask;
 }
 
-static unsigned irc__bits(unsigned m)
+static unsigned irc__popcount(unsigned m)
 {
     unsigned n = 0;
     for (; m; m &= m - 1)
@@ -397,7 +397,7 @@ static void irc__split(irc_cache *c, const irc__cell *x, int d)
         return;
     for (r = n->head; r != IRC__NIL; r = refs[r].next, len++)
         if (irc__moves(c, refs[r].id & ~IRC__REF_HOME, x, d, &mask)) {
-            extra += irc__bits(mask) - 1u;
+            extra += irc__popcount(mask) - 1u;
             moving++;
         }
     /* Not for a list that would mostly stay: its nodes would be spent
@@ -438,7 +438,7 @@ static void irc__split(irc_cache *c, const irc__cell *x, int d)
             if (home && irc__ix(c)[id].reach > irc__nodes(c)[y.node].reach)
                 irc__nodes(c)[y.node].reach = irc__ix(c)[id].reach;
         }
-        irc__ix(c)[id].refs += irc__bits(mask) - 1u;
+        irc__ix(c)[id].refs += irc__popcount(mask) - 1u;
         irc__ref_give(c, r);
     }
     n->head = keep;
