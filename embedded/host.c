@@ -68,10 +68,11 @@ static void check(int ok, const char *what, double got, double want)
         failed++;
 }
 
-/* The blocks: records of 72 bytes and an index, a scratch slot, the
- * strata table; SH records of 464 bytes.  Sized by irc_footprint at run
- * time against these arrays. */
-static unsigned char irr_block[96 * 1024], sh_block[128 * 1024];
+/* The blocks: records of 72 bytes and an index of 160 bytes a record
+ * (8 references and 2 nodes), a scratch slot, the strata table; SH records
+ * of 464 bytes.  Sized by irc_footprint at run time against these
+ * arrays. */
+static unsigned char irr_block[144 * 1024], sh_block[144 * 1024];
 static irc_sh sh_out;
 
 /* 16 x 64 strata, rays in batches of 64, the single-threaded port; an
@@ -175,7 +176,7 @@ static void irradiance(void)
  * ray cast): the instructions a lookup takes once the octree has depth,
  * and the share the index's double arithmetic keeps (docs/PORTING.md, "Embedded").
  * Every answer is checked against the one value all records hold. */
-static unsigned char many_block[160 * 1024];
+static unsigned char many_block[256 * 1024];
 #ifndef HOST_LOOKUPS
 #define HOST_LOOKUPS 1000 /* embedded/profile.sh: LOOKUPS=0 for the inserts alone */
 #endif
