@@ -37,6 +37,7 @@
 #define IRC__VEC4 1
 typedef float irc__v4f __attribute__((vector_size(16)));
 typedef int32_t irc__v4i __attribute__((vector_size(16)));
+typedef uint16_t irc__v4h __attribute__((vector_size(8)));
 #endif
 
 #define IRC__FX 58 /* fixed-point bits of the root's edge */
@@ -79,6 +80,13 @@ static float irc__factor(float x)
  * double, and it truncates. */
 static int64_t irc__to_int64(float x)
 {
+#if UINTPTR_MAX > 0xffffffffu
+    /* a 64-bit core converts in one instruction, truncating: floored by
+     * the comparison (exact: a truncated float below 2^24 is a float, and
+     * one above is the float itself) */
+    const int64_t t = (int64_t)x;
+    return t - ((float)t > x);
+#else
     uint32_t b;
     int64_t m, f = 0;
     int ex;
@@ -97,6 +105,7 @@ static int64_t irc__to_int64(float x)
         m = 0;
     }
     return b >> 31 ? -m - (f != 0) : m;
+#endif
 }
 
 /* The point's offset from the root's low corner in units.  lo is a float
@@ -195,8 +204,10 @@ static uint32_t irc__scan(const irc_cache *c, uint32_t r, int d, const float r3[
     const irc__v4f b = {b0, b1, b2, 0.0f};
     for (; r != IRC__NIL; r = refs[r].next) {
         const irc__ref *e = &refs[r];
-        const irc__v4i qi = {e->q[0], e->q[1], e->q[2], e->rq};
-        const irc__v4f q = __builtin_convertvector(qi, irc__v4f);
+        irc__v4h qh;
+        irc__v4f q;
+        IRC_MEMCPY(&qh, e->q, sizeof qh); /* q[0..2] and rq, in order */
+        q = __builtin_convertvector(__builtin_convertvector(qh, irc__v4i), irc__v4f);
         irc__v4f dv = b - q;
         dv *= dv;
         n++;
@@ -381,25 +392,27 @@ static uint32_t irc__path(const irc_cache *c, const irc__probe *pr)
 {
     const irc__node *nodes = irc__nodes(c), *n = &nodes[0];
     const int inside = ((pr->p[0] | pr->p[1] | pr->p[2]) >> IRC__FX) == 0;
-    int64_t lo[3] = {0, 0, 0};
     uint32_t scanned = 0;
-    float r3[3];
     int d;
     for (d = 0;; d++) {
         const int sh = IRC__FX - 1 - d;
-        unsigned oct;
         if (n->head != IRC__NIL) {
+            /* the node's low corner: the point's bits above its edge */
+            const int64_t keep = ~(((int64_t)2 << sh) - 1);
+            int64_t lo[3];
+            float r3[3];
+            lo[0] = pr->p[0] & keep;
+            lo[1] = pr->p[1] & keep;
+            lo[2] = pr->p[2] & keep;
+            if (!inside)
+                lo[0] = lo[1] = lo[2] = 0;
             irc__rel(pr, lo, d, r3);
             scanned += irc__scan(c, n->head, d, r3, pr);
         }
         if (!n->child || !inside || d >= IRC__LEVELS)
             return scanned;
-        oct = (unsigned)(pr->p[0] >> sh & 1) | (unsigned)(pr->p[1] >> sh & 1) << 1 |
-              (unsigned)(pr->p[2] >> sh & 1) << 2;
-        lo[0] |= pr->p[0] & ((int64_t)1 << sh);
-        lo[1] |= pr->p[1] & ((int64_t)1 << sh);
-        lo[2] |= pr->p[2] & ((int64_t)1 << sh);
-        n = &nodes[n->child + oct];
+        n = &nodes[n->child + ((unsigned)(pr->p[0] >> sh & 1) | (unsigned)(pr->p[1] >> sh & 1) << 1 |
+                               (unsigned)(pr->p[2] >> sh & 1) << 2)];
     }
 }
 
