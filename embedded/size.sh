@@ -90,7 +90,8 @@ if $CC -m32 -std=c99 -O2 -Iinclude -DSIZE_PRINT embedded/size_host.c src/*.c por
     $B/per_record32 2>/dev/null || { [ $? -eq 126 ] && echo "  (32-bit figures: this kernel runs no i386 programs)"; } ||
         exit 1
 fi
-printf '  %-34s %7d\n' "an index node (8 per 32 records)" 12
+printf '  %-34s %7d\n' "an index node (8 per 4 records)" 12
+printf '  %-34s %7d\n' "an index reference (8 a record)" 16
 
 echo "4. worst-case stack of each entry point, Cortex-M4F (bytes; the host's callbacks not counted)"
 entries=$(sed -n 's/^IRC_API [^(]*[ *]\(irc_[a-z0-9_]*\)(.*/\1/p' include/irrcache.h | tr '\n' ' ')

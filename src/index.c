@@ -56,7 +56,7 @@
  * root's list, always candidates. */
 #define IRC__ROOT_MAX 0x1p99
 #define IRC__ONE ((int64_t)1 << 58) /* the root's edge in integer units */
-#define IRC__FRONT 27               /* cells a box can overlap at one depth */
+#define IRC__FRONT 8                /* cells a box can overlap at one depth */
 
 typedef struct irc__cube {
     double c[3];
@@ -231,8 +231,8 @@ static void irc__ref_push(irc_cache *c, uint32_t node, const irc__cube *q, uint3
 
 /* Calls fn on the nodes a box overlaps down to depth L: every one (all
  * set) or those where its references go, the leaves above L and the
- * nodes of depth L.  Depth by depth, at most IRC__FRONT at each (a box of
- * its level overlaps at most 8; removal's widened box, 27). */
+ * nodes of depth L.  Depth by depth, at most IRC__FRONT at each (a box no
+ * wider than the cells of its level overlaps at most 8). */
 typedef void (*irc__cell_fn)(irc_cache *c, const irc__cell *x, int d, void *ud);
 
 static void irc__cover(irc_cache *c, const irc__box *b, int L, int all, irc__cell_fn fn,
@@ -689,10 +689,12 @@ void irc__index_insert(irc_cache *c, uint32_t id)
     }
 }
 
-/* Removal: every list of a node the record's box (widened: the root may
- * have grown since, and the box's ends round another way; clipped to the
- * root, whose list is always searched) overlaps, unlinked of its
- * references. */
+/* Removal: every list of a node the record's box overlaps, unlinked of
+ * its references.  The box's ends are the same doubles as at placement
+ * and a cell's faces are exact, so it meets the same cells whatever the
+ * root has become since (only deeper by its growths); clipped to the
+ * root, whose list is always searched (a record placed there may fit a
+ * root grown since). */
 typedef struct irc__unlink {
     uint32_t id, found;
 } irc__unlink;
@@ -726,7 +728,7 @@ void irc__index_remove(irc_cache *c, uint32_t id)
     u.found = 0;
     /* Down to its level as the root now stands (deeper by the root's
      * growths than when it was placed, never by more). */
-    irc__box_of(c, p, half * (1.0 + 1e-4), &b);
+    irc__box_of(c, p, half, &b);
     irc__cover(c, &b, irc__level(c, half, IRC__LEVELS), 1, irc__unlink_at, &u);
     IRC_ASSERT(u.found == e->refs);
     if (e->refs)
