@@ -206,7 +206,7 @@ static uint32_t irc__scan(const irc_cache *c, uint32_t r, int d, const float r3[
         const irc__ref *e = &refs[r];
         irc__v4h qh;
         irc__v4f q;
-        IRC_MEMCPY(&qh, e->q, sizeof qh); /* q[0..2] and rq, in order */
+        IRC_MEMCPY(&qh, e, sizeof qh); /* the first 8 bytes: q[0..2], rq */
         q = __builtin_convertvector(__builtin_convertvector(qh, irc__v4i), irc__v4f);
         irc__v4f dv = b - q;
         dv *= dv;
