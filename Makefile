@@ -42,7 +42,7 @@ CFLAGS_LIB = -std=c99 $(WARN) -Wdouble-promotion $(OPT) $(PIC) -fno-math-errno \
 PIC = $(if $(filter none,$(PORT)),,-fPIC)
 
 SRC = src/status.c src/version.c src/check.c src/config.c src/kinds.c src/strata.c src/layout.c src/store.c src/kind_irr.c src/gradient.c \
-      src/kind_sh.c src/sampler.c src/irradiance.c src/octa.c src/weight.c src/index.c src/query.c src/compact.c \
+      src/kind_sh.c src/sampler.c src/irradiance.c src/octa.c src/weight.c src/index.c src/cells.c src/query.c src/compact.c \
       src/visibility.c src/hessian.c src/sh.c src/shgrad.c src/snapshot.c src/merge.c \
       src/pass.c src/sight.c src/slots.c src/verify.c src/repair.c src/occlusion.c src/stats.c \
       src/pixel.c src/detail.c

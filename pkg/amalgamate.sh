@@ -9,8 +9,8 @@ port=$1 version=$2 out=$3
 shift 3
 # The library's own headers, in an order where each follows what it
 # includes; their includes of each other are dropped.
-HEADERS="src/util.h src/index.h src/kind.h src/cache.h src/strata.h src/sampler.h src/octa.h src/estimator.h src/weight.h src/shrec.h src/snapshot.h"
-strip() { grep -v '^#include "\(util\|index\|kind\|cache\|strata\|sampler\|octa\|weight\|estimator\|shrec\|snapshot\)\.h"' "$1"; }
+HEADERS="src/util.h src/index.h src/kind.h src/cache.h src/strata.h src/sampler.h src/octa.h src/estimator.h src/weight.h src/shrec.h src/snapshot.h src/cells.h"
+strip() { grep -v '^#include "\(util\|index\|kind\|cache\|strata\|sampler\|octa\|weight\|estimator\|shrec\|snapshot\|cells\)\.h"' "$1"; }
 {
     cat <<HEAD
 /*
