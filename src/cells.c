@@ -142,10 +142,15 @@ void irc__ref_push(irc_cache *c, uint32_t node, const irc__cube *q, uint32_t id,
     const uint32_t r = irc__ref_take(c);
     irc__ref *e = &irc__refs(c)[r];
     irc__node *n = &irc__nodes(c)[node];
+    uint32_t *link = &n->head;
     irc__quantize(e, q, irc__rec_at(c, id)->p, (double)irc__ix(c)[id].reach);
     e->id = id | (home ? IRC__REF_HOME : 0u);
-    e->next = n->head;
-    n->head = r;
+    /* A list holds its homes first, so that range walks, which take only
+     * homes, stop at the first reference that is not one (query.c). */
+    while (!home && *link != IRC__NIL && (irc__refs(c)[*link].id & IRC__REF_HOME))
+        link = &irc__refs(c)[*link].next;
+    e->next = *link;
+    *link = r;
 }
 
 /* Calls fn on the nodes a box overlaps down to depth L: every one (all
@@ -165,21 +170,19 @@ void irc__cover(irc_cache *c, const irc__box *b, int L, int all, irc__cell_fn fn
             const irc__cell *x = &f[cur][k];
             const irc__node *n = &irc__nodes(c)[x->node];
             const int64_t e = IRC__ONE >> (d + 1);
-            unsigned oct;
+            unsigned oct, mask;
             if (all || d >= L || !n->child)
                 fn(c, x, d, ud);
             if (d >= L || !n->child || d >= IRC__LEVELS)
                 continue;
-            for (oct = 0; oct < 8; oct++) {
-                irc__cell y;
-                int i, in = 1;
-                for (i = 0; i < 3; i++) {
-                    y.lo[i] = x->lo[i] + ((oct >> i & 1) ? e : 0);
-                    in &= b->lo[i] < y.lo[i] + e && b->hi[i] >= y.lo[i];
-                }
-                y.node = n->child + oct;
-                if (in && nn < IRC__FRONT)
-                    f[cur ^ 1][nn++] = y;
+            for (mask = irc__overlapped(x, d, b); mask && nn < IRC__FRONT; mask &= mask - 1u) {
+                irc__cell *y = &f[cur ^ 1][nn++];
+                int i;
+                for (oct = 0; !(mask >> oct & 1u); oct++)
+                    ;
+                for (i = 0; i < 3; i++)
+                    y->lo[i] = x->lo[i] + ((oct >> i & 1) ? e : 0);
+                y->node = n->child + oct;
             }
         }
         nf = nn;
@@ -215,15 +218,18 @@ uint32_t irc__block_alloc(irc_cache *c)
 /* The children of cell x (depth d) that box b overlaps, as bits. */
 unsigned irc__overlapped(const irc__cell *x, int d, const irc__box *b)
 {
+    /* per axis, which halves the box meets (bit 0 the lower, 1 the
+     * upper); a child is met where its halves are on all three axes */
+    static const unsigned char spread[4][3] = {{0x00, 0x00, 0x00}, {0x55, 0x33, 0x0f},
+                                               {0xaa, 0xcc, 0xf0}, {0xff, 0xff, 0xff}};
     const int64_t e = IRC__ONE >> (d + 1);
-    unsigned oct, mask = 0;
-    for (oct = 0; oct < 8; oct++) {
-        int i, in = 1;
-        for (i = 0; i < 3; i++) {
-            const int64_t lo = x->lo[i] + ((oct >> i & 1) ? e : 0);
-            in &= b->lo[i] < lo + e && b->hi[i] >= lo;
-        }
-        mask |= (unsigned)in << oct;
+    unsigned mask = 0xffu;
+    int i;
+    for (i = 0; i < 3; i++) {
+        const int64_t mid = x->lo[i] + e;
+        const unsigned halves = (unsigned)(b->lo[i] < mid && b->hi[i] >= x->lo[i]) |
+                                (unsigned)(b->lo[i] < mid + e && b->hi[i] >= mid) << 1;
+        mask &= spread[halves][i];
     }
     return mask;
 }

@@ -65,6 +65,7 @@ void irc__index_reset(irc_cache *c)
     c->home->ref_free = IRC__NIL;
     c->home->refs_live = 0;
     c->home->indexed = 0;
+    c->home->refs_packed = 0;
     c->home->root_set = 0;
     c->home->depth = 0;
 }
@@ -141,7 +142,7 @@ static void irc__split(irc_cache *c, const irc__cell *x, int d)
 {
     irc__node *n = &irc__nodes(c)[x->node];
     irc__ref *refs = irc__refs(c);
-    uint32_t r, nr, keep = IRC__NIL, extra = 0, moving = 0, len = 0, b;
+    uint32_t r, nr, keep = IRC__NIL, *tail = &keep, extra = 0, moving = 0, len = 0, b;
     unsigned mask;
     if (c->node_cap - c->home->nodes_used < 8u)
         return;
@@ -164,8 +165,8 @@ static void irc__split(irc_cache *c, const irc__cell *x, int d)
         int homed;
         nr = refs[r].next;
         if (!irc__moves(c, id, x, d, &mask)) {
-            refs[r].next = keep;
-            keep = r;
+            *tail = r; /* in order: the list's homes stay first */
+            tail = &refs[r].next;
             continue;
         }
         irc__placement(c, id, &bx);
@@ -191,6 +192,7 @@ static void irc__split(irc_cache *c, const irc__cell *x, int d)
         irc__ix(c)[id].refs += irc__popcount(mask) - 1u;
         irc__ref_give(c, r);
     }
+    *tail = IRC__NIL;
     n->head = keep;
 }
 
@@ -300,7 +302,7 @@ static int irc__grow(irc_cache *c, const float p[3])
 {
     irc__cube old, now;
     irc__ref *refs = irc__refs(c);
-    uint32_t b, r, nr, keep = IRC__NIL, up = IRC__NIL;
+    uint32_t b, r, nr, keep = IRC__NIL, *tail = &keep, up = IRC__NIL;
     irc__node *was, *nodes;
     int i, oct = 0;
     if (2.0 * c->home->root_h > IRC__ROOT_MAX || c->home->depth >= IRC__LEVELS ||
@@ -312,13 +314,14 @@ static int irc__grow(irc_cache *c, const float p[3])
         nr = refs[r].next;
         irc__placement(c, refs[r].id & ~IRC__REF_HOME, &bx);
         if (bx.inside) {
-            refs[r].next = keep;
-            keep = r;
+            *tail = r;
+            tail = &refs[r].next;
         } else {
             refs[r].next = up;
             up = r;
         }
     }
+    *tail = IRC__NIL;
     nodes[0].head = keep;
     c->home->depth++;
     irc__root_cube(c, &old);

@@ -51,7 +51,6 @@ typedef struct irc__probe {
     float f;       /* scan: the range in steps of the root's cube */
     float s;       /* children: reach to child half edges of the root */
     float g;       /* children: the range in child half edges of the root */
-    uint32_t home; /* IRC__REF_HOME: take records at their homes only */
     irc__visit_fn fn;
     void *ud;
 } irc__probe;
@@ -143,7 +142,6 @@ static void irc__probe_set(const irc_cache *c, const float p[3], float range, fl
     pr->f = ranged ? irc__factor(range * (16383.75f * (1.0f + 1e-5f)) * inv_h) : 0.0f;
     pr->s = ranged ? 0.0f : irc__factor(scale * (2.0f * (1.0f + 4e-6f)) * inv_h);
     pr->g = ranged ? irc__factor(range * (2.0f * (1.0f + 4e-6f)) * inv_h) : 0.0f;
-    pr->home = 0;
     pr->fn = fn;
     pr->ud = ud;
 }
@@ -179,56 +177,82 @@ static void irc__rel(const irc__probe *pr, const int64_t lo[3], int d, float r[3
 #endif
 }
 
-/* Hands over the records of a list whose references pass the probe's
- * test in the list's steps; r is the probe's point relative to the list's
- * cube of depth d.  The test admits a superset of the exact one: the
- * reference's position is at most sqrt(3)/2 steps off (the 1 added to the
- * bound); the point's float roundings, in r and in (r + 2) 16383.75, are
- * within 0.01 steps while |r| < 4 (the slack left by the 1), and relative
- * ones beyond, covered with the float rounding of the test itself by the
- * 1e-5 relative margin; the integer point's error by the 2^(d - 32) (file
- * comment). */
-static uint32_t irc__scan(const irc_cache *c, uint32_t r, int d, const float r3[3],
+/* A list's test: the probe's point in the steps of the list's frame and
+ * the bound's two factors (m rq + f steps: a reach times scale, or the
+ * range); r3 is the point relative to the list's cube of depth d.  The
+ * test admits a superset of the exact one: the reference's position is at
+ * most sqrt(3)/2 steps off (the 1 added to the bound); the point's float
+ * roundings, in r and in (r + 2) 16383.75, are within 0.01 steps while
+ * |r| < 4 (the slack left by the 1), and relative ones beyond, covered
+ * with the float rounding of the test itself by the 1e-5 relative margin;
+ * the integer point's error by the 2^(d - 32) (file comment). */
+typedef struct irc__steps {
+    float b[3], m, f;
+} irc__steps;
+
+static const irc__steps *irc__steps_of(const float r3[3], int d, const irc__probe *pr,
+                                        irc__steps *s)
+{
+    s->b[0] = (r3[0] + 2.0f) * 16383.75f;
+    s->b[1] = (r3[1] + 2.0f) * 16383.75f;
+    s->b[2] = (r3[2] + 2.0f) * 16383.75f;
+    s->m = pr->m;
+    s->f = pr->f * irc__pow2f(d) + 1.0f + irc__pow2f(d - 32);
+    return s;
+}
+
+static int irc__passes(const irc__ref *e, const irc__steps *s)
+{
+    const float dx = s->b[0] - e->q[0], dy = s->b[1] - e->q[1], dz = s->b[2] - e->q[2],
+                bound = (float)e->rq * s->m + s->f;
+    return dx * dx + dy * dy + dz * dz <= bound * bound || e->rq == IRC__IX_ANY;
+}
+
+/* A lookup's list: hands over every record whose reference passes. */
+static uint32_t irc__scan(const irc_cache *c, uint32_t r, const irc__steps *s,
                           const irc__probe *pr)
 {
     uint32_t n = 0;
     const irc__ref *refs = irc__refs(c);
-    const float b0 = (r3[0] + 2.0f) * 16383.75f, b1 = (r3[1] + 2.0f) * 16383.75f,
-                b2 = (r3[2] + 2.0f) * 16383.75f;
-    /* The bound is m rq + f steps: a reach times scale, or the range. */
-    const float m = pr->m, f = pr->f * irc__pow2f(d) + 1.0f + irc__pow2f(d - 32);
-    const uint32_t home = pr->home;
 #ifdef IRC__VEC4
     /* The reference's four 16-bit fields converted at once; the same
-     * operations in the same order as below. */
-    const irc__v4f b = {b0, b1, b2, 0.0f};
+     * operations in the same order as irc__passes. */
+    const irc__v4f b = {s->b[0], s->b[1], s->b[2], 0.0f};
     for (; r != IRC__NIL; r = refs[r].next) {
         const irc__ref *e = &refs[r];
         irc__v4h qh;
-        irc__v4f q;
+        irc__v4f q, dv;
+        float bound;
         IRC_MEMCPY(&qh, e, sizeof qh); /* the first 8 bytes: q[0..2], rq */
         q = __builtin_convertvector(__builtin_convertvector(qh, irc__v4i), irc__v4f);
-        irc__v4f dv = b - q;
+        dv = b - q;
         dv *= dv;
+        bound = q[3] * s->m + s->f;
         n++;
-        {
-            const float bound = q[3] * m + f;
-            if ((dv[0] + dv[1] + dv[2] <= bound * bound || e->rq == IRC__IX_ANY) &&
-                (e->id & home) == home)
-                pr->fn(pr->ud, e->id & ~IRC__REF_HOME);
-        }
+        if (dv[0] + dv[1] + dv[2] <= bound * bound || e->rq == IRC__IX_ANY)
+            pr->fn(pr->ud, e->id & ~IRC__REF_HOME);
     }
 #else
     for (; r != IRC__NIL; r = refs[r].next) {
-        const irc__ref *e = &refs[r];
-        float dx = b0 - e->q[0], dy = b1 - e->q[1], dz = b2 - e->q[2];
-        float bound = (float)e->rq * m + f;
         n++;
-        if ((dx * dx + dy * dy + dz * dz <= bound * bound || e->rq == IRC__IX_ANY) &&
-            (e->id & home) == home)
-            pr->fn(pr->ud, e->id & ~IRC__REF_HOME);
+        if (irc__passes(&refs[r], s))
+            pr->fn(pr->ud, refs[r].id & ~IRC__REF_HOME);
     }
 #endif
+    return n;
+}
+
+/* A range walk's list: its homes, which come first (cells.c), that pass. */
+static uint32_t irc__scan_homes(const irc_cache *c, uint32_t r, const irc__steps *s,
+                                const irc__probe *pr)
+{
+    uint32_t n = 0;
+    const irc__ref *refs = irc__refs(c);
+    for (; r != IRC__NIL && (refs[r].id & IRC__REF_HOME); r = refs[r].next) {
+        n++;
+        if (irc__passes(&refs[r], s))
+            pr->fn(pr->ud, refs[r].id & ~IRC__REF_HOME);
+    }
     return n;
 }
 
@@ -322,10 +346,11 @@ static uint32_t irc__descend(const irc_cache *c, const irc__probe *pr)
     const irc__node *nodes = irc__nodes(c);
     int64_t lo[3] = {0, 0, 0};
     float r3[3];
+    irc__steps st;
     int top = 0, i;
     irc__rel(pr, lo, 0, r3);
     if (nodes[0].head != IRC__NIL)
-        scanned += irc__scan(c, nodes[0].head, 0, r3, pr);
+        scanned += irc__scan_homes(c, nodes[0].head, irc__steps_of(r3, 0, pr, &st), pr);
     if (!nodes[0].child)
         return scanned;
     block[0] = nodes[0].child;
@@ -352,7 +377,7 @@ static uint32_t irc__descend(const irc_cache *c, const irc__probe *pr)
             lo[i] += (oct >> i & 1) ? edge : 0;
         irc__rel(pr, lo, top + 1, r3);
         if (n->head != IRC__NIL)
-            scanned += irc__scan(c, n->head, top + 1, r3, pr);
+            scanned += irc__scan_homes(c, n->head, irc__steps_of(r3, top + 1, pr, &st), pr);
         IRC_ASSERT(!n->child || top < IRC__LEVELS);
         if (n->child && top < IRC__LEVELS) {
             octs[top] = (uint8_t)oct;
@@ -401,13 +426,14 @@ static uint32_t irc__path(const irc_cache *c, const irc__probe *pr)
             const int64_t keep = ~(((int64_t)2 << sh) - 1);
             int64_t lo[3];
             float r3[3];
+            irc__steps st;
             lo[0] = pr->p[0] & keep;
             lo[1] = pr->p[1] & keep;
             lo[2] = pr->p[2] & keep;
             if (!inside)
                 lo[0] = lo[1] = lo[2] = 0;
             irc__rel(pr, lo, d, r3);
-            scanned += irc__scan(c, n->head, d, r3, pr);
+            scanned += irc__scan(c, n->head, irc__steps_of(r3, d, pr, &st), pr);
         }
         if (!n->child || !inside || d >= IRC__LEVELS)
             return scanned;
@@ -434,6 +460,5 @@ void irc__index_range(const irc_cache *c, const float p[3], float range, irc__vi
     if (!c->home->root_set)
         return;
     irc__probe_set(c, p, range >= 0.0f ? range : -1.0f, 1.0f / c->cfg.accuracy, fn, ud, &pr);
-    pr.home = IRC__REF_HOME;
     (void)irc__descend(c, &pr);
 }

@@ -176,6 +176,7 @@ void irc__commit_locked(irc_cache *c, uint32_t id)
     if (c->cfg.clamp_neighbours)
         irc__clamp_neighbours(c, irc__rec_at(c, id));
     irc__index_insert(c, id);
+    irc__index_tidy(c);
     irc__count(c, IRC__C_INSERTS, 1);
 }
 

@@ -65,15 +65,19 @@ static int irc__node_sane(const irc_cache *c, const irc__node *n)
     return irc__finite(n->reach);
 }
 
-/* A list's references: each taken from the pool, to a stored record;
- * together the lists may not hold more than the pool's live count. */
+/* A list's references: each taken from the pool, to a stored record, its
+ * homes first (range walks stop at the first other); together the lists
+ * may not hold more than the pool's live count. */
 static int irc__list_sane(const irc_cache *c, uint32_t r, uint32_t *entries)
 {
     const irc__ref *refs = irc__refs(c);
-    for (; r != IRC__NIL; r = refs[r].next)
+    uint32_t others = 0;
+    for (; r != IRC__NIL; r = refs[r].next) {
         if (r >= c->home->refs_used || (refs[r].id & ~IRC__REF_HOME) >= c->home->count ||
-            ++*entries > c->home->refs_live)
+            ++*entries > c->home->refs_live || (others && (refs[r].id & IRC__REF_HOME)))
             return 0;
+        others |= !(refs[r].id & IRC__REF_HOME);
+    }
     return 1;
 }
 
