@@ -24,23 +24,24 @@
  * whose reach is wider than the root, is referenced once, in the root's
  * list, which every walk scans.
  *
- * A leaf with more than IRC__SPLIT references splits when the node pool
- * has a block of 8 free; the references of records whose level lies
- * deeper move to the children their boxes overlap.  The root is not tied
- * to a grid through the origin: a scene centred on the origin would
- * otherwise need a cube that holds 0 in its interior, which no cube of
- * such a grid does.  While the root is a leaf it is resized freely; when
- * it first splits it is fitted to its records' positions (not their
- * reaches, which may be 1e30); afterwards it doubles toward records that
- * land outside it, the old root becoming one of its children.  Centres
+ * A leaf is tried for a split when its list passes IRC__SPLIT references
+ * and every IRC__SPLIT after; it splits when the node pool has a block of
+ * 8 free and most of its references belong to records whose level lies
+ * deeper, which move to the children their boxes overlap.  The root is
+ * not tied to a grid through the origin: a scene centred on the origin
+ * would otherwise need a cube that holds 0 in its interior, which no cube
+ * of such a grid does.  While the root is a leaf it is resized freely to
+ * its records' positions and the boxes no wider than their spread (not
+ * reaches of 1e30); afterwards it doubles toward records and box corners
+ * that land outside it, the old root becoming one of its children.  Centres
  * stay exact because the root's half edge is kept at least 1/32 of its
  * centre's largest coordinate, splits stop at depth IRC__DEPTH and growth
  * at IRC__LEVELS.
  *
- * References come from a pool of the block's (layout.c) that always
- * keeps one for each record not yet indexed: when it runs short a record
- * is placed a level up, in fewer and larger nodes, and leaves stop
- * splitting.  Slower then, never wrong.
+ * References come from a pool of the block's (layout.c; cells.c takes
+ * and gives them) that always keeps one for each record not yet indexed:
+ * when it runs short a record is placed a level up, in fewer and larger
+ * nodes, and leaves stop splitting.  Slower then, never wrong.
  */
 #include "cache.h"
 #include "index.h"
