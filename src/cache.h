@@ -78,8 +78,8 @@ struct irc_cache {
     uint32_t ref_free;       /* first reference given back, IRC__NIL = none */
     uint32_t refs_live;      /* references in lists */
     uint32_t indexed;        /* records with references */
-    uint32_t refs_packed;    /* references when the lists were last laid
-                                out as runs (compact.c) */
+    uint32_t refs_taken;     /* references taken since the lists were last
+                                laid out as runs (compact.c) */
     uint32_t hand;           /* CLOCK hand */
     uint32_t root_set;
     uint32_t depth;          /* the index's deepest node level */

@@ -125,6 +125,7 @@ static uint32_t irc__ref_take(irc_cache *c)
     else
         r = h->refs_used++;
     h->refs_live++;
+    h->refs_taken++;
     return r;
 }
 

@@ -66,7 +66,7 @@ void irc__index_reset(irc_cache *c)
     c->home->ref_free = IRC__NIL;
     c->home->refs_live = 0;
     c->home->indexed = 0;
-    c->home->refs_packed = 0;
+    c->home->refs_taken = 0;
     c->home->root_set = 0;
     c->home->depth = 0;
 }

@@ -57,8 +57,9 @@ void irc__index_reset(irc_cache *c);
 void irc__index_insert(irc_cache *c, uint32_t id);
 void irc__index_remove(irc_cache *c, uint32_t id);
 void irc__index_compact(irc_cache *c); /* compact.c */
-/* compact.c: the lists laid out as runs again when the references have
- * doubled since they last were (records not moved). */
+/* compact.c: the lists laid out as runs again when a quarter as many
+ * references have been taken since they last were as they hold (records
+ * not moved). */
 void irc__index_tidy(irc_cache *c);
 /* compact.c: the index emptied (records kept); the records [0, count)
  * inserted into an empty index in a scattered order. */

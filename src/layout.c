@@ -322,7 +322,6 @@ static int irc__mutable_sane(const irc_cache *h)
 {
     return h->count <= h->capacity && h->nodes_used >= 1u && h->nodes_used <= h->node_cap &&
            h->refs_used <= h->ref_cap && h->refs_live <= h->refs_used &&
-           h->refs_packed <= h->refs_used &&
            (h->ref_free == IRC__NIL || h->ref_free < h->refs_used) && h->indexed <= h->count &&
            (uint64_t)h->refs_live + (h->capacity - h->indexed) <= h->ref_cap &&
            h->hand < h->capacity && h->depth <= IRC__LEVELS && h->root_set <= 1u &&
