@@ -138,7 +138,7 @@ void irc__ref_give(irc_cache *c, uint32_t r)
 
 /* A new reference to id at the head of node's list, whose cube is q. */
 void irc__ref_push(irc_cache *c, uint32_t node, const irc__cube *q, uint32_t id,
-                          int home)
+                   int home)
 {
     const uint32_t r = irc__ref_take(c);
     irc__ref *e = &irc__refs(c)[r];
@@ -159,7 +159,7 @@ void irc__ref_push(irc_cache *c, uint32_t node, const irc__cube *q, uint32_t id,
  * nodes of depth L.  Depth by depth, at most IRC__FRONT at each (a box no
  * wider than the cells of its level overlaps at most 8). */
 void irc__cover(irc_cache *c, const irc__box *b, int L, int all, irc__cell_fn fn,
-                       void *ud)
+                void *ud)
 {
     irc__cell f[2][IRC__FRONT];
     int nf = 1, cur = 0, d;
