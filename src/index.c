@@ -127,13 +127,14 @@ static int irc__placement(const irc_cache *c, uint32_t id, irc__box *b)
 }
 
 /* Whether a reference in a node of depth d moves down when it splits:
- * its record's level lies deeper.  Sets the children it goes to. */
-static int irc__moves(const irc_cache *c, uint32_t id, const irc__cell *x, int d, unsigned *mask)
+ * its record's level lies deeper.  Sets the record's box and the
+ * children it goes to. */
+static int irc__moves(const irc_cache *c, uint32_t id, const irc__cell *x, int d,
+                      irc__box *b, unsigned *mask)
 {
-    irc__box b;
-    if (irc__placement(c, id, &b) <= d)
+    if (irc__placement(c, id, b) <= d)
         return 0;
-    *mask = irc__overlapped(x, d, &b);
+    *mask = irc__overlapped(x, d, b);
     return *mask != 0;
 }
 
@@ -144,11 +145,12 @@ static void irc__split(irc_cache *c, const irc__cell *x, int d)
     irc__node *n = &irc__nodes(c)[x->node];
     irc__ref *refs = irc__refs(c);
     uint32_t r, nr, keep = IRC__NIL, *tail = &keep, extra = 0, moving = 0, len = 0, b;
+    irc__box bx;
     unsigned mask;
     if (c->node_cap - c->home->nodes_used < 8u)
         return;
     for (r = n->head; r != IRC__NIL; r = refs[r].next, len++)
-        if (irc__moves(c, refs[r].id & ~IRC__REF_HOME, x, d, &mask)) {
+        if (irc__moves(c, refs[r].id & ~IRC__REF_HOME, x, d, &bx, &mask)) {
             extra += irc__popcount(mask) - 1u;
             moving++;
         }
@@ -161,16 +163,14 @@ static void irc__split(irc_cache *c, const irc__cell *x, int d)
         c->home->depth = (uint32_t)d + 1u;
     for (r = n->head; r != IRC__NIL; r = nr) {
         const uint32_t id = refs[r].id & ~IRC__REF_HOME;
-        irc__box bx;
         unsigned oct;
         int homed;
         nr = refs[r].next;
-        if (!irc__moves(c, id, x, d, &mask)) {
+        if (!irc__moves(c, id, x, d, &bx, &mask)) {
             *tail = r; /* in order: the list's homes stay first */
             tail = &refs[r].next;
             continue;
         }
-        irc__placement(c, id, &bx);
         homed = !(refs[r].id & IRC__REF_HOME);
         for (oct = 0; oct < 8; oct++) {
             irc__cell y;
@@ -408,8 +408,12 @@ void irc__index_insert(irc_cache *c, uint32_t id)
     pl.id = id;
     pl.b = &b;
     /* A level up while the references it takes are more than the pool
-     * can spare: at the root it takes one, which the pool keeps. */
-    for (;;) {
+     * can spare: at the root it takes one, which the pool keeps.  Counted
+     * only when the pool could be short: a box no wider than the cells of
+     * its level is cut by at most one of their faces an axis, and every
+     * node it is placed in holds whole pieces of it, so it takes 8 at
+     * most. */
+    while (irc__spare(c) + 1u < 8u) {
         pl.count = 0;
         if (b.inside)
             irc__cover(c, &b, L, 0, irc__place_at, &pl);
@@ -429,6 +433,7 @@ void irc__index_insert(irc_cache *c, uint32_t id)
             irc__nodes(c)[0].reach = e->reach;
         pl.count = 1;
     }
+    IRC_ASSERT(pl.count <= 8u); /* what lets the count above be skipped */
     e->refs = pl.count;
     c->home->indexed++;
     /* A leaf is tried for a split when its list passes SPLIT and every
