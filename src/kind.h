@@ -116,6 +116,9 @@ typedef struct irc__acc {
     int (*finish)(const irc_cache *c, const irc__query *q, const void *acc, float w,
                   void *out);
     int (*find)(irc_cache *c, const irc__query *q, void *out, float *weight);
+    /* weigh and accumulate in one (optional, for queries that hide no
+     * record): the record's weight, or 0 when it does not count */
+    float (*take)(const irc_cache *c, const irc__rec *r, const irc__query *q, void *acc);
 } irc__acc;
 
 /* A record kind: its config, its record, its scratch, and what the store

@@ -269,10 +269,30 @@ static void irc__irr_answer(const irc_cache *c, const void *rec, void *out)
 
 static const irc__acc irc__irr_lookup;
 
+/* irc__irr_accumulate's weight and value taken at once (weight.c) */
+static float irc__irr_take(const irc_cache *c, const irc__rec *r, const irc__query *q,
+                           void *acc)
+{
+    float v[3], *a = (float *)acc, f;
+    const float w = irc__weigh_extrapolate(c, r, q->p, q->n, v);
+    int ch;
+    if (w > 0.0f) {
+        a[3] += w;
+        f = w / a[3];
+        for (ch = 0; ch < 3; ch++)
+            a[ch] += f * (v[ch] - a[ch]);
+    }
+    return w;
+}
+
+static const irc__acc irc__irr_plain;
+
+/* Records with an ellipse or a guard take the general path. */
 static int irc__irr_find(irc_cache *c, const irc__query *q, void *out, float *weight)
 {
     float acc[4];
-    return irc__lookup_once(c, &irc__irr_lookup, q, out, weight, acc);
+    const int plain = !c->off[IRC__P_ELLIPSE] && !c->off[IRC__P_GUARD];
+    return irc__lookup_once(c, plain ? &irc__irr_plain : &irc__irr_lookup, q, out, weight, acc);
 }
 
 /* The gradient lookup: the same records and weights; its accumulator is
@@ -451,8 +471,11 @@ static int irc__irrg_find(irc_cache *c, const irc__query *q, void *out, float *w
 
 /* Only irc_cache_lookup_gradient uses it: the kind's records, summed with
  * their gradients' extrapolation. */
-static const irc__acc irc__irr_grad_lookup = {
-    irc__irr_weigh, irc__irrg_begin, irc__irrg_accumulate, irc__irrg_finish, irc__irrg_find};
+static const irc__acc irc__irr_grad_lookup = {.weigh = irc__irr_weigh,
+    .begin = irc__irrg_begin,
+    .accumulate = irc__irrg_accumulate,
+    .finish = irc__irrg_finish,
+    .find = irc__irrg_find};
 
 static int irc__irrg_find(irc_cache *c, const irc__query *q, void *out, float *weight)
 {
@@ -461,8 +484,17 @@ static int irc__irrg_find(irc_cache *c, const irc__query *q, void *out, float *w
     return irc__lookup_once(c, &irc__irr_grad_lookup, q, out, weight, &acc);
 }
 
-static const irc__acc irc__irr_lookup = {
-    irc__irr_weigh, irc__irr_begin, irc__irr_accumulate, irc__irr_finish, irc__irr_find};
+static const irc__acc irc__irr_lookup = {.weigh = irc__irr_weigh,
+    .begin = irc__irr_begin,
+    .accumulate = irc__irr_accumulate,
+    .finish = irc__irr_finish,
+    .find = irc__irr_find};
+static const irc__acc irc__irr_plain = {.weigh = irc__irr_weigh,
+    .begin = irc__irr_begin,
+    .accumulate = irc__irr_accumulate,
+    .finish = irc__irr_finish,
+    .find = irc__irr_find,
+    .take = irc__irr_take};
 
 /* The bits this build leaves out (util.h). */
 #if defined(IRC_NO_VISIBILITY) && defined(IRC_NO_HESSIAN)

@@ -301,8 +301,11 @@ static void irc__sh_scratch(const irc_config *cfg, irc__scratch *s)
     s->bytes[IRC__S_DIRS] = s->bytes[IRC__S_NORMALS] = (uint64_t)s->samples * 3u * sizeof(float);
 }
 
-static const irc__acc irc__sh_lookup = {
-    irc__sh_weigh, irc__sh_begin, irc__sh_gather, irc__sh_end, irc__sh_find};
+static const irc__acc irc__sh_lookup = {.weigh = irc__sh_weigh,
+    .begin = irc__sh_begin,
+    .accumulate = irc__sh_gather,
+    .finish = irc__sh_end,
+    .find = irc__sh_find};
 
 const irc__kind irc__kind_sh = {
     IRC__KIND_SH_ID, IRC_FEATURE_SH | IRC_FEATURE_SH_GRADIENT, 0u, 1, 1,

@@ -42,21 +42,6 @@ irc__rng irc__rng_for(const float p[3], const float n[3], uint64_t seed)
     return r;
 }
 
-/* Branchless orthonormal basis (Duff et al. 2017), right-handed:
- * t1 x t2 = n.  Continuous everywhere but across n.z = 0's sign flip. */
-void irc__frame(const float n[3], float t1[3], float t2[3])
-{
-    float s = n[2] >= 0.0f ? 1.0f : -1.0f;
-    float a = -1.0f / (s + n[2]);
-    float b = n[0] * n[1] * a;
-    t1[0] = 1.0f + s * n[0] * n[0] * a;
-    t1[1] = s * b;
-    t1[2] = -s * n[0];
-    t2[0] = b;
-    t2[1] = s + n[1] * n[1] * a;
-    t2[2] = -n[1];
-}
-
 static int irc__nonneg3(const float v[3])
 {
     uint32_t u[3];

@@ -33,7 +33,6 @@ void irc__grid_at(const irc_cache *c, uint32_t level, irc__grid *g);
 typedef struct irc__rng { uint64_t key; } irc__rng;
 irc__rng irc__rng_for(const float p[3], const float n[3], uint64_t seed);
 int irc__accept_hit(const irc_hit *h, irc__sample *s);
-void irc__frame(const float n[3], float t1[3], float t2[3]);
 int irc__cast(irc__call *k, irc_ray *rays, irc_hit *hits, uint32_t count);
 
 /* The hemisphere around the query's normal into the call's slot on grid

@@ -330,6 +330,18 @@ static void irc__visit(void *ud, uint32_t id)
     }
 }
 
+/* irc__visit for a kind that weighs and accumulates in one call, when the
+ * query hides no record: the same records in the same order. */
+static void irc__visit_take(void *ud, uint32_t id)
+{
+    irc__walk *v = (irc__walk *)ud;
+    const float w = v->ops->take(v->c, irc__rec_at(v->c, id), v->q, v->acc);
+    if (w > 0.0f) {
+        v->w += w;
+        irc__mark_used(v->c, v->q->marks, id);
+    }
+}
+
 /* In an open pass nothing a lookup reads can change until irc_pass_end,
  * which no other call may overlap (irrcache.h), and the pass's own records
  * go to slots no lookup reads: lookups then take no lock, so threads on
@@ -341,7 +353,8 @@ static int irc__walk_index(irc_cache *c, irc__walk *v)
     int lock = !c->home->pass_open;
     if (lock && irc__read_lock(c) < 0)
         return IRC_ERR_PORT;
-    irc__index_query(c, v->q->p, irc__visit, v);
+    irc__index_query(c, v->q->p,
+                     v->acc && v->ops->take && !v->q->n_hidden ? irc__visit_take : irc__visit, v);
     if (lock)
         irc__read_unlock(c);
     return IRC_OK;

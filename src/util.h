@@ -134,4 +134,19 @@ static inline void irc__cross3(const float a[3], const float b[3], float out[3])
     out[2] = a[0] * b[1] - a[1] * b[0];
 }
 
+/* Branchless orthonormal basis (Duff et al. 2017), right-handed:
+ * t1 x t2 = n.  Continuous everywhere but across n.z = 0's sign flip. */
+static inline void irc__frame(const float n[3], float t1[3], float t2[3])
+{
+    float s = n[2] >= 0.0f ? 1.0f : -1.0f;
+    float a = -1.0f / (s + n[2]);
+    float b = n[0] * n[1] * a;
+    t1[0] = 1.0f + s * n[0] * n[0] * a;
+    t1[1] = s * b;
+    t1[2] = -s * n[0];
+    t2[0] = b;
+    t2[1] = s + n[1] * n[1] * a;
+    t2[2] = -n[1];
+}
+
 #endif

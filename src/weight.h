@@ -14,6 +14,9 @@ int irc__weigh(const irc_cache *c, const irc__rec *r, const float p[3],
                const float n[3], int shaped, float *w, float ni[3]);
 void irc__extrapolate(const irc_cache *c, const irc__rec *r, const float ni[3],
                       const float p[3], const float n[3], float out[3]);
+/* both for a record with no ellipse and no guard: its weight, or 0 */
+float irc__weigh_extrapolate(const irc_cache *c, const irc__rec *r, const float p[3],
+                             const float n[3], float out[3]);
 void irc__extrapolate_grad(const irc_cache *c, const irc__rec *r, const float ni[3],
                            const float val[3], float f, irc_gradient *g);
 float irc__grad_scale(const irc__grad *g, int ch);

@@ -155,8 +155,11 @@ static int occ_find(irc_cache *c, const irc__query *q, void *out, float *weight)
     return irc__lookup_once(c, &occ_lookup_ops, q, out, weight, &acc);
 }
 
-static const irc__acc occ_lookup_ops = {occ_weigh, occ_begin, occ_accumulate, occ_finish,
-                                        occ_find};
+static const irc__acc occ_lookup_ops = {.weigh = occ_weigh,
+    .begin = occ_begin,
+    .accumulate = occ_accumulate,
+    .finish = occ_finish,
+    .find = occ_find};
 
 /* Its feature alone; no neighbour clamping or confirming rays unless
  * asked. */

@@ -557,3 +557,116 @@ TEST(test_index_root_refused)
     CHECK(irc_attach(&ac, &a) == IRC_OK, "the block as it was");
     block_free(&cfg);
 }
+
+/* A record with gradients for test_weigh_fused: |grad_t| R up to twice E
+ * and |grad_r| up to 17 E a radian, so extrapolations run below 0 and
+ * are clamped. */
+static void fused_record(unsigned long long *st, irc_record *r)
+{
+    int k, ch;
+    memset(r, 0, sizeof *r);
+    rand_normal(st, r->n);
+    r->radius = (float)(0.05 * pow(10.0, xrand(st)));
+    for (k = 0; k < 3; k++)
+        r->p[k] = (float)(xrand(st) - 0.5);
+    for (ch = 0; ch < 3; ch++) {
+        r->e[ch] = (float)(0.01 + xrand(st));
+        for (k = 0; k < 3; k++) {
+            r->grad_t[ch][k] = (float)((xrand(st) - 0.5) * 2.0 * r->e[ch] / r->radius);
+            r->grad_r[ch][k] = (float)((xrand(st) - 0.5) * 20.0 * r->e[ch]);
+        }
+    }
+}
+
+/* The lookups' fused weight and value (irc__weigh_extrapolate) against
+ * the general path's three calls, bit for bit, for every record near
+ * each query and every gradient set a cache without ellipse or guard
+ * stores; and the value against E + grad_t.(p - p_i) + (n_i x n).grad_r
+ * in double from the record as read back (world coordinates): within
+ * 1e-6 of the terms' magnitudes (float roundings of the frame, the
+ * products and the sums: a few 1e-7). */
+TEST(test_weigh_fused)
+{
+    static const uint32_t sets[] = {IRC_FEATURE_NONE, IRC_FEATURE_TRANSLATION,
+                                    IRC_FEATURE_ROTATION,
+                                    IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION};
+    const uint32_t records = 1500, queries = irc_t_quick ? 300u : 1500u;
+    unsigned long long st = 777;
+    unsigned f;
+    for (f = 0; f < sizeof sets / sizeof sets[0]; f++) {
+        irc_config cfg = scene_config(&dummy, sets[f], 4, 4);
+        irc_cache *c;
+        uint32_t q, i, accepted = 0, bad_bits = 0, bad_ref = 0, clamped = 0;
+        double worst = 0.0;
+        cfg.accuracy = 0.4f;
+        c = block_cache(&cfg, records, 0);
+        CHECK(c != NULL, "init");
+        if (!c) return;
+        for (i = 0; i < records; i++) {
+            irc_record r;
+            fused_record(&st, &r);
+            CHECK(irc_cache_insert(c, &r) == IRC_OK, "insert");
+        }
+        for (q = 0; q < queries; q++) {
+            irc_record rq;
+            float p[3], n[3], un[3];
+            int k;
+            CHECK(irc_cache_record(c, (uint32_t)(xrand(&st) * records), &rq) == IRC_OK, "read");
+            for (k = 0; k < 3; k++) {
+                /* at the record itself one query in eight */
+                p[k] = q % 8 ? rq.p[k] + (float)((xrand(&st) - 0.5) * 0.4 * rq.radius) : rq.p[k];
+                n[k] = rq.n[k] + (float)((xrand(&st) - 0.5) * (q % 3 ? 0.3 : 2.5));
+            }
+            if (irc__check_normal(n, un) != IRC_OK)
+                continue;
+            for (i = 0; i < records; i++) {
+                const irc__rec *r = irc__rec_at(c, i);
+                float w0 = 0.0f, w1, v0[3], v1[3], ni[3];
+                int ok = irc__within_reach(c, r, p) && irc__weigh(c, r, p, un, 1, &w0, ni);
+                w1 = irc__weigh_extrapolate(c, r, p, un, v1);
+                if (!ok) {
+                    bad_bits += w1 != 0.0f;
+                    continue;
+                }
+                irc__extrapolate(c, r, ni, p, un, v0);
+                accepted++;
+                bad_bits += memcmp(&w0, &w1, sizeof w0) != 0 || memcmp(v0, v1, sizeof v0) != 0;
+                {
+                    irc_record rr;
+                    CHECK(irc_cache_record(c, i, &rr) == IRC_OK, "read");
+                    for (k = 0; k < 3; k++) {
+                        const double d[3] = {(double)p[0] - rr.p[0], (double)p[1] - rr.p[1],
+                                             (double)p[2] - rr.p[2]};
+                        const double x[3] = {(double)rr.n[1] * un[2] - (double)rr.n[2] * un[1],
+                                             (double)rr.n[2] * un[0] - (double)rr.n[0] * un[2],
+                                             (double)rr.n[0] * un[1] - (double)rr.n[1] * un[0]};
+                        double t = 0.0, r0 = 0.0, ref, mag, err;
+                        int j;
+                        for (j = 0; j < 3; j++) {
+                            t += d[j] * rr.grad_t[k][j];
+                            r0 += x[j] * rr.grad_r[k][j];
+                        }
+                        ref = rr.e[k] + t + r0;
+                        clamped += ref < 0.0;
+                        ref = ref > 0.0 ? ref : 0.0;
+                        mag = rr.e[k] + fabs(t) + fabs(r0);
+                        err = fabs(v1[k] - ref) / mag;
+                        worst = err > worst ? err : worst;
+                        bad_ref += err > 1e-6;
+                    }
+                }
+            }
+        }
+        printf("  features %#x: %u accepted, %u clamped channels, worst |v - ref| %.2g of the "
+               "terms\n",
+               (unsigned)sets[f], accepted, clamped, worst);
+        CHECK(accepted > queries / 2, "too few accepted (%u): the test would prove little", accepted);
+        /* (a stored grad_t keeps its extrapolation within E (1 +- a): only
+         * rotation reaches 0) */
+        CHECK(!(sets[f] & IRC_FEATURE_ROTATION) || clamped > 0, "no extrapolation clamped");
+        CHECK(bad_bits == 0, "%u records weighed or extrapolated differently", bad_bits);
+        CHECK(bad_ref == 0, "%u channels off the closed form by more than 1e-6 (worst %g)",
+              bad_ref, worst);
+        block_free(&cfg);
+    }
+}
