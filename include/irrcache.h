@@ -323,11 +323,14 @@ typedef int (*irc_trace_fn)(const irc_trace_args *args);
  *     finds every slot taken (at once with no_wait, else every 256 waits)
  *     takes over a slot whose process is gone: a process killed inside a
  *     record computation does not hang the others (irc_join).
- *     irc_port_posix has them (getpid, kill(pid, 0)), and its lock asks
- *     them too: a process killed holding the read lock (in a lookup) is
- *     counted out, one killed holding the write lock (in an insert, a
- *     pass's end, a merge) is taken over with 1 as above.  Processes of one
- *     pid namespace; a reused process id looks alive.  irc_port_c11 has
+ *     irc_port_posix has them (the process id, asked once per process;
+ *     alive while kill(pid, 0) finds it and it has not exited: an exited
+ *     child not yet reaped counts as gone, for its parent always, for
+ *     others on Linux), and its lock asks them too: a process killed
+ *     holding the read lock (in a lookup) is counted out, one killed
+ *     holding the write lock (in an insert, a pass's end, a merge) is taken
+ *     over with 1 as above.  Processes of one pid namespace; a reused
+ *     process id looks alive.  irc_port_c11 has
  *     neither: a death inside its lock hangs the others until the block is
  *     attached anew (irc_attach makes a fresh lock and repairs).
  * The atomics act on naturally aligned 64-bit words inside the block.

@@ -238,6 +238,99 @@ TEST(test_share_killed_in_lock)
     munmap(cfg.buffer, mapped);
 }
 
+/* The victim of test_share_zombie: dies holding the read lock (0), the
+ * write lock (1) or, joined with one slot, its scratch slot (2). */
+static void zombie_victim(irc_cache *c, irc_config cfg, suicidal *host, int how)
+{
+    static double view[IRC_VIEW_BYTES / sizeof(double)];
+    irc_cache *v;
+    if (how < 2)
+        stop_in_lock(c, how);
+    host->calls = 0;
+    host->die_at = 1;
+    cfg.trace = suicidal_trace;
+    cfg.context = host;
+    if (irc_join(&cfg, view, sizeof view, &v) == IRC_OK)
+        share_fill_half(v, 1);
+    _exit(100); /* it should have died */
+}
+
+/* The survivor's checks of survives(), in this process. */
+static int survivor_checks(irc_cache *c, uint32_t min_records)
+{
+    irc_stats st;
+    int bad, end = irc_pass_end(c, NULL);
+    bad = end != IRC_OK && end != IRC_ERR_STATE;
+    bad += share_fill_half(c, 0) + share_fill_half(c, 1) + share_verify_all(c);
+    bad += !irc__block_sane(c);
+    bad += irc_cache_stats(c, &st) != IRC_OK || st.records < min_records;
+    return bad;
+}
+
+/* A dead victim not yet reaped (a zombie) still answers kill(pid, 0): the
+ * waiter must see it gone all the same.  The victim dies in the lock or
+ * in its slot, and is left unreaped (waitid with WNOWAIT) while its
+ * parent (as_parent: the process that alone could reap it, asked by
+ * waitid) or a sibling (asked by /proc on Linux) goes on with the cache.
+ * Without the check every one of these hung. */
+static int zombie_trial(irc_config cfg, suicidal *host, int how, int as_parent)
+{
+    irc_cache *c;
+    siginfo_t si;
+    int k, ok, status = -1;
+    pid_t pid, victim;
+    if (irc_init(&cfg, 4096, &c) != IRC_OK)
+        return 0;
+    for (k = 0; k < 30; k++) {
+        const float p[3] = {0.2f * (float)k - 3.0f, 0.0f, 0.0f}, n[3] = {0, 0, 1};
+        float rgb[3], w;
+        irc_cache_lookup_or_compute(c, p, n, rgb, &w, NULL);
+    }
+    if (as_parent) {
+        pid = fork();
+        if (pid == 0) {
+            victim = fork();
+            if (victim == 0)
+                zombie_victim(c, cfg, host, how);
+            if (victim < 0 || waitid(P_PID, (id_t)victim, &si, WEXITED | WNOWAIT) != 0)
+                _exit(98);
+            _exit(survivor_checks(c, 100) ? 1 : 0);
+        }
+        ok = pid > 0 && finished(pid);
+    } else {
+        victim = fork();
+        if (victim == 0)
+            zombie_victim(c, cfg, host, how);
+        ok = victim > 0 && waitid(P_PID, (id_t)victim, &si, WEXITED | WNOWAIT) == 0 &&
+             survives(c, 100);
+        if (victim > 0)
+            waitpid(victim, &status, 0);
+    }
+    irc_fini(c);
+    return ok;
+}
+
+TEST(test_share_zombie)
+{
+    static const char *what[3] = {"the read lock", "the write lock", "its scratch slot"};
+    suicidal host;
+    irc_config cfg;
+    size_t mapped = 0;
+    int how, role;
+    scene_sphere_plane(&host.s);
+    host.calls = host.die_at = 0;
+    cfg = share_config(&host.s);
+    CHECK(map_block(&cfg, 4096, &mapped) != NULL, "mapped block");
+    if (!cfg.buffer)
+        return;
+    for (how = 0; how < 3; how++)
+        for (role = 1; role >= 0; role--)
+            CHECK(zombie_trial(cfg, &host, how, role),
+                  "a victim dead in %s, not yet reaped: its %s hung or found bad records",
+                  what[how], role ? "parent" : "sibling");
+    munmap(cfg.buffer, mapped);
+}
+
 /* A port that kills its process at its die_at-th call (any call: loads of
  * a lookup, a slot's claim, the write lock's taking, a slot's marking
  * inside it...), after the call for the locks, so that the victim dies

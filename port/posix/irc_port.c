@@ -4,11 +4,13 @@
  * the GCC/Clang __atomic builtins on the block's 64-bit words.
  */
 #include <errno.h>
+#include <fcntl.h>
 #include <pthread.h>
 #include <sched.h>
 #include <signal.h>
 #include <string.h>
 #include <sys/types.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include "irrcache.h"
@@ -37,7 +39,8 @@
  * repairs what the writer left half done; read_lock returns 1 without the
  * lock, for the library to take the write lock and repair.
  * A waiting writer keeps new readers out, so writers do not starve.
- * Process ids are of one pid namespace; a reused id looks alive.
+ * Process ids are of one pid namespace; a reused id looks alive; an
+ * exited one not yet reaped does not (posix_exited).
  */
 #define POSIX_READERS 63u
 #define POSIX_CHECK_EVERY 64u /* waits between liveness checks */
@@ -79,9 +82,55 @@ static uint64_t posix_owner(void)
         __atomic_store_n(&posix_pid, p, __ATOMIC_RELAXED);
     return (uint64_t)p;
 }
+/* Whether a process that kill() still finds has exited and waits to be
+ * reaped (a zombie), which only its parent can do: a parent that waits
+ * inside the library for a lock or slot its dead child held would wait
+ * forever.  Its own child it asks waitid without reaping it (WNOWAIT,
+ * POSIX); any other process, on Linux, by the state letter of
+ * /proc/<pid>/stat, which follows the last ')' (the command name may hold
+ * one).  Asked only by a waiter every POSIX_CHECK_EVERY waits, never on a
+ * lookup's way. */
+static int posix_exited(pid_t pid)
+{
+    siginfo_t si;
+    memset(&si, 0, sizeof si);
+    if (waitid(P_PID, (id_t)pid, &si, WEXITED | WNOHANG | WNOWAIT) == 0 && si.si_pid == pid)
+        return 1;
+#ifdef __linux__
+    {
+        char path[32] = "/proc/", digits[12], buf[256];
+        const char *at = NULL;
+        unsigned long v = (unsigned long)pid;
+        size_t nd = 0, len = 6, i;
+        ssize_t got;
+        int fd;
+        do {
+            digits[nd++] = (char)('0' + v % 10);
+            v /= 10;
+        } while (v && nd < sizeof digits);
+        while (nd)
+            path[len++] = digits[--nd];
+        memcpy(path + len, "/stat", 6);
+        if ((fd = open(path, O_RDONLY | O_CLOEXEC)) < 0)
+            return 0;
+        got = read(fd, buf, sizeof buf - 1);
+        close(fd);
+        for (i = 0; got > 0 && i < (size_t)got; i++)
+            if (buf[i] == ')')
+                at = buf + i;
+        return at && at + 2 < buf + got && at[1] == ' ' && (at[2] == 'Z' || at[2] == 'X');
+    }
+#else
+    return 0;
+#endif
+}
+
+/* Alive: kill() finds it (EPERM: another user's) and it has not exited. */
 static int posix_owner_alive(uint64_t tok)
 {
-    return kill((pid_t)tok, 0) == 0 || errno != ESRCH;
+    if (kill((pid_t)tok, 0) != 0 && errno == ESRCH)
+        return 0;
+    return !posix_exited((pid_t)tok);
 }
 
 static uint64_t posix_get(const uint64_t *w) { return __atomic_load_n(w, __ATOMIC_SEQ_CST); }
