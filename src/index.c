@@ -296,6 +296,24 @@ static void irc__root_refit(irc_cache *c, const float p[3])
     }
 }
 
+/* Whether the root irc__grow would make toward p is one the walk can
+ * use.  A root the index made always is (its centre lies on a grid of
+ * its first half edge, so a grown one's corners stay floats, and |centre|
+ * <= 33 h becomes <= 17 of the doubled h); an attached block's root only
+ * passed irc__index_root_sane, and a damaged one's centre may carry bits
+ * below that grid that growth pushes out of float.  Refused, the record
+ * stays in the root's list, as past IRC__ROOT_MAX. */
+static int irc__grown_ok(const irc_cache *c, const float p[3])
+{
+    double at[3];
+    int i;
+    for (i = 0; i < 3; i++)
+        at[i] = c->home->root_c[i] +
+                ((double)p[i] >= c->home->root_c[i] + c->home->root_h ? c->home->root_h
+                                                                      : -c->home->root_h);
+    return irc__root_ok(at, 2.0 * c->home->root_h);
+}
+
 /* Doubles a root that has children toward p: the old root becomes the
  * child on the side away from p.  The references the old root held whose
  * boxes are not inside it move up. */
@@ -307,7 +325,7 @@ static int irc__grow(irc_cache *c, const float p[3])
     irc__node *was, *nodes;
     int i, oct = 0;
     if (2.0 * c->home->root_h > IRC__ROOT_MAX || c->home->depth >= IRC__LEVELS ||
-        !(b = irc__block_alloc(c)))
+        !irc__grown_ok(c, p) || !(b = irc__block_alloc(c)))
         return 0;
     nodes = irc__nodes(c);
     for (r = nodes[0].head; r != IRC__NIL; r = nr) {

@@ -396,18 +396,23 @@ static uint32_t irc__descend(const irc_cache *c, const irc__probe *pr)
  * of 1e-30), a centre within 33 h of the origin (h >= |centre| / 32 when
  * fitted, half that ratio after each growth), and, below 2^100, a low
  * centre and low corner that are floats (a few bits over h's grid). */
-int irc__index_root_sane(const irc_cache *h)
+int irc__root_ok(const double c[3], double h)
 {
     int e, i;
-    if (!(h->root_h >= 0x1p-99 && h->root_h <= 0x1p99) || IRC_FREXP(h->root_h, &e) != 0.5)
+    if (!(h >= 0x1p-99 && h <= 0x1p99) || IRC_FREXP(h, &e) != 0.5)
         return 0;
     for (i = 0; i < 3; i++) {
-        const double lo = h->root_c[i] - h->root_h;
-        if (!(IRC_FABS(h->root_c[i]) <= 33.0 * h->root_h) || (double)(float)lo != lo ||
-            (double)(float)h->root_c[i] != h->root_c[i])
+        const double lo = c[i] - h;
+        if (!(IRC_FABS(c[i]) <= 33.0 * h) || (double)(float)lo != lo ||
+            (double)(float)c[i] != c[i])
             return 0;
     }
     return 1;
+}
+
+int irc__index_root_sane(const irc_cache *h)
+{
+    return irc__root_ok(h->root_c, h->root_h);
 }
 
 /* A lookup's walk: the lists of the nodes that hold the point, root first

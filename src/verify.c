@@ -65,36 +65,71 @@ static int irc__node_sane(const irc_cache *c, const irc__node *n)
     return irc__finite(n->reach);
 }
 
+/* Each record's references must number what its entry says (a removal
+ * asserts it finds them all) and one of them be its home (range walks
+ * take records there): counted without memory of our own, as sums over
+ * the lists of a 64-bit hash of each reference's record, against the
+ * entries' counts times the same hashes.  A reference moved to another
+ * record, or a count changed, moves a sum by a hash's difference, zero
+ * with probability 2^-64. */
+typedef struct irc__tally {
+    uint32_t entries;
+    uint64_t all, homes;
+} irc__tally;
+
+static uint64_t irc__id_hash(uint32_t id)
+{
+    uint64_t h = ((uint64_t)id + 1u) * 0x9e3779b97f4a7c15ull;
+    h ^= h >> 29;
+    h *= 0xbf58476d1ce4e5b9ull;
+    return h ^ h >> 32;
+}
+
 /* A list's references: each taken from the pool, to a stored record, its
  * homes first (range walks stop at the first other); together the lists
  * may not hold more than the pool's live count. */
-static int irc__list_sane(const irc_cache *c, uint32_t r, uint32_t *entries)
+static int irc__list_sane(const irc_cache *c, uint32_t r, irc__tally *t)
 {
     const irc__ref *refs = irc__refs(c);
     uint32_t others = 0;
     for (; r != IRC__NIL; r = refs[r].next) {
-        if (r >= c->home->refs_used || (refs[r].id & ~IRC__REF_HOME) >= c->home->count ||
-            ++*entries > c->home->refs_live || (others && (refs[r].id & IRC__REF_HOME)))
+        uint32_t id;
+        if (r >= c->home->refs_used)
+            return 0;
+        id = refs[r].id & ~IRC__REF_HOME;
+        if (id >= c->home->count ||
+            ++t->entries > c->home->refs_live || (others && (refs[r].id & IRC__REF_HOME)))
             return 0;
         others |= !(refs[r].id & IRC__REF_HOME);
+        t->all += irc__id_hash(id);
+        t->homes += (refs[r].id & IRC__REF_HOME) ? irc__id_hash(id) : 0u;
     }
     return 1;
 }
 
-/* The records' entries: a finite reach, and as many references as the
- * pool's live count and indexed records as the header says. */
-static int irc__entries_sane(const irc_cache *c)
+/* The records' entries: a finite reach, as many references as the
+ * pool's live count and indexed records as the header says, each
+ * record's own references and home as the lists hold them (t), and none
+ * for a slot past the stored records (an insert takes the next slot as
+ * unindexed). */
+static int irc__entries_sane(const irc_cache *c, const irc__tally *t)
 {
     const irc__ixe *ix = irc__ix(c);
-    uint64_t refs = 0;
+    uint64_t refs = 0, all = 0, homes = 0;
     uint32_t id, indexed = 0;
     for (id = 0; id < c->home->count; id++) {
         if (!(ix[id].reach >= 0.0f) || !irc__finite(ix[id].reach))
             return 0;
         refs += ix[id].refs;
         indexed += ix[id].refs != 0;
+        all += ix[id].refs * irc__id_hash(id);
+        homes += ix[id].refs ? irc__id_hash(id) : 0u;
     }
-    return refs == c->home->refs_live && indexed == c->home->indexed;
+    for (; id < c->capacity; id++)
+        if (ix[id].refs)
+            return 0;
+    return refs == c->home->refs_live && indexed == c->home->indexed && all == t->all &&
+           homes == t->homes;
 }
 
 /* The pool's given-back chain: references below refs_used, as many as are
@@ -116,9 +151,10 @@ static int irc__free_sane(const irc_cache *c)
 static int irc__tree_sane(const irc_cache *c)
 {
     const irc__node *nodes = irc__nodes(c);
-    uint32_t stack[IRC__LEVELS + 2], top = 0, visits = 1, entries = 0;
+    uint32_t stack[IRC__LEVELS + 2], top = 0, visits = 1;
     unsigned char next[IRC__LEVELS + 2];
-    if (!irc__node_sane(c, &nodes[0]) || !irc__list_sane(c, nodes[0].head, &entries))
+    irc__tally t = {0, 0, 0};
+    if (!irc__node_sane(c, &nodes[0]) || !irc__list_sane(c, nodes[0].head, &t))
         return 0;
     stack[0] = 0;
     next[0] = 0;
@@ -131,12 +167,12 @@ static int irc__tree_sane(const irc_cache *c)
         }
         k = n->child + next[top]++;
         if (++visits > c->home->nodes_used || top + 1u > IRC__LEVELS ||
-            !irc__node_sane(c, &nodes[k]) || !irc__list_sane(c, nodes[k].head, &entries))
+            !irc__node_sane(c, &nodes[k]) || !irc__list_sane(c, nodes[k].head, &t))
             return 0;
         stack[++top] = k;
         next[top] = 0;
     }
-    return entries == c->home->refs_live && irc__free_sane(c) && irc__entries_sane(c);
+    return t.entries == c->home->refs_live && irc__free_sane(c) && irc__entries_sane(c, &t);
 }
 
 int irc__block_sane(const irc_cache *c)

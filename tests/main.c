@@ -11,7 +11,7 @@
     X(test_bad_input_unchanged) X(test_callback_failures) X(test_overflow_radiance) X(test_ports) \
     X(test_threads_stress) X(test_threads_determinism)                 \
     X(test_visibility_sphere) X(test_visibility_box) X(test_visibility_open_sky) \
-    X(test_sight_wall) X(test_sight_clear) X(test_sight_callback) X(test_sight_failure_unchanged) X(test_sight_convex) X(test_attach_bit_flips) X(test_attach_open_pass_overfull) \
+    X(test_sight_wall) X(test_sight_clear) X(test_sight_callback) X(test_sight_failure_unchanged) X(test_sight_convex) X(test_attach_bit_flips) X(test_attach_damaged) X(test_attach_open_pass_overfull) \
     X(test_occlusion_sphere) X(test_sh_orthonormal) X(test_sh_closed_forms)  \
     X(test_sh_gradient) X(test_sh_cap_closed_form) X(test_sh_emitter_gradient) \
     X(test_sh_irradiance_convolution) X(test_sh_glossy_zonal) X(test_sh_radiance_closed_form) \

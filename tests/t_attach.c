@@ -138,3 +138,193 @@ TEST(test_attach_open_pass_overfull)
     }
     block_free(&cfg);
 }
+
+/* What test_attach_damaged does with an accepted block: lookups, an
+ * insert, computes, a pass with computes in it, and a snapshot written
+ * and read into a healthy cache.  Each must return a documented status
+ * (and nothing abort or read out of bounds: make test runs this under
+ * ASan + UBSan).  Returns the calls that did not. */
+static int use_more(irc_cache *c, irc_cache *healthy, unsigned char *snap, size_t cap, int sh)
+{
+    const float n[3] = {0, 0, 1};
+    size_t bytes = 0, written = 0;
+    int i, st, bad = 0;
+    for (i = 0; i < 8; i++) {
+        float p[3] = {-3.0f + 0.8f * (float)i, 0.4f * (float)(i % 5) - 0.8f, 0.0f}, rgb[3], w;
+        irc_sh out;
+        if (sh) {
+            st = i % 3 ? irc_sh_lookup(c, p, n, &out, &w) : irc_sh_lookup_or_compute(c, p, n, &out, &w, NULL);
+        } else {
+            st = i % 3 ? irc_cache_lookup(c, p, n, rgb, &w)
+                       : irc_cache_lookup_or_compute(c, p, n, rgb, &w, NULL);
+        }
+        bad += st < IRC_ERR_LAST || st > IRC_NOT_STORED;
+    }
+    if (!sh) {
+        irc_record r;
+        memset(&r, 0, sizeof r);
+        r.p[0] = 0.25f;
+        r.n[2] = 1.0f;
+        r.e[0] = r.e[1] = r.e[2] = 1.0f;
+        r.radius = 0.5f;
+        st = irc_cache_insert(c, &r);
+        bad += st < IRC_ERR_LAST || st > IRC_NOT_STORED;
+    }
+    st = irc_pass_begin(c);
+    bad += st < IRC_ERR_LAST || st > 0;
+    if (st == IRC_OK) {
+        for (i = 0; i < 3; i++) {
+            float p[3] = {1.1f * (float)i - 1.7f, 0.9f, 0.0f}, rgb[3], w;
+            irc_sh out;
+            int s2 = sh ? irc_sh_lookup_or_compute(c, p, n, &out, &w, NULL)
+                        : irc_cache_lookup_or_compute(c, p, n, rgb, &w, NULL);
+            bad += s2 < IRC_ERR_LAST || s2 > IRC_NOT_STORED;
+        }
+        st = irc_pass_end(c, NULL);
+        bad += st < IRC_ERR_LAST || st > 0;
+    }
+    st = irc_snapshot_size(c, &bytes);
+    bad += st < IRC_ERR_LAST || st > 0;
+    if (st == IRC_OK && bytes <= cap) {
+        st = irc_snapshot_write(c, 7, snap, cap, NULL, NULL, &written);
+        bad += st < IRC_ERR_LAST || st > 0;
+        if (st == IRC_OK) {
+            st = irc_snapshot_read(healthy, 7, snap, written);
+            bad += st < IRC_ERR_LAST || st > 0;
+        }
+    }
+    return bad;
+}
+
+/* Damaged blocks where users' blocks lie: every fourth bit of the first
+ * 4 KiB flipped (every 17th in quick runs: make test's ASan stage) and
+ * one random bit in every 64 bytes of the rest, one at a time,
+ * for each record kind and feature set (the Hessian's with clock
+ * eviction, leak guards and clamping: the set that once passed irc_attach
+ * and aborted the next insert), both locking ports, and blocks at several
+ * offsets from a 64-byte boundary (the block pads itself to one, so the
+ * bytes a flip meets differ).  Every flip is refused with a documented
+ * status and the block left as it was, or the cache it gives answers
+ * every call with a documented status (use_more). */
+TEST(test_attach_damaged)
+{
+    static const struct {
+        uint32_t features;
+        int extras; /* clock eviction, leak guard, neighbour clamping */
+    } sets[] = {
+        {IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION | IRC_FEATURE_HESSIAN, 1},
+        {IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION, 0},
+        {IRC_FEATURE_NONE, 1},
+        {IRC_FEATURE_SH | IRC_FEATURE_SH_GRADIENT, 0},
+    };
+    static const size_t offsets[] = {0, 8, 40};
+    const irc_port *ports[] = {&irc_port_posix, &irc_port_c11};
+    const size_t cap = 1u << 20;
+    unsigned char *snap = malloc(cap);
+    unsigned long long rng = 4242, blocks = 0, accepted = 0;
+    unsigned f, o, pt;
+    int misused = 0, changed = 0, step = irc_t_quick ? 17 : 4;
+    tscene s;
+    CHECK(snap != NULL, "malloc");
+    if (!snap) return;
+    scene_sphere_plane(&s);
+    for (f = 0; f < sizeof sets / sizeof sets[0]; f++)
+        for (pt = 0; pt < 2; pt++)
+            for (o = 0; o < 3; o++) {
+                irc_config cfg = scene_config(&s, sets[f].features, 4, 16), ac, hc;
+                const int sh = (sets[f].features & IRC_FEATURE_SH) != 0;
+                unsigned char *mem, *pristine, *damaged;
+                size_t bytes = 0, k, nflips;
+                irc_cache *c, *healthy = NULL;
+                int i;
+                cfg.port = ports[pt];
+                if (sets[f].extras) {
+                    cfg.evict = IRC_EVICT_CLOCK;
+                    cfg.irr.leak_guard = IRC_ON;
+                    cfg.clamp_neighbours = IRC_ON;
+                }
+                if (irc_footprint(&cfg, 128, &bytes) != IRC_OK ||
+                    !(mem = malloc(bytes + 128))) {
+                    CHECK(0, "footprint or malloc");
+                    continue;
+                }
+                cfg.buffer = mem + (64 - (uintptr_t)mem % 64) % 64 + offsets[o];
+                cfg.buffer_size = bytes;
+                hc = cfg;
+                hc.buffer = NULL;
+                if (irc_init(&cfg, 128, &c) != IRC_OK ||
+                    !(healthy = block_cache(&hc, 128, 0))) {
+                    CHECK(0, "init set %u port %u offset %u", f, pt, o);
+                    free(mem);
+                    continue;
+                }
+                for (i = 0; i < 100; i++) {
+                    const float n[3] = {0, 0, 1};
+                    float p[3] = {(float)(xrand(&rng) * 6.0 - 3.0),
+                                  (float)(xrand(&rng) * 6.0 - 3.0), 0.0f},
+                          rgb[3], w;
+                    irc_sh out;
+                    if (sh)
+                        irc_sh_lookup_or_compute(c, p, n, &out, &w, NULL);
+                    else
+                        irc_cache_lookup_or_compute(c, p, n, rgb, &w, NULL);
+                }
+                pristine = malloc(bytes);
+                damaged = malloc(bytes);
+                if (!pristine || !damaged) {
+                    CHECK(0, "malloc");
+                    free(pristine);
+                    free(damaged);
+                    free(mem);
+                    block_free(&hc);
+                    continue;
+                }
+                memcpy(pristine, cfg.buffer, bytes);
+                irc_fini(c); /* (which marks the block closed: the copy is open) */
+                {
+                    irc_cache *a;
+                    int rc;
+                    memcpy(cfg.buffer, pristine, bytes);
+                    ac = cfg;
+                    rc = irc_attach(&ac, &a);
+                    CHECK(rc == IRC_OK, "set %u port %u offset %u: the pristine block: %d", f, pt, o,
+                          rc);
+                    if (rc == IRC_OK)
+                        irc_fini(a);
+                }
+                nflips = (bytes < 4096 ? bytes : 4096) * 8;
+                for (k = 0; k < nflips + bytes / 64; k += k < nflips ? (size_t)step : 1) {
+                    const size_t bit =
+                        k < nflips ? k : ((k - nflips) * 64 + (size_t)(xrand(&rng) * 64.0)) * 8 +
+                                             (size_t)(xrand(&rng) * 8.0);
+                    irc_cache *a;
+                    int rc;
+                    if (bit / 8 >= bytes)
+                        continue;
+                    memcpy(damaged, pristine, bytes);
+                    damaged[bit / 8] ^= (unsigned char)(1u << (bit % 8));
+                    memcpy(cfg.buffer, damaged, bytes);
+                    ac = cfg;
+                    blocks++;
+                    rc = irc_attach(&ac, &a);
+                    if (rc == IRC_OK) {
+                        accepted++;
+                        misused += use_more(a, healthy, snap, cap, sh);
+                        irc_fini(a);
+                    } else {
+                        changed += memcmp(cfg.buffer, damaged, bytes) != 0;
+                        misused += rc != IRC_ERR_CORRUPT && rc != IRC_ERR_CONFIG &&
+                                   rc != IRC_ERR_NOMEM && rc != IRC_ERR_UNSUPPORTED;
+                    }
+                }
+                free(pristine);
+                free(damaged);
+                free(mem);
+                block_free(&hc);
+            }
+    printf("  %llu damaged blocks, %llu attached\n", blocks, accepted);
+    CHECK(accepted > 0 && accepted < blocks, "accepted %llu of %llu", accepted, blocks);
+    CHECK(changed == 0, "%d refusals changed the block", changed);
+    CHECK(misused == 0, "%d undocumented statuses", misused);
+    free(snap);
+}
