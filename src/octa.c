@@ -24,22 +24,10 @@ uint32_t irc__oct_encode(const float n[3])
     return (qx | qy << 16) == IRC__FREE ? IRC__FREE - 1u : qx | qy << 16;
 }
 
-/* Decoded in float: lookups decode every accepted record's normal. */
+/* Decoded in float (octa.h's inline decoding, out of line). */
 void irc__oct_decode(uint32_t code, float out[3])
 {
-    float x = (float)(code & 0xffffu) * (2.0f / 65535.0f) - 1.0f;
-    float y = (float)(code >> 16) * (2.0f / 65535.0f) - 1.0f;
-    float z = 1.0f - IRC_FABSF(x) - IRC_FABSF(y), inv;
-    if (z < 0.0f) {
-        float ox = (1.0f - IRC_FABSF(y)) * (x >= 0.0f ? 1.0f : -1.0f);
-        float oy = (1.0f - IRC_FABSF(x)) * (y >= 0.0f ? 1.0f : -1.0f);
-        x = ox;
-        y = oy;
-    }
-    inv = 1.0f / IRC_SQRTF(x * x + y * y + z * z);
-    out[0] = x * inv;
-    out[1] = y * inv;
-    out[2] = z * inv;
+    irc__oct_decode_inline(code, out);
 }
 
 /* The frame of the decoded normal: what packing and unpacking agree on. */

@@ -184,7 +184,7 @@ float irc__weigh_extrapolate(const irc_cache *c, const irc__rec *r, const float 
     int ch;
     if (!((d2 < ra * ra && d2 < a * a * rad * rad) || d2 == 0.0f) || r->n == IRC__FREE)
         return 0.0f;
-    irc__oct_decode(r->n, ni);
+    irc__oct_decode_inline(r->n, ni);
     if (n[0] * ni[0] + n[1] * ni[1] + n[2] * ni[2] <= 0.0f ||
         0.5f * (dx * (n[0] + ni[0]) + dy * (n[1] + ni[1]) + dz * (n[2] + ni[2])) <
             -IRC__BEHIND_TOL * rad)
