@@ -32,6 +32,15 @@
 #include <stdint.h>
 #include <string.h>
 
+/* A helper a lookup runs per record, shared with a general path: inlined
+ * where the compiler optimises for speed, called where it optimises for
+ * size (-Os, firmware), so it is written once and built once there. */
+#if (defined(__GNUC__) || defined(__clang__)) && !defined(__OPTIMIZE_SIZE__)
+#define IRC__PER_RECORD static inline __attribute__((always_inline))
+#else
+#define IRC__PER_RECORD static
+#endif
+
 #ifndef IRC_MEMCPY
 #define IRC_MEMCPY(d, s, n) memcpy((d), (s), (n))
 #endif

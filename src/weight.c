@@ -59,6 +59,26 @@ static int irc__guarded(const irc__rec *r, uint32_t off, const float ni[3], floa
 
 #endif
 
+/* Whether a record at offset d = p - p_i, its decoded normal ni, may
+ * serve a query with normal n: facing it, and not in front of its surface
+ * by more than IRC__BEHIND_TOL of R_i. */
+IRC__PER_RECORD int irc__faces(const float d[3], const float n[3], const float ni[3], float rad)
+{
+    if (n[0] * ni[0] + n[1] * ni[1] + n[2] * ni[2] <= 0.0f)
+        return 0;
+    return !(0.5f * (d[0] * (n[0] + ni[0]) + d[1] * (n[1] + ni[1]) + d[2] * (n[2] + ni[2])) <
+             -IRC__BEHIND_TOL * rad);
+}
+
+/* sqrt(1 - n.n_i) as |n - n_i|/sqrt(2), equal for unit normals: in float,
+ * 1 - n.n_i of nearly equal normals is all rounding (an ulp of n moved the
+ * weight by 3e-4), the difference is not. */
+IRC__PER_RECORD float irc__normal_term(const float n[3], const float ni[3])
+{
+    const float ex = n[0] - ni[0], ey = n[1] - ni[1], ez = n[2] - ni[2];
+    return IRC_SQRTF(0.5f * (ex * ex + ey * ey + ez * ez));
+}
+
 /* Ward-Heckbert weight w = 1 / (|p - p_i|/R_i + sqrt(1 - n.n_i)), accepted
  * when w > 1/a.  n must be unit length.  Returns 1 and sets *w and the
  * record's decoded normal ni when the record counts, else 0. */
@@ -66,16 +86,12 @@ int irc__weigh(const irc_cache *c, const irc__rec *r, const float p[3],
                const float n[3], int shaped, float *w, float ni[3])
 {
     const float a = c->cfg.accuracy, rad = r->r;
-    float dx = p[0] - r->p[0], dy = p[1] - r->p[1], dz = p[2] - r->p[2];
-    float d2 = dx * dx + dy * dy + dz * dz, nn, e;
+    const float d[3] = {p[0] - r->p[0], p[1] - r->p[1], p[2] - r->p[2]};
+    float d2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2], e;
     if (!(d2 < a * a * rad * rad || d2 == 0.0f) || r->n == IRC__FREE)
         return 0; /* its own point always (irc__within_reach) */
     irc__oct_decode(r->n, ni);
-    nn = n[0] * ni[0] + n[1] * ni[1] + n[2] * ni[2];
-    if (nn <= 0.0f)
-        return 0;
-    if (0.5f * (dx * (n[0] + ni[0]) + dy * (n[1] + ni[1]) + dz * (n[2] + ni[2])) <
-        -IRC__BEHIND_TOL * rad)
+    if (!irc__faces(d, n, ni, rad))
         return 0;
     if (shaped && c->off[IRC__P_ELLIPSE]) {
         /* An ellipse (Schwarzhaupt et al. 2012): the distance along the
@@ -87,7 +103,7 @@ int irc__weigh(const irc_cache *c, const irc__rec *r, const float p[3],
             float u[3];
             float du;
             irc__oct_decode(an->axis, u);
-            du = dx * u[0] + dy * u[1] + dz * u[2];
+            du = d[0] * u[0] + d[1] * u[1] + d[2] * u[2];
             d2 = du * du + (d2 - du * du) / (an->q * an->q);
             if (!(d2 < a * a * rad * rad || d2 == 0.0f))
                 return 0;
@@ -95,16 +111,11 @@ int irc__weigh(const irc_cache *c, const irc__rec *r, const float p[3],
     }
     e = IRC_SQRTF(d2) / rad;
 #ifndef IRC_NO_GUARD
-    if (shaped && c->off[IRC__P_GUARD] && irc__guarded(r, c->off[IRC__P_GUARD], ni, dx, dy, dz, e / a))
+    if (shaped && c->off[IRC__P_GUARD] &&
+        irc__guarded(r, c->off[IRC__P_GUARD], ni, d[0], d[1], d[2], e / a))
         return 0;
 #endif
-    {
-        /* sqrt(1 - n.n_i) as |n - n_i|/sqrt(2), equal for unit normals: in
-         * float, 1 - n.n_i of nearly equal normals is all rounding (an ulp
-         * of n moved the weight by 3e-4), the difference is not. */
-        const float ex = n[0] - ni[0], ey = n[1] - ni[1], ez = n[2] - ni[2];
-        e += IRC_SQRTF(0.5f * (ex * ex + ey * ey + ez * ez));
-    }
+    e += irc__normal_term(n, ni);
     if (!(e < a))
         return 0;
     *w = e > 1.0f / IRC__W_MAX ? 1.0f / e : IRC__W_MAX;
@@ -128,32 +139,30 @@ static float irc__grad_dot(const irc__grad *g, int ch, float a, float b)
     return (g->g[2 * ch] * a + g->g[2 * ch + 1] * b) * irc__grad_scale(g, ch);
 }
 
-/* E_i + (p - p_i).grad_t + (n_i x n).grad_r, each gradient stored in the
- * tangent frame of the decoded normal, clamped at 0 per channel. */
-void irc__extrapolate(const irc_cache *c, const irc__rec *r, const float ni[3],
-                      const float p[3], const float n[3], float out[3])
+/* E_i + d.grad_t + (n_i x n).grad_r at offset d = p - p_i, each gradient
+ * stored in the tangent frame of the decoded normal, clamped at 0 per
+ * channel. */
+IRC__PER_RECORD void irc__extrapolate_at(const irc_cache *c, const irc__rec *r,
+                                          const float ni[3], const float d[3],
+                                          const float n[3], float out[3])
 {
     const unsigned char *b = (const unsigned char *)r;
+    const uint32_t ot = c->off[IRC__P_GRAD_T], orot = c->off[IRC__P_GRAD_R];
     float t1[3], t2[3];
     int ch;
     for (ch = 0; ch < 3; ch++)
         out[ch] = r->e[ch];
-    if (!c->off[IRC__P_GRAD_T] && !c->off[IRC__P_GRAD_R])
+    if (!ot && !orot)
         return;
     irc__frame(ni, t1, t2);
-    if (c->off[IRC__P_GRAD_T]) {
-        const irc__grad *g = (const irc__grad *)(const void *)(b + c->off[IRC__P_GRAD_T]);
-        float d[3], da, db;
-        d[0] = p[0] - r->p[0];
-        d[1] = p[1] - r->p[1];
-        d[2] = p[2] - r->p[2];
-        da = irc__dot3(d, t1);
-        db = irc__dot3(d, t2);
+    if (ot) {
+        const irc__grad *g = (const irc__grad *)(const void *)(b + ot);
+        const float da = irc__dot3(d, t1), db = irc__dot3(d, t2);
         for (ch = 0; ch < 3; ch++)
             out[ch] += irc__grad_dot(g, ch, da, db);
     }
-    if (c->off[IRC__P_GRAD_R]) {
-        const irc__grad *g = (const irc__grad *)(const void *)(b + c->off[IRC__P_GRAD_R]);
+    if (orot) {
+        const irc__grad *g = (const irc__grad *)(const void *)(b + orot);
         float x[3], da, db;
         irc__cross3(ni, n, x);
         da = irc__dot3(x, t1);
@@ -166,60 +175,35 @@ void irc__extrapolate(const irc_cache *c, const irc__rec *r, const float ni[3],
             out[ch] = 0.0f;
 }
 
+void irc__extrapolate(const irc_cache *c, const irc__rec *r, const float ni[3],
+                      const float p[3], const float n[3], float out[3])
+{
+    const float d[3] = {p[0] - r->p[0], p[1] - r->p[1], p[2] - r->p[2]};
+    irc__extrapolate_at(c, r, ni, d, n, out);
+}
+
 /* irc__within_reach, irc__weigh and irc__extrapolate in one, for records
  * with neither ellipse nor leak guard: the same operations in the same
  * order, so the same weight and value to the bit, without three calls,
- * the distance taken twice and the parts' offsets looked up per record.
- * Returns the weight, 0 for a record that does not count; out gets its
- * value. */
+ * the distance taken twice and the normal decoded out of line.  Returns
+ * the weight, 0 for a record that does not count; out gets its value. */
 float irc__weigh_extrapolate(const irc_cache *c, const irc__rec *r, const float p[3],
                              const float n[3], float out[3])
 {
-    const unsigned char *b = (const unsigned char *)r;
-    const uint32_t ot = c->off[IRC__P_GRAD_T], orot = c->off[IRC__P_GRAD_R];
     const float a = c->cfg.accuracy, rad = r->r, ra = a * rad;
-    const float dx = p[0] - r->p[0], dy = p[1] - r->p[1], dz = p[2] - r->p[2];
-    const float d2 = dx * dx + dy * dy + dz * dz;
-    float ni[3], t1[3], t2[3], e, w;
-    int ch;
+    const float d[3] = {p[0] - r->p[0], p[1] - r->p[1], p[2] - r->p[2]};
+    const float d2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+    float ni[3], e;
     if (!((d2 < ra * ra && d2 < a * a * rad * rad) || d2 == 0.0f) || r->n == IRC__FREE)
         return 0.0f;
     irc__oct_decode_inline(r->n, ni);
-    if (n[0] * ni[0] + n[1] * ni[1] + n[2] * ni[2] <= 0.0f ||
-        0.5f * (dx * (n[0] + ni[0]) + dy * (n[1] + ni[1]) + dz * (n[2] + ni[2])) <
-            -IRC__BEHIND_TOL * rad)
+    if (!irc__faces(d, n, ni, rad))
         return 0.0f;
-    {
-        const float ex = n[0] - ni[0], ey = n[1] - ni[1], ez = n[2] - ni[2];
-        e = IRC_SQRTF(d2) / rad + IRC_SQRTF(0.5f * (ex * ex + ey * ey + ez * ez));
-    }
+    e = IRC_SQRTF(d2) / rad + irc__normal_term(n, ni);
     if (!(e < a))
         return 0.0f;
-    w = e > 1.0f / IRC__W_MAX ? 1.0f / e : IRC__W_MAX;
-    out[0] = r->e[0];
-    out[1] = r->e[1];
-    out[2] = r->e[2];
-    if (!ot && !orot)
-        return w;
-    irc__frame(ni, t1, t2);
-    if (ot) {
-        const irc__grad *g = (const irc__grad *)(const void *)(b + ot);
-        const float da = dx * t1[0] + dy * t1[1] + dz * t1[2],
-                    db = dx * t2[0] + dy * t2[1] + dz * t2[2];
-        for (ch = 0; ch < 3; ch++)
-            out[ch] += irc__grad_dot(g, ch, da, db);
-    }
-    if (orot) {
-        const irc__grad *g = (const irc__grad *)(const void *)(b + orot);
-        float x[3];
-        irc__cross3(ni, n, x);
-        for (ch = 0; ch < 3; ch++)
-            out[ch] += irc__grad_dot(g, ch, irc__dot3(x, t1), irc__dot3(x, t2));
-    }
-    for (ch = 0; ch < 3; ch++)
-        if (!(out[ch] > 0.0f))
-            out[ch] = 0.0f;
-    return w;
+    irc__extrapolate_at(c, r, ni, d, n, out);
+    return e > 1.0f / IRC__W_MAX ? 1.0f / e : IRC__W_MAX;
 }
 
 /* The record's derivatives of its extrapolated value val (irc__extrapolate's)
