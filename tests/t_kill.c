@@ -394,21 +394,54 @@ static irc_port killing_port(void)
  * (each ending with its records joining the index and a compaction, all
  * under the write lock), with clamping (which writes neighbours' radii)
  * and CLOCK eviction in a pool too small for the lattice. */
-static void victim_fill(irc_cache *v, int passes)
+static unsigned char *merge_snap; /* mode 2's snapshot: half 1 computed */
+static size_t merge_bytes;
+static int *in_merge; /* shared with the parent: 1 while the victim merges */
+
+/* mode 0: fills the lattice; 1: in two passes; 2: merges a snapshot of
+ * half 1 into it. */
+static void victim_fill(irc_cache *v, int mode)
 {
     int round;
+    if (mode == 2) {
+        if (in_merge)
+            *in_merge = 1;
+        irc_merge(v, 7, merge_snap, merge_bytes);
+        if (in_merge)
+            *in_merge = 0;
+        return;
+    }
     for (round = 0; round < 2; round++) {
-        if (passes)
+        if (mode)
             irc_pass_begin(v);
         share_fill_half(v, round);
-        if (passes)
+        if (mode)
             irc_pass_end(v, NULL);
     }
 }
 
+/* merge_snap: half 1 computed in a cache of the trials' config. */
+static int make_merge_snap(irc_config cfg)
+{
+    irc_cache *c;
+    size_t bytes = 0;
+    int ok = 0;
+    if (irc_footprint(&cfg, 300, &bytes) != IRC_OK || !(cfg.buffer = malloc(bytes)))
+        return 0;
+    cfg.buffer_size = bytes;
+    if (irc_init(&cfg, 300, &c) == IRC_OK) {
+        ok = share_fill_half(c, 1) == 0 && irc_snapshot_size(c, &merge_bytes) == IRC_OK &&
+             (merge_snap = malloc(merge_bytes)) != NULL &&
+             irc_snapshot_write(c, 7, merge_snap, merge_bytes, NULL, NULL, NULL) == IRC_OK;
+        irc_fini(c);
+    }
+    free(cfg.buffer);
+    return ok;
+}
+
 /* Port calls of one whole victim fill made holding `held` (0 none, 1 the
  * read lock, 2 the write lock): the range die_at is drawn from. */
-static unsigned long calls_of_fill(irc_config cfg, int passes, int held)
+static unsigned long calls_of_fill(irc_config cfg, int mode, int held)
 {
     irc_port kp = killing_port();
     irc_cache *c;
@@ -420,7 +453,7 @@ static unsigned long calls_of_fill(irc_config cfg, int passes, int held)
         return 0;
     cfg.buffer_size = bytes;
     if (irc_init(&cfg, 300, &c) == IRC_OK) {
-        victim_fill(c, passes);
+        victim_fill(c, mode);
         irc_fini(c);
     }
     free(cfg.buffer);
@@ -428,43 +461,55 @@ static unsigned long calls_of_fill(irc_config cfg, int passes, int held)
     return port_calls;
 }
 
+static const char *const fill_modes[3] = {"no pass", "passes", "a merge"};
+
 TEST(test_share_killed_random)
 {
-    const int trials = irc_t_quick ? 12 : 48;
+    /* IRC_TEST_KILLS=N: N trials (a long run; TESTING.md) */
+    const char *env = getenv("IRC_TEST_KILLS");
+    const int trials = env && atoi(env) >= 3 ? atoi(env) : irc_t_quick ? 18 : 72;
     tscene s;
     irc_config cfg;
     irc_cache *c;
     size_t mapped = 0;
-    unsigned long total[2][3];
+    unsigned long total[3][3];
     unsigned long long seed = 12345;
-    int t, h, died = 0, held[3] = {0, 0, 0}, *where, few = 0;
+    int t, h, m, died = 0, held[3] = {0, 0, 0}, *where, few = 0, by_mode[3] = {0, 0, 0};
+    int merging = 0, zombies = 0, killed;
     scene_sphere_plane(&s);
     cfg = share_config(&s);
     cfg.evict = IRC_EVICT_CLOCK;
     cfg.clamp_neighbours = IRC_ON;
+    CHECK(make_merge_snap(cfg), "the merge's snapshot");
     /* Each trial dies at a random call among those made in one state (no
      * lock, the read lock, the write lock, in turn), so that every state
      * is hit however few of a fill's calls it makes.  Lookups inside a
      * pass take no lock: a pass's trials die outside it or in the write
-     * lock. */
-    for (h = 0; h < 3; h++) {
-        total[0][h] = calls_of_fill(cfg, 0, h);
-        total[1][h] = calls_of_fill(cfg, 1, h);
-        few |= total[0][h] < 100 || (h != 1 && total[1][h] < 100);
-    }
-    CHECK(!few, "port calls of a fill: %lu %lu %lu, in passes %lu %lu %lu", total[0][0],
-          total[0][1], total[0][2], total[1][0], total[1][1], total[1][2]);
+     * lock.  A third of the victims merge a snapshot (the merge holds the
+     * write lock while it rebuilds the index and renumbers, and makes
+     * every port call in it) and die in it. */
+    for (h = 0; h < 3; h++)
+        for (m = 0; m < 3; m++) {
+            total[m][h] = calls_of_fill(cfg, m, h);
+            few |= total[m][h] < 100 && !(m == 1 && h == 1) && !(m == 2 && h != 2);
+        }
+    CHECK(!few, "port calls of a fill: %lu %lu %lu, in passes %lu %lu %lu, merging %lu %lu %lu",
+          total[0][0], total[0][1], total[0][2], total[1][0], total[1][1], total[1][2],
+          total[2][0], total[2][1], total[2][2]);
     CHECK(map_block(&cfg, 300, &mapped) != NULL, "mapped block");
-    if (!cfg.buffer || few)
+    if (!cfg.buffer || few || !merge_snap)
         return;
     where = (int *)(void *)((unsigned char *)cfg.buffer + mapped - 4096);
+    in_merge = where + 1;
     for (t = 0; t < trials; t++) {
         pid_t victim;
         int status = -1;
         unsigned long at;
-        const int state = (t & 1) && (t >> 1) % 3 == 1 ? 0 : (t >> 1) % 3;
+        const int mode = t % 3, round = t / 3;
+        /* a merge makes every port call in the write lock */
+        const int state = mode == 2 ? 2 : mode == 1 && round % 3 == 1 ? 0 : round % 3;
         seed = seed * 6364136223846793005ull + 1442695040888963407ull;
-        at = 1 + (unsigned long)(seed >> 33) % total[t & 1][state];
+        at = 1 + (unsigned long)(seed >> 33) % total[mode][state];
         if (irc_init(&cfg, 300, &c) != IRC_OK) {
             CHECK(0, "init");
             break;
@@ -482,25 +527,47 @@ TEST(test_share_killed_random)
             port_died = where;
             if (irc_join(&vc, view, sizeof view, &v) != IRC_OK)
                 _exit(100);
-            victim_fill(v, t & 1);
+            victim_fill(v, mode);
             _exit(101);
         }
         *where = -1;
-        waitpid(victim, &status, 0);
-        if (WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL && *where >= 0) {
+        *in_merge = 0;
+        if (round & 1) {
+            /* left unreaped (a zombie) while the survivor runs */
+            siginfo_t si;
+            memset(&si, 0, sizeof si);
+            killed = waitid(P_PID, (id_t)victim, &si, WEXITED | WNOWAIT) == 0 &&
+                     si.si_code == CLD_KILLED && si.si_status == SIGKILL;
+            zombies += killed;
+        } else {
+            waitpid(victim, &status, 0);
+            killed = WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL;
+        }
+        if (killed && *where >= 0) {
             died++;
+            by_mode[mode]++;
+            merging += *in_merge;
             held[*where]++;
         }
         CHECK(survives(c, 150), "trial %d (%s, killed at port call %lu of %lu holding %d): the "
-                                "survivor hung or found bad records", t,
-              t & 1 ? "passes" : "no pass", at, total[t & 1][state], state);
+                                "survivor hung or found bad records", t, fill_modes[mode], at,
+              total[mode][state], state);
+        if (round & 1)
+            waitpid(victim, &status, 0);
         irc_fini(c);
     }
     /* a join's calls come before the fill's: a late die_at may miss */
-    CHECK(died >= trials * 3 / 4 && held[0] >= 1 && held[2] >= 1 && held[1] >= 1,
-          "%d of %d victims died, %d holding no lock, %d the read lock, %d the write lock", died,
-          trials, held[0], held[1], held[2]);
-    printf("  %d victims of %d died: %d holding no lock, %d the read lock, %d the write lock\n",
-           died, trials, held[0], held[1], held[2]);
+    CHECK(died >= trials * 3 / 4 && held[0] >= 1 && held[2] >= 1 && held[1] >= 1 &&
+              by_mode[2] >= trials / 4 && merging >= trials / 4,
+          "%d of %d victims died (%d of the merging ones inside irc_merge), %d holding no lock, "
+          "%d the read lock, %d the write lock", died, trials, merging, held[0], held[1],
+          held[2]);
+    printf("  %d victims of %d died (%d filling, %d in passes, %d merging, %d of them inside "
+           "irc_merge; %d left unreaped while the survivor ran): %d holding no lock, %d the "
+           "read lock, %d the write lock\n", died, trials, by_mode[0], by_mode[1], by_mode[2],
+           merging, zombies, held[0], held[1], held[2]);
+    in_merge = NULL;
     munmap(cfg.buffer, mapped);
+    free(merge_snap);
+    merge_snap = NULL;
 }
