@@ -292,6 +292,10 @@ typedef struct irc_trace_args {
  * cycle of caches, would wait for its own slot or recurse without end:
  * the call returns IRC_ERR_NESTED instead when the port tells threads
  * apart (irc_port thread: posix and c11) or runs one thread (none).
+ * Across threads a cycle can deadlock: two threads may each hold the
+ * last slot of one cache and wait for the other's.  Give every cache of
+ * a cycle as many slots (cfg.threads) as host threads call into it, or
+ * set no_wait (IRC_ERR_BUSY instead of waiting).
  */
 typedef int (*irc_trace_fn)(const irc_trace_args *args);
 
@@ -330,9 +334,14 @@ typedef int (*irc_trace_fn)(const irc_trace_args *args);
  *     holding the read lock (in a lookup) is counted out, one killed
  *     holding the write lock (in an insert, a pass's end, a merge) is taken
  *     over with 1 as above.  Processes of one pid namespace; a reused
- *     process id looks alive.  irc_port_c11 has
- *     neither: a death inside its lock hangs the others until the block is
- *     attached anew (irc_attach makes a fresh lock and repairs).
+ *     process id looks alive.  irc_port_c11 has neither and recovers
+ *     nothing: a process that dies inside its lock hangs the others, and
+ *     one that dies computing keeps its slot (with every slot so kept,
+ *     misses wait forever, or return IRC_ERR_BUSY with no_wait), until
+ *     the block is attached anew (irc_attach makes a fresh lock, frees the
+ *     slots and repairs).  Threads of one process are unaffected: a thread
+ *     cannot die alone.  docs/DESIGN.md, "Reliability: how", tabulates
+ *     what each port recovers.
  * The atomics act on naturally aligned 64-bit words inside the block.
  */
 typedef struct irc_port {

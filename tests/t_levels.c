@@ -288,3 +288,104 @@ TEST(test_levels_threads)
         free(blocks[k]);
     }
 }
+
+/* A cycle of two caches (A's callback -> B, B's -> A) driven by several
+ * host threads at once, each starting at A or B.  A thread's call back
+ * into a cache it is computing in gets IRC_ERR_NESTED; two threads can
+ * each hold the last slot of one cache and wait for the other's, so the
+ * header asks a cycle for as many slots a cache as host threads call it:
+ * then a waiting thread always finds a slot no thread of the cycle holds,
+ * and all finish (a watchdog aborts after a minute), every answer between
+ * one bounce (pi le) and all of them (pi le / (1 - rho)); with one slot
+ * and no_wait the calls that would wait return IRC_ERR_BUSY instead, and
+ * all finish too. */
+typedef struct cworker {
+    irc_cache *start;
+    uint32_t seed;
+    int bad, busy;
+    volatile int done;
+} cworker;
+
+static void *cycle_worker(void *arg)
+{
+    cworker *w = (cworker *)arg;
+    int i;
+    for (i = 0; i < (irc_t_quick ? 30 : 120); i++) {
+        float z = -1.0f + 1.9f * unit(&w->seed);
+        float th = 6.283f * unit(&w->seed), s = sqrtf(1.0f - z * z);
+        float p[3], n[3], e[3];
+        int k, st;
+        p[0] = s * cosf(th); p[1] = s * sinf(th); p[2] = z;
+        for (k = 0; k < 3; k++)
+            n[k] = -p[k];
+        st = irc_cache_lookup_or_compute(w->start, p, n, e, NULL, NULL);
+        if (st == IRC_ERR_BUSY)
+            w->busy++;
+        else if (st < 0 || !(e[0] >= 0.99f * PI_F && e[0] <= 2.01f * PI_F))
+            w->bad++;
+    }
+    __atomic_store_n(&w->done, 1, __ATOMIC_RELEASE);
+    return NULL;
+}
+
+TEST(test_levels_cycle_threads)
+{
+    int round;
+    for (round = 0; round < 2; round++) {
+        const uint32_t slots = round == 0 ? LTHREADS : 1;
+        const int no_wait = round == 1;
+        level a, b;
+        void *ba = NULL, *bb = NULL;
+        cworker w[LTHREADS];
+        pthread_t th[LTHREADS];
+        int k, waited = 0, all = 0, busy = 0;
+        memset(&a, 0, sizeof a);
+        memset(&b, 0, sizeof b);
+        memset(w, 0, sizeof w);
+        a.le = b.le = 1.0f;
+        a.rho = b.rho = 0.5f;
+        if (!make(&a, &irc_port_posix, slots, no_wait, &ba) ||
+            !make(&b, &irc_port_posix, slots, no_wait, &bb)) {
+            CHECK(0, "init");
+            return;
+        }
+        a.next = b.self;
+        b.next = a.self;
+        for (k = 0; k < LTHREADS; k++) {
+            w[k].start = k & 1 ? b.self : a.self;
+            w[k].seed = 101u + (uint32_t)k;
+            CHECK(pthread_create(&th[k], NULL, cycle_worker, &w[k]) == 0, "thread %d", k);
+        }
+        while (!all && waited < 600) {
+            all = 1;
+            for (k = 0; k < LTHREADS; k++)
+                all &= __atomic_load_n(&w[k].done, __ATOMIC_ACQUIRE);
+            if (!all) {
+                struct timespec ts = {0, 100000000L};
+                nanosleep(&ts, NULL);
+                waited++;
+            }
+        }
+        if (!all) {
+            CHECK(0, "a cycle of two caches, %d threads, %u slots each: not done after a minute",
+                  LTHREADS, (unsigned)slots);
+            fflush(stdout);
+            abort();
+        }
+        for (k = 0; k < LTHREADS; k++) {
+            pthread_join(th[k], NULL);
+            busy += w[k].busy;
+            CHECK(w[k].bad == 0, "%u slots, thread %d: %d lookups wrong or failed", (unsigned)slots,
+                  k, w[k].bad);
+        }
+        CHECK(no_wait || busy == 0, "%d busy with slots to spare", busy);
+        CHECK(a.failures + b.failures > 0, "no call back into a computing cache was refused");
+        printf("  %u slots a cache%s: %d top-level calls busy, %d calls inside callbacks "
+               "refused\n",
+               (unsigned)slots, no_wait ? " (no_wait)" : "", busy, a.failures + b.failures);
+        irc_fini(a.self);
+        irc_fini(b.self);
+        free(ba);
+        free(bb);
+    }
+}
