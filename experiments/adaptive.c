@@ -193,25 +193,27 @@ static int fresh_renderer(renderer *r, const scene *s, const snap *sn)
 static int full_render(const scene *s, const snap *sn, float *out, double *secs,
                        render_stats *st, renderer *keep)
 {
-    renderer r;
+    renderer own;
     int rep;
     *secs = HUGE_VAL;
     for (rep = 0; rep < REPEAT; rep++) {
+        /* The last run renders in keep itself: a renderer may not be
+         * copied (its levels' callback contexts, which the caches hold,
+         * point into it). */
+        renderer *r = keep && rep + 1 == REPEAT ? keep : &own;
         double t0, t;
-        if (fresh_renderer(&r, s, sn) < 0)
+        if (fresh_renderer(r, s, sn) < 0)
             return -1;
         t0 = render_clock();
-        if (render_image(&r, out, st) < 0) {
-            renderer_free(&r);
+        if (render_image(r, out, st) < 0) {
+            renderer_free(r);
             return -1;
         }
         t = render_clock() - t0;
         if (t < *secs)
             *secs = t;
-        if (keep && rep + 1 == REPEAT)
-            *keep = r;
-        else
-            renderer_free(&r);
+        if (r == &own)
+            renderer_free(r);
     }
     return 0;
 }
