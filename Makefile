@@ -140,6 +140,16 @@ $(BUILD)/irc_tests: $(TEST_SRC) tests/test.h tests/scenes.h tests/share.h $(LIBA
 test:
 	WERROR=-Werror sh tests/run.sh
 
+# The maintainer's loop (TESTING.md, "Tiers"): the library, the core suite
+# in its quick mode, the documents, the suites' lists, the one-file library
+# (gcc, posix), in under a minute on an idle 2-core machine.
+check: $(BUILD)/irc_tests
+	@start=$$(date +%s); \
+	IRC_TEST_QUICK=1 $(BUILD)/irc_tests > $(BUILD)/check.log 2>&1; rc=$$?; \
+	grep -E '^(FAIL|  )' $(BUILD)/check.log; tail -2 $(BUILD)/check.log; \
+	[ $$rc = 0 ] && sh tests/docs.sh && sh tests/listed.sh && AMALG_QUICK=1 sh tests/amalgamation.sh && \
+	echo "check: passed in $$(( $$(date +%s) - start )) s"
+
 # Line and branch coverage of src/ (gcov): the core suite and the fuzz
 # corpora.  make test prints it too.
 coverage:
@@ -490,7 +500,7 @@ uninstall:
 clean:
 	rm -rf build build-*
 
-.PHONY: amalgamation embree-example all lib cross embedded-test embedded-host size examples test coverage demo real-scenes fig15 adaptive glossy sh-experiments sh-animation fuzz fuzz-long replay bench-core bench-host bench-anchor bench-lookups bench-records bench bench-bounces bench-fill farm-demo install uninstall clean
+.PHONY: amalgamation embree-example all lib cross embedded-test embedded-host size examples test check coverage demo real-scenes fig15 adaptive glossy sh-experiments sh-animation fuzz fuzz-long replay bench-core bench-host bench-anchor bench-lookups bench-records bench bench-bounces bench-fill farm-demo install uninstall clean
 
 # Which records answer the worst pixels of a Sponza render, and why
 # (bench/README.md, "On real geometry"); needs make bench's cached references.

@@ -1,7 +1,8 @@
 #!/bin/sh
 # tests/run.sh -- every test stage of `make test`; the last line is
 # "N passed, N failed" over all of them.  Each suite run counts its own
-# tests; every other stage counts as one.
+# tests; every other stage counts as one.  Each stage prints its seconds
+# as it ends, and the line "stages:" lists them all.
 #   stage 1  library builds warning-free with gcc and clang (-Werror); the
 #            port-less build (PORT=none) needs no thread library; the
 #            build-time switches (tests/switches.c); the
@@ -15,6 +16,7 @@
 #   stage 5  the header alone as C99 and as C++; no allocator symbol in
 #            libirrcache.a; no thread or I/O header in src/; the documents
 #            list every status, public call and source file (tests/docs.sh);
+#            every test is in a suite's list (tests/listed.sh);
 #            the one-file library builds alone, and the examples built on it
 #            print what the library's print (tests/amalgamation.sh)
 #   stage 2c the suite built for 32 bits (-m32: size_t and pointers of a
@@ -72,6 +74,23 @@ check() { # name command...
     name=$1; shift
     if "$@" >"$LOG/$name.log" 2>&1; then ok "$name"; else bad "$name" "see $LOG/$name.log"; tail -20 "$LOG/$name.log"; fi
 }
+# Each stage's seconds, printed as it ends and listed at the end.
+STAGE_NAME=
+STAGE_T=0
+STAGES=
+stage_end() {
+    [ -n "$STAGE_NAME" ] || return 0
+    t=$(( $(date +%s) - STAGE_T ))
+    echo "   ($STAGE_NAME: $t s)"
+    STAGES="$STAGES ${STAGE_NAME%%:*} ${t}s;"
+}
+stage() {
+    stage_end
+    STAGE_NAME=$1
+    STAGE_T=$(date +%s)
+    echo "== $1"
+}
+
 suite() { # name env-and-binary...
     name=$1; shift
     env "$@" >"$LOG/$name.log" 2>&1
@@ -89,7 +108,7 @@ suite() { # name env-and-binary...
     fi
 }
 
-echo "== stage 1: builds"
+stage "stage 1: builds"
 check build-gcc $MAKE -s CC=gcc BUILD=build all
 check build-clang $MAKE -s CC=clang BUILD=build-clang all
 
@@ -151,7 +170,7 @@ exports() {
 check exports-nm-D exports
 sed 's/^/[exports] /' "$LOG/exports-nm-D.log" | head -2
 
-echo "== stage 2: suite"
+stage "stage 2: suite"
 check build-tests $MAKE -s BUILD=build build/irc_tests
 suite suite ./build/irc_tests
 
@@ -165,7 +184,7 @@ check bench-anchor ./build/bench_anchor random 1000 2000 pass
 check bench-host ./build/bench_host 16 12 4 16
 check bench-records ./build/bench_records shgrad 3
 
-echo "== stage 2c: suite at 32 bits"
+stage "stage 2c: suite at 32 bits"
 check build-m32 $MAKE -s CC="gcc -m32" BUILD=build-m32 build-m32/irc_tests
 # A kernel built without IA-32 emulation builds i386 programs but cannot
 # run them (exec fails with ENOEXEC, status 126): said, not counted.
@@ -178,11 +197,11 @@ else
     suite m32 IRC_TEST_QUICK=1 ./build-m32/irc_tests
 fi
 
-echo "== stage 2d: suite with the library's assertions compiled out"
+stage "stage 2d: suite with the library's assertions compiled out"
 check build-ndebug $MAKE -s BUILD=build-ndebug OPT="-O2 -DIRC_NO_ASSERT" build-ndebug/irc_tests
 suite ndebug IRC_TEST_QUICK=1 ./build-ndebug/irc_tests
 
-echo "== stage 2b: demo tracer"
+stage "stage 2b: demo tracer"
 check build-demo $MAKE -s BUILD=build real-scenes build/irc_demo build/demo_tests build/t_image build/t_loader build/t_exr \
     build/adaptive_tests
 suite demo ./build/demo_tests
@@ -218,7 +237,7 @@ else
     echo "skip farm-demo: starting Slurm's daemons needs root"
 fi
 
-echo "== stage 3: suite under ASan + UBSan"
+stage "stage 3: suite under ASan + UBSan"
 SAN="-O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=all"
 check build-asan $MAKE -s CC="$SAN_CC" BUILD=build-asan OPT="$SAN" build-asan/irc_tests
 suite asan IRC_TEST_QUICK=1 ASAN_OPTIONS=detect_leaks=1:abort_on_error=0 \
@@ -239,11 +258,11 @@ for t in api attach callback scene snapshot; do
         fuzz/corpus/snapshot
 done
 
-echo "== stage 4: threads under TSan"
+stage "stage 4: threads under TSan"
 check build-tsan $MAKE -s CC="$SAN_CC" BUILD=build-tsan OPT="-O1 -g -fsanitize=thread" build-tsan/irc_tests
 suite tsan IRC_TEST_QUICK=1 TSAN_OPTIONS=halt_on_error=1 ./build-tsan/irc_tests test_threads test_busy_waits test_pass_order_free test_levels
 
-echo "== stage 5: header, example host and library rules"
+stage "stage 5: header, example host and library rules"
 check examples $MAKE -s BUILD=build examples
 check example-minimal ./build/minimal
 check example-threads ./build/threads
@@ -271,9 +290,10 @@ src_headers() {
 }
 check src-headers src_headers
 check docs sh tests/docs.sh
+check listed sh tests/listed.sh
 check amalgamation sh tests/amalgamation.sh
 
-echo "== stage 6: coverage of src/"
+stage "stage 6: coverage of src/"
 MAKE=$MAKE sh tests/coverage.sh > "$LOG/coverage-report.log" 2>&1
 sed 's/^/[coverage] /' "$LOG/coverage-report.log" | tail -16
 coverage_target() {
@@ -281,14 +301,16 @@ coverage_target() {
 }
 check coverage coverage_target
 
-echo "== stage 7: Cortex-M4F under QEMU"
+stage "stage 7: Cortex-M4F under QEMU"
 check embedded-need sh embedded/need.sh
 suite m4 $MAKE -s embedded-test
 check size sh embedded/size.sh
 
-echo "== stage 8: installed, and used from outside the tree"
+stage "stage 8: installed, and used from outside the tree"
 check consumers sh tests/consumers.sh
 grep -E '^(pkg-config|cmake|g\+\+|uninstall)' "$LOG/consumers.log" | sed 's/, e.g. .*//; s/^/[consumers] /'
 
+stage_end
+echo "stages: $STAGES"
 echo "$P passed, $F failed"
 [ "$F" -eq 0 ]

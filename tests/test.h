@@ -5,10 +5,12 @@
 #include <stdio.h>
 
 extern int irc_t_fails;
+extern long irc_t_checks; /* CHECKs evaluated: a test that made none fails */
 extern int irc_t_quick; /* IRC_TEST_QUICK=1: sanitizer builds scale down */
 
 #define CHECK(cond, ...)                                                    \
     do {                                                                    \
+        irc_t_checks++;                                                     \
         if (!(cond)) {                                                      \
             irc_t_fails++;                                                  \
             printf("  %s:%d: CHECK(%s) failed: ", __FILE__, __LINE__, #cond); \
