@@ -510,10 +510,9 @@ typedef struct irc_config {
                                 new record's radius is at most R_j + |x -
                                 x_j| over the records j within it, and
                                 those are clamped back to R + |x - x_j|.
-                                Default: on for irradiance records (on the
-                                Sponza atrium it cut the worst pixel 4x and
-                                the pixels that leak 3x for 1.5x the
-                                records), off for SH records */
+                                Default: on for irradiance records (why:
+                                bench/README.md, "On real geometry"), off
+                                for SH records */
     uint32_t check_visibility; /* an irc_switch: confirming rays (V-Ray's
                                 "check sample visibility").  The
                                 lookup_or_compute calls cast one ray from
@@ -525,13 +524,7 @@ typedef struct irc_config {
                                 column or above a soffit stop lighting it;
                                 when none is left the call computes a
                                 record there.  Plain lookups do not check.
-                                Default: on for irradiance records (Sponza
-                                arcade, a = 0.2: the worst pixel 8.2 ->
-                                1.65 times the mean, leaks 40 -> 23, 1.6x
-                                -> 2.1x brute force; atrium: relative
-                                RMSE 0.0361 -> 0.0342 for 8% more
-                                records, 4.2x both; the Cornell box,
-                                where nothing hides, 6.1x -> 5.1x:
+                                Default: on for irradiance records (why:
                                 bench/README.md, "Confirming rays on
                                 curved surfaces"), off for SH records; off
                                 and refused in a build without them
@@ -548,17 +541,14 @@ typedef struct irc_config {
                                 two samples and its distance the nearer,
                                 and the gradients read those.  Unbiased: a
                                 stratum's own sample never chooses it.
-                                0..M N (default 0: none; on the Sponza
-                                atrium 12 x 40 strata + 32 cut the error
-                                0.0510 -> 0.0478 for 6% more rays); not
-                                with VISIBILITY (its silhouettes are the
-                                first rays') */
+                                0..M N (default 0: none); not with
+                                VISIBILITY (its silhouettes are the first
+                                rays') */
         uint32_t leak_guard; /* an irc_switch: records keep a leak guard
                                 (irc_record.leak_guard, 8 bytes) against
                                 light through thin walls between spaces
-                                lit differently.  Default off: on the
-                                Sponza atrium it made 1.6x the records for
-                                the same error */
+                                lit differently.  Default off (why:
+                                bench/README.md, "On real geometry") */
         float full_pixels;   /* records whose rays follow the pixels they
                                 serve: a record made by the _px call whose
                                 radius R (within the pixel bounds) spans
