@@ -228,16 +228,25 @@ static void irc__irr_begin(const irc_cache *c, void *acc)
     a[0] = a[1] = a[2] = a[3] = 0.0f;
 }
 
-static void irc__irr_accumulate(const irc_cache *c, const irc__rec *r, const irc__query *q,
-                                float w, const float ni[3], void *acc)
+/* Returns the blend factor w / W, which the gradient lookup's means take
+ * too. */
+static float irc__irr_mean(float *a, float w, const float v[3])
 {
-    float v[3], *a = (float *)acc, f;
+    float f;
     int ch;
-    irc__extrapolate(c, r, ni, q->p, q->n, v);
     a[3] += w;
     f = w / a[3];
     for (ch = 0; ch < 3; ch++)
         a[ch] += f * (v[ch] - a[ch]);
+    return f;
+}
+
+static void irc__irr_accumulate(const irc_cache *c, const irc__rec *r, const irc__query *q,
+                                float w, const float ni[3], void *acc)
+{
+    float v[3];
+    irc__extrapolate(c, r, ni, q->p, q->n, v);
+    (void)irc__irr_mean((float *)acc, w, v);
 }
 
 static int irc__irr_finish(const irc_cache *c, const irc__query *q, const void *acc,
@@ -273,15 +282,10 @@ static const irc__acc irc__irr_lookup;
 static float irc__irr_take(const irc_cache *c, const irc__rec *r, const irc__query *q,
                            void *acc)
 {
-    float v[3], *a = (float *)acc, f;
+    float v[3];
     const float w = irc__weigh_extrapolate(c, r, q->p, q->n, v);
-    int ch;
-    if (w > 0.0f) {
-        a[3] += w;
-        f = w / a[3];
-        for (ch = 0; ch < 3; ch++)
-            a[ch] += f * (v[ch] - a[ch]);
-    }
+    if (w > 0.0f)
+        (void)irc__irr_mean((float *)acc, w, v);
     return w;
 }
 
@@ -320,14 +324,9 @@ static void irc__irrg_accumulate(const irc_cache *c, const irc__rec *r, const ir
                                  float w, const float ni[3], void *acc)
 {
     irc__grad_acc *a = (irc__grad_acc *)acc;
-    float v[3], f;
-    int ch;
+    float v[3];
     irc__extrapolate(c, r, ni, q->p, q->n, v);
-    a->m[3] += w;
-    f = w / a->m[3];
-    for (ch = 0; ch < 3; ch++)
-        a->m[ch] += f * (v[ch] - a->m[ch]);
-    irc__extrapolate_grad(c, r, ni, v, f, a->grad);
+    irc__extrapolate_grad(c, r, ni, v, irc__irr_mean(a->m, w, v), a->grad);
 }
 
 static int irc__irrg_finish(const irc_cache *c, const irc__query *q, const void *acc,
