@@ -60,16 +60,22 @@ static int finished(pid_t pid)
  * of the suite): ends a pass the victim left open, fills the lattice on
  * the creator's handle, and checks every record and the index.  1 if it
  * finished in time with nothing wrong. */
+static int survivor_checks(irc_cache *c, uint32_t min_records)
+{
+    irc_stats st;
+    int bad, end = irc_pass_end(c, NULL);
+    bad = end != IRC_OK && end != IRC_ERR_STATE;
+    bad += share_fill_half(c, 0) + share_fill_half(c, 1) + share_verify_all(c);
+    bad += !irc__block_sane(c);
+    bad += irc_cache_stats(c, &st) != IRC_OK || st.records < min_records;
+    return bad;
+}
+
 static int survives(irc_cache *c, uint32_t min_records)
 {
     pid_t pid = fork();
     if (pid == 0) {
-        irc_stats st;
-        int bad, end = irc_pass_end(c, NULL);
-        bad = end != IRC_OK && end != IRC_ERR_STATE;
-        bad += share_fill_half(c, 0) + share_fill_half(c, 1) + share_verify_all(c);
-        bad += !irc__block_sane(c);
-        bad += irc_cache_stats(c, &st) != IRC_OK || st.records < min_records;
+        const int bad = survivor_checks(c, min_records);
         _exit(bad > 99 ? 99 : bad);
     }
     return pid > 0 && finished(pid);
@@ -253,18 +259,6 @@ static void zombie_victim(irc_cache *c, irc_config cfg, suicidal *host, int how)
     if (irc_join(&cfg, view, sizeof view, &v) == IRC_OK)
         share_fill_half(v, 1);
     _exit(100); /* it should have died */
-}
-
-/* The survivor's checks of survives(), in this process. */
-static int survivor_checks(irc_cache *c, uint32_t min_records)
-{
-    irc_stats st;
-    int bad, end = irc_pass_end(c, NULL);
-    bad = end != IRC_OK && end != IRC_ERR_STATE;
-    bad += share_fill_half(c, 0) + share_fill_half(c, 1) + share_verify_all(c);
-    bad += !irc__block_sane(c);
-    bad += irc_cache_stats(c, &st) != IRC_OK || st.records < min_records;
-    return bad;
 }
 
 /* A dead victim not yet reaped (a zombie) still answers kill(pid, 0): the

@@ -219,24 +219,56 @@ static float unit(uint32_t *s)
     return (float)(*s >> 8) / 16777216.0f;
 }
 
+/* A random point on the sphere (below its top cap) and the inward
+ * normal there. */
+static void sphere_point(uint32_t *seed, float p[3], float n[3])
+{
+    float z = -1.0f + 1.9f * unit(seed);
+    float th = 6.283f * unit(seed), s = sqrtf(1.0f - z * z);
+    int k;
+    p[0] = s * cosf(th); p[1] = s * sinf(th); p[2] = z;
+    for (k = 0; k < 3; k++)
+        n[k] = -p[k];
+}
+
 static void *level_worker(void *arg)
 {
     lworker *w = (lworker *)arg;
     int i;
     for (i = 0; i < (irc_t_quick ? 40 : 200); i++) {
-        float z = -1.0f + 1.9f * unit(&w->seed);
-        float th = 6.283f * unit(&w->seed), s = sqrtf(1.0f - z * z);
         float p[3], n[3], e[3];
-        int k;
-        p[0] = s * cosf(th); p[1] = s * sinf(th); p[2] = z;
-        for (k = 0; k < 3; k++)
-            n[k] = -p[k];
+        sphere_point(&w->seed, p, n);
         if (irc_cache_lookup_or_compute(w->top, p, n, e, NULL, NULL) < 0 ||
             fabsf(e[0] - 1.5f * PI_F) > 3e-3f * PI_F)
             w->bad++;
     }
     __atomic_store_n(&w->done, 1, __ATOMIC_RELEASE);
     return NULL;
+}
+
+/* Waits up to a minute for LTHREADS workers' done flags (at stride bytes
+ * apart from the first); a hang aborts with what, so that it fails the
+ * test instead of hanging make test. */
+static void watchdog(const volatile int *first, size_t stride, const char *what)
+{
+    int k, waited = 0, all = 0;
+    while (!all && waited < 600) {
+        all = 1;
+        for (k = 0; k < LTHREADS; k++)
+            all &= __atomic_load_n((const volatile int *)(const void *)((const char *)first +
+                                                                         (size_t)k * stride),
+                                   __ATOMIC_ACQUIRE);
+        if (!all) {
+            struct timespec ts = {0, 100000000L};
+            nanosleep(&ts, NULL);
+            waited++;
+        }
+    }
+    if (!all) {
+        CHECK(0, "%s: not done after a minute", what);
+        fflush(stdout);
+        abort();
+    }
 }
 
 /* More host threads than slots at both levels (4 threads, one slot a
@@ -249,7 +281,7 @@ TEST(test_levels_threads)
     void *blocks[2] = {NULL, NULL};
     lworker w[LTHREADS];
     pthread_t th[LTHREADS];
-    int k, waited = 0, all = 0;
+    int k;
     memset(l, 0, sizeof l);
     memset(w, 0, sizeof w);
     for (k = 1; k >= 0; k--) {
@@ -263,21 +295,7 @@ TEST(test_levels_threads)
         w[k].seed = 17u + (uint32_t)k;
         CHECK(pthread_create(&th[k], NULL, level_worker, &w[k]) == 0, "thread %d", k);
     }
-    while (!all && waited < 600) {
-        all = 1;
-        for (k = 0; k < LTHREADS; k++)
-            all &= __atomic_load_n(&w[k].done, __ATOMIC_ACQUIRE);
-        if (!all) {
-            struct timespec ts = {0, 100000000L};
-            nanosleep(&ts, NULL);
-            waited++;
-        }
-    }
-    if (!all) {
-        CHECK(0, "two levels, 4 threads, 1 slot each: not done after a minute");
-        fflush(stdout);
-        abort();
-    }
+    watchdog(&w[0].done, sizeof w[0], "two levels, 4 threads, 1 slot each");
     for (k = 0; k < LTHREADS; k++) {
         pthread_join(th[k], NULL);
         CHECK(w[k].bad == 0, "thread %d: %d lookups wrong or failed", k, w[k].bad);
@@ -315,13 +333,9 @@ static void *cycle_worker(void *arg)
     cworker *w = (cworker *)arg;
     int i;
     for (i = 0; i < (irc_t_quick ? 30 : 120); i++) {
-        float z = -1.0f + 1.9f * unit(&w->seed);
-        float th = 6.283f * unit(&w->seed), s = sqrtf(1.0f - z * z);
         float p[3], n[3], e[3];
-        int k, st;
-        p[0] = s * cosf(th); p[1] = s * sinf(th); p[2] = z;
-        for (k = 0; k < 3; k++)
-            n[k] = -p[k];
+        int st;
+        sphere_point(&w->seed, p, n);
         st = irc_cache_lookup_or_compute(w->start, p, n, e, NULL, NULL);
         if (st == IRC_ERR_BUSY)
             w->busy++;
@@ -345,7 +359,7 @@ TEST(test_levels_cycle_threads)
         void *ba = NULL, *bb = NULL;
         cworker w[LTHREADS];
         pthread_t th[LTHREADS];
-        int k, waited = 0, all = 0, busy = 0;
+        int k, busy = 0;
         memset(&a, 0, sizeof a);
         memset(&b, 0, sizeof b);
         memset(w, 0, sizeof w);
@@ -363,22 +377,9 @@ TEST(test_levels_cycle_threads)
             w[k].seed = 101u + (uint32_t)k;
             CHECK(pthread_create(&th[k], NULL, cycle_worker, &w[k]) == 0, "thread %d", k);
         }
-        while (!all && waited < 600) {
-            all = 1;
-            for (k = 0; k < LTHREADS; k++)
-                all &= __atomic_load_n(&w[k].done, __ATOMIC_ACQUIRE);
-            if (!all) {
-                struct timespec ts = {0, 100000000L};
-                nanosleep(&ts, NULL);
-                waited++;
-            }
-        }
-        if (!all) {
-            CHECK(0, "a cycle of two caches, %d threads, %u slots each: not done after a minute",
-                  LTHREADS, (unsigned)slots);
-            fflush(stdout);
-            abort();
-        }
+        watchdog(&w[0].done, sizeof w[0],
+                 slots == 1 ? "a cycle of two caches, 4 threads, 1 slot each, no_wait"
+                            : "a cycle of two caches, 4 threads, 4 slots each");
         for (k = 0; k < LTHREADS; k++) {
             pthread_join(th[k], NULL);
             busy += w[k].busy;
