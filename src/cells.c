@@ -48,12 +48,16 @@ double irc__half(const float p[3], double reach)
 /* floor((x - lo) K) in units for the root's low corner lo, K = 2^57 / h:
  * x K is exact in double (a power of two), lo K an exact integer
  * (irc__index_root_sane), so the floor is the one a lookup's point takes
- * (query.c); (x - lo) K would round to lo's precision.  Clamped to
- * 2^61, far outside the root. */
+ * (query.c); (x - lo) K would round to lo's precision.  Clamped to 2^61
+ * units (8 root edges) either side of lo K, far outside the root: the
+ * clamp is relative, since a root may lie 33 half edges from the origin,
+ * where x K itself passes 2^62 (a clamp of x K at 2^61 put every box of
+ * a scene at 1000 outside the root, and every record in its one list);
+ * |lo K| + 2^61 < 2^63 converts. */
 static int64_t irc__units(double x, double k, double lok)
 {
     double v = IRC_FLOOR(x * k);
-    v = v < -0x1p61 ? -0x1p61 : v > 0x1p61 ? 0x1p61 : v;
+    v = v < lok - 0x1p61 ? lok - 0x1p61 : v > lok + 0x1p61 ? lok + 0x1p61 : v;
     return (int64_t)v - (int64_t)lok;
 }
 

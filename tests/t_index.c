@@ -670,3 +670,57 @@ TEST(test_weigh_fused)
         block_free(&cfg);
     }
 }
+
+/* A scene away from the origin, where users put theirs: 4,000 records on
+ * a unit square at 1000 (and at -100, -5000, and the origin for
+ * comparison), radii so that about six reach a point.  The index must
+ * split there as at the origin: a root at |centre| near 32 half edges
+ * once clamped every box's far end and placed every record in the root's
+ * one list (a lookup scanned all 4,000: bench-core's "1000-away" row ran
+ * 4,214 lookups a second against 734,104 at the origin).  (Farther out,
+ * boxes widen by the 1e-6 |p| that float positions need, index.c: at
+ * 1e5 the reach here is 3 ulps and a lookup scans 17x the references.) */
+TEST(test_index_far_from_origin)
+{
+    static const double at[] = {0.0, 1000.0, -100.0, -5000.0};
+    irc_config cfg = scene_config(&dummy, IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION, 4, 4);
+    unsigned w;
+    uint64_t at_origin = 0;
+    cfg.accuracy = 0.2f;
+    for (w = 0; w < sizeof at / sizeof at[0]; w++) {
+        irc_cache *c = block_cache(&cfg, 4000, 0);
+        unsigned long long st = 5;
+        uint64_t total = 0;
+        uint32_t i, passed = 0;
+        int ins;
+        irc_stats s;
+        irc_record r;
+        CHECK(c != NULL, "init");
+        if (!c) return;
+        memset(&r, 0, sizeof r);
+        r.n[2] = 1.0f;
+        r.e[0] = r.e[1] = r.e[2] = 1.0f;
+        for (i = 0, ins = IRC_OK; i < 4000 && ins == IRC_OK; i++) {
+            r.p[0] = (float)(at[w] + xrand(&st));
+            r.p[1] = (float)(at[w] + xrand(&st));
+            r.p[2] = (float)at[w];
+            r.radius = (float)(sqrt(6.0 / (3.14159265 * 4000.0)) / 0.2); /* a = 0.2 */
+            ins = irc_cache_insert(c, &r);
+        }
+        CHECK(ins == IRC_OK, "at %g: insert %u: %s", at[w], i, irc_strerror(ins));
+        for (i = 0; i < 2000; i++) {
+            const float p[3] = {(float)(at[w] + xrand(&st)), (float)(at[w] + xrand(&st)),
+                                (float)at[w]};
+            total += irc__index_query(c, p, count_one, &passed);
+        }
+        irc_cache_stats(c, &s);
+        printf("  at %g: %llu nodes, %.1f references scanned a lookup\n", at[w],
+               (unsigned long long)s.index_nodes, (double)total / 2000.0);
+        if (w == 0)
+            at_origin = total;
+        CHECK(s.index_nodes > 1, "at %g: the index never split", at[w]);
+        CHECK(total <= 2 * at_origin + 2000, "at %g: %.1f references a lookup, %.1f at the origin",
+              at[w], (double)total / 2000.0, (double)at_origin / 2000.0);
+        block_free(&cfg);
+    }
+}
