@@ -411,10 +411,15 @@ int main(void)
     const size_t nsets = sizeof sets / sizeof sets[0];
     static const uint32_t sizes[] = {100000, 1000000};
     const irc_port *ports[] = {&irc_port_posix, &irc_port_none};
-    /* BENCH_ORDER=random|coherent measures one query order only. */
-    const char *only = getenv("BENCH_ORDER");
+    /* BENCH_ORDER=random|coherent measures one query order only;
+     * BENCH_ONLY=placement the placement rows alone. */
+    const char *only = getenv("BENCH_ORDER"), *part = getenv("BENCH_ONLY");
     size_t i, k, pi;
     printf("metric,features,records,port,order,value,unit\n");
+    if (part && strcmp(part, "placement") == 0) {
+        placement();
+        return 0;
+    }
     for (i = 0; i < nsets; i++) {
         irc_config cfg;
         irc_cache *c;
