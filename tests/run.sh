@@ -229,6 +229,9 @@ bad_scene() {
         [ "$(ls "$d")" = log ]
 }
 check bad-scene bad_scene
+# make adaptive's first run, small (its full size takes minutes): the
+# experiment's renders, checks and the gradient check at 64 x 48.
+check adaptive-small sh -c "$MAKE -s BUILD=build build/adaptive && ./build/adaptive demo/scenes/fig5.scene 64 48 --check"
 # The farm (make farm-demo): 4 tile jobs of a Slurm job array and a merging
 # job, on a single-node Slurm the script starts (its daemons need root).
 if [ "$(id -u)" = 0 ]; then
