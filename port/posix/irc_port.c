@@ -82,6 +82,7 @@ static uint64_t posix_owner(void)
         __atomic_store_n(&posix_pid, p, __ATOMIC_RELAXED);
     return (uint64_t)p;
 }
+
 /* Whether a process that kill() still finds has exited and waits to be
  * reaped (a zombie), which only its parent can do: a parent that waits
  * inside the library for a lock or slot its dead child held would wait
