@@ -386,6 +386,15 @@ $(BUILD)/bench_anchor: bench/anchor.c bench/bench_util.h bench/box.h $(LIBA)
 $(BUILD)/bench_records: bench/records.c bench/bench_util.h $(LIBA)
 	$(CC) $(TEST_CFLAGS) -O2 -g $(CFLAGS) bench/records.c $(LIBA) -o $@ -lm
 
+# make fingerprint: a hash a config of records, lookups, snapshots and
+# counters (tests/fingerprint.c); a refactor prints the same lines before
+# and after.
+$(BUILD)/fingerprint: tests/fingerprint.c tests/scenes.c tests/scenes.h $(LIBA)
+	$(CC) $(TEST_CFLAGS) $(OPT) $(CFLAGS) tests/fingerprint.c tests/scenes.c $(LIBA) -o $@ -lm -lpthread
+
+fingerprint: $(BUILD)/fingerprint
+	$(BUILD)/fingerprint
+
 # ---------------------------------------------------------------- examples
 $(BUILD)/minimal: examples/minimal.c $(LIBA)
 	$(CC) -std=c99 $(WARN) -Iinclude $(OPT) examples/minimal.c $(LIBA) -o $@ -lm $(THREAD_LIBS)
@@ -500,7 +509,7 @@ uninstall:
 clean:
 	rm -rf build build-*
 
-.PHONY: amalgamation embree-example all lib cross embedded-test embedded-host size examples test check coverage demo real-scenes fig15 adaptive glossy sh-experiments sh-animation fuzz fuzz-long replay bench-core bench-host bench-anchor bench-lookups bench-records bench bench-bounces bench-fill farm-demo install uninstall clean
+.PHONY: fingerprint amalgamation embree-example all lib cross embedded-test embedded-host size examples test check coverage demo real-scenes fig15 adaptive glossy sh-experiments sh-animation fuzz fuzz-long replay bench-core bench-host bench-anchor bench-lookups bench-records bench bench-bounces bench-fill farm-demo install uninstall clean
 
 # Which records answer the worst pixels of a Sponza render, and why
 # (bench/README.md, "On real geometry"); needs make bench's cached references.
