@@ -41,16 +41,16 @@ CFLAGS_LIB = -std=c99 $(WARN) -Wdouble-promotion $(OPT) $(PIC) -fno-math-errno \
              -fvisibility=hidden -Iinclude $(CFLAGS)
 PIC = $(if $(filter none,$(PORT)),,-fPIC)
 
-SRC = src/status.c src/version.c src/check.c src/config.c src/kinds.c src/strata.c src/layout.c src/store.c src/kind_irr.c src/gradient.c \
-      src/kind_sh.c src/sampler.c src/irradiance.c src/octa.c src/weight.c src/index.c src/cells.c src/query.c src/compact.c \
+SRC = src/status.c src/version.c src/check.c src/config.c src/kinds.c src/strata.c src/layout.c src/store.c src/walk.c src/lookup.c src/api_irr.c src/kind_irr.c src/gradient.c \
+      src/kind_sh.c src/api_sh.c src/sampler.c src/irradiance.c src/octa.c src/weight.c src/index.c src/cells.c src/query.c src/compact.c \
       src/visibility.c src/hessian.c src/sh.c src/shgrad.c src/snapshot.c src/merge.c \
-      src/pass.c src/sight.c src/slots.c src/verify.c src/repair.c src/occlusion.c src/stats.c \
+      src/pass.c src/sight.c src/slots.c src/verify.c src/lock.c src/torn.c src/occlusion.c src/stats.c \
       src/pixel.c src/detail.c
 # make LEAVE_OUT="SH VISIBILITY HESSIAN SIGHT SUPERSAMPLE GUARD" (any of them): those parts are
 # not compiled, and util.h's IRC_NO_* switch tells the rest (the same
 # switches, set in a user config header, compile those files empty).
 LEAVE_OUT ?=
-LEFT_SH = src/kind_sh.c src/sh.c src/shgrad.c
+LEFT_SH = src/kind_sh.c src/api_sh.c src/sh.c src/shgrad.c
 LEFT_VISIBILITY = src/visibility.c src/occlusion.c
 LEFT_HESSIAN = src/hessian.c
 LEFT_SIGHT = src/sight.c
@@ -141,14 +141,20 @@ test:
 	WERROR=-Werror sh tests/run.sh
 
 # The maintainer's loop (TESTING.md, "Tiers"): the library, the core suite
-# in its quick mode, the documents, the suites' lists, the one-file library
+# in its quick mode, the documents, the suites' lists, module cycles, the one-file library
 # (gcc, posix), in under a minute on an idle 2-core machine.
 check: $(BUILD)/irc_tests
 	@start=$$(date +%s); \
 	IRC_TEST_QUICK=1 $(BUILD)/irc_tests > $(BUILD)/check.log 2>&1; rc=$$?; \
 	grep -E '^(FAIL|  )' $(BUILD)/check.log; tail -2 $(BUILD)/check.log; \
-	[ $$rc = 0 ] && sh tests/docs.sh && sh tests/listed.sh && AMALG_QUICK=1 sh tests/amalgamation.sh && \
+	[ $$rc = 0 ] && sh tests/docs.sh && sh tests/listed.sh && $(MAKE) -s cycles && AMALG_QUICK=1 sh tests/amalgamation.sh && \
 	echo "check: passed in $$(( $$(date +%s) - start )) s"
+
+# No module of the library uses another that uses it back (tests/cycles.sh
+# on the library's objects; DESIGN.md, "Layers").
+cycles: $(LIBA)
+	sh tests/cycles.sh --self-test
+	sh tests/cycles.sh $(OBJ)
 
 # Line and branch coverage of src/ (gcov): the core suite and the fuzz
 # corpora.  make test prints it too.
@@ -509,7 +515,7 @@ uninstall:
 clean:
 	rm -rf build build-*
 
-.PHONY: fingerprint amalgamation embree-example all lib cross embedded-test embedded-host size examples test check coverage demo real-scenes fig15 adaptive glossy sh-experiments sh-animation fuzz fuzz-long replay bench-core bench-host bench-anchor bench-lookups bench-records bench bench-bounces bench-fill farm-demo install uninstall clean
+.PHONY: cycles fingerprint amalgamation embree-example all lib cross embedded-test embedded-host size examples test check coverage demo real-scenes fig15 adaptive glossy sh-experiments sh-animation fuzz fuzz-long replay bench-core bench-host bench-anchor bench-lookups bench-records bench bench-bounces bench-fill farm-demo install uninstall clean
 
 # Which records answer the worst pixels of a Sponza render, and why
 # (bench/README.md, "On real geometry"); needs make bench's cached references.

@@ -3,14 +3,14 @@
  * IRC_NO_* switches, or make LEAVE_OUT=...): the public calls of SH records
  * and of occlusion, each answering IRC_ERR_UNSUPPORTED, as on a cache
  * whose features do not serve it, after the handle checks every call
- * makes; the SH kind's table of features alone (kinds.c); without
- * confirming rays, the plain find they would wrap.  The files left out are
+ * makes; the SH kind's table of features alone (kinds.c).  The files left out are
  * then empty or not compiled at all; nothing else of the library names
  * them.
  */
 #include "cache.h"
 #include "estimator.h"
 #include "shrec.h"
+#include "check.h"
 
 #ifdef IRC_NO_SH
 /* The SH kind's features alone, so that a config or a block asking for
@@ -90,16 +90,6 @@ int irc_occlusion_compute(irc_cache *c, const float p[3], const float n[3],
 }
 #endif
 
-#ifdef IRC_NO_SIGHT
-/* No confirming rays: no config asks for them (config.c). */
-int irc__find_in_sight(irc__call *k, void *out, float *weight)
-{
-    k->q.hidden = NULL;
-    k->q.n_hidden = 0;
-    return k->c->kind->lookup->find(k->c, &k->q, out, weight);
-}
-#endif
-
-#if !defined(IRC_NO_SH) && !defined(IRC_NO_VISIBILITY) && !defined(IRC_NO_SIGHT)
+#if !defined(IRC_NO_SH) && !defined(IRC_NO_VISIBILITY)
 typedef int irc__nothing_absent; /* ISO C wants something in a file */
 #endif

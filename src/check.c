@@ -2,6 +2,7 @@
  * check.c -- the checks every call makes of the vectors it is given.
  */
 #include "cache.h"
+#include "check.h"
 
 int irc__check_vec(const float v[3])
 {
@@ -31,4 +32,15 @@ int irc__check_normal(const float n[3], float unit[3])
     for (i = 0; i < 3; i++)
         unit[i] /= len;
     return IRC_OK;
+}
+
+/* Every public call on a cache starts here: a live cache (IRC_ERR_CONFIG
+ * for anything else), of the kind the call serves when want is set. */
+int irc__enter(const irc_cache *c, const irc__kind *want)
+{
+    if (!c)
+        return IRC_ERR_NULL;
+    if (c->magic != IRC__MAGIC)
+        return IRC_ERR_CONFIG;
+    return want && c->kind != want ? IRC_ERR_UNSUPPORTED : IRC_OK;
 }

@@ -16,6 +16,8 @@
  */
 #include "cache.h"
 #include "index.h"
+#include "store.h"
+#include "torn.h"
 
 /* Depth-first walk of the nodes that hold records or children: calls fn
  * on every node in the order queries visit them.  An explicit stack of a
@@ -245,4 +247,21 @@ void irc__index_rebuild(irc_cache *c)
     uint64_t k;
     for (k = 0; k < n; k++)
         irc__index_insert(c, (uint32_t)(k * 2654435761u % n));
+}
+
+/* The caller holds the write lock: forget drops the index, the list links
+ * and CLOCK's bits, keeping the records; clear drops the records too. */
+void irc__forget_locked(irc_cache *c)
+{
+    c->home->hand = 0;
+    if (c->o_used)
+        IRC_MEMSET(irc__used(c), 0, ((size_t)c->capacity + 63u) / 64u * sizeof(uint64_t));
+    irc__index_clear(c);
+}
+
+void irc__clear_locked(irc_cache *c)
+{
+    c->home->count = 0;
+    IRC_MEMSET(irc__rec_at(c, 0), 0, (size_t)c->capacity * c->rec_size);
+    irc__forget_locked(c);
 }

@@ -3,6 +3,7 @@
  * default, and every field is checked against its documented range.
  */
 #include "cache.h"
+#include "config.h"
 
 #define IRC__DEF_ACCURACY 0.2f
 /* Strata: 32 x 128 for irradiance records, whose noise is copied to

@@ -15,6 +15,10 @@
  */
 #include "cache.h"
 #include "estimator.h"
+#include "check.h"
+#include "detail.h"
+#include "lookup.h"
+#include "stats.h"
 
 /* Probes at 60 degrees from n (sin^2 theta = 3/4: a wall at distance d
  * across the tangent plane is hit within d / cos 30 deg), 45 degrees apart

@@ -14,6 +14,13 @@
  * record's parts (kind.h) in their order. */
 #define IRC__KIND_IRR_ID 1u
 extern const irc__kind irc__kind_irr;
+/* The kind's gradient lookup (irc_cache_lookup_gradient): its accumulator
+ * answers into an irc__grad_out. */
+extern const irc__acc irc__irr_grad_lookup;
+typedef struct irc__grad_out {
+    float *rgb;
+    irc_gradient *grad;
+} irc__grad_out;
 enum { IRC__P_GRAD_T, IRC__P_GRAD_R, IRC__P_ELLIPSE, IRC__P_GUARD };
 
 /* A gradient in the record's tangent frame (t1, t2 of the decoded normal),
@@ -47,11 +54,6 @@ float irc__net_visibility(const irc_cache *c, const irc__sample *s);
 int irc__irr_compute(irc__call *k, void *rec);
 /* E alone from the configured strata, for a per-pixel estimate. */
 int irc__irr_estimate(irc__call *k, float e[3]);
-/* detail.c: the _px call's per-pixel answer near geometry; IRC_MISS when
- * the point is not detail (or the plain path must answer or refuse), with
- * the probes' rays in *probes for that path to count if it succeeds. */
-int irc__detail_px(irc_cache *c, const float p[3], const float n[3], float footprint,
-                   float rgb[3], float *weight, void *host, uint32_t *probes);
 void irc__gradients(const irc_cache *c, const irc__grid *g, const irc__sample *s,
                     const float mean[3], const float t1[3], const float t2[3], float gt[3][3],
                     float gr[3][3]);

@@ -8,6 +8,8 @@
 #include "estimator.h"
 #include "octa.h"
 #include "weight.h"
+#include "check.h"
+#include "walk.h"
 
 /* Each channel's 2D vector as int16 mantissas with the channel's own
  * exponent: 2^ex is the smallest power of two with |v| < 2^(ex + 15) for
@@ -308,11 +310,6 @@ typedef struct irc__grad_acc {
     irc_gradient *grad;
 } irc__grad_acc;
 
-typedef struct irc__grad_out {
-    float *rgb;
-    irc_gradient *grad;
-} irc__grad_out;
-
 static void irc__irrg_begin(const irc_cache *c, void *acc)
 {
     irc__grad_acc *a = (irc__grad_acc *)acc;
@@ -470,7 +467,7 @@ static int irc__irrg_find(irc_cache *c, const irc__query *q, void *out, float *w
 
 /* Only irc_cache_lookup_gradient uses it: the kind's records, summed with
  * their gradients' extrapolation. */
-static const irc__acc irc__irr_grad_lookup = {.weigh = irc__irr_weigh,
+const irc__acc irc__irr_grad_lookup = {.weigh = irc__irr_weigh,
     .begin = irc__irrg_begin,
     .accumulate = irc__irrg_accumulate,
     .finish = irc__irrg_finish,
@@ -514,51 +511,3 @@ const irc__kind irc__kind_irr = {
     (uint32_t)offsetof(irc_config, irr), (uint32_t)sizeof(struct irc_config_irr), {0, 0},
     irc__irr_resolve, irc__irr_parts, irc__irr_scratch, irc__irr_make, irc__irr_check,
     irc__irr_pack, irc__irr_unpack, irc__irr_answer, &irc__irr_lookup};
-
-int irc_record_compute(irc_cache *c, const float p[3], const float n[3], irc_record *out,
-                       void *host)
-{
-    return irc__compute(c, &irc__kind_irr, p, n, out, host, irc__irr_make, 1);
-}
-
-int irc_cache_insert(irc_cache *c, const irc_record *rec)
-{
-    return irc__insert(c, &irc__kind_irr, rec);
-}
-
-int irc_cache_lookup(irc_cache *c, const float p[3], const float n[3], float rgb[3],
-                     float *weight)
-{
-    return irc__lookup(c, &irc__kind_irr, &irc__irr_lookup, p, n, rgb, weight);
-}
-
-int irc_cache_lookup_gradient(irc_cache *c, const float p[3], const float n[3], float rgb[3],
-                              irc_gradient *grad, float *weight)
-{
-    irc__grad_out o;
-    o.rgb = rgb;
-    o.grad = grad;
-    return irc__lookup(c, &irc__kind_irr, &irc__irr_grad_lookup, p, n, rgb && grad ? &o : NULL,
-                       weight);
-}
-
-int irc_cache_lookup_or_compute(irc_cache *c, const float p[3], const float n[3],
-                                float rgb[3], float *weight, void *host)
-{
-    return irc_cache_lookup_or_compute_px(c, p, n, 0.0f, rgb, weight, host);
-}
-
-int irc_cache_lookup_or_compute_px(irc_cache *c, const float p[3], const float n[3],
-                                   float footprint, float rgb[3], float *weight, void *host)
-{
-    uint32_t probes;
-    const int st = irc__detail_px(c, p, n, footprint, rgb, weight, host, &probes);
-    if (st != IRC_MISS)
-        return st;
-    return irc__lookup_or_compute(c, &irc__kind_irr, footprint, p, n, rgb, weight, host, probes);
-}
-
-int irc_cache_record(irc_cache *c, uint32_t id, irc_record *out)
-{
-    return irc__record_get(c, &irc__kind_irr, id, out);
-}

@@ -8,6 +8,8 @@
 #include "shrec.h"
 #include "octa.h"
 #include "weight.h"
+#include "check.h"
+#include "walk.h"
 
 #ifndef IRC_NO_SH
 
@@ -314,33 +316,6 @@ const irc__kind irc__kind_sh = {
     {(uint32_t)offsetof(irc_config, sh.bands), (uint32_t)offsetof(irc_config, sh.channels)},
     irc__sh_resolve, irc__sh_parts, irc__sh_scratch, irc__sh_compute, irc__sh_check,
     irc__sh_pack, irc__sh_unpack, irc__sh_answer, &irc__sh_lookup};
-
-int irc_sh_compute(irc_cache *c, const float p[3], const float n[3], irc_sh *out, void *host)
-{
-    return irc__compute(c, &irc__kind_sh, p, n, out, host, irc__sh_compute, 1);
-}
-
-int irc_sh_insert(irc_cache *c, const irc_sh *rec)
-{
-    return irc__insert(c, &irc__kind_sh, rec);
-}
-
-int irc_sh_lookup(irc_cache *c, const float p[3], const float n[3], irc_sh *out,
-                  float *weight)
-{
-    return irc__lookup(c, &irc__kind_sh, &irc__sh_lookup, p, n, out, weight);
-}
-
-int irc_sh_lookup_or_compute(irc_cache *c, const float p[3], const float n[3], irc_sh *out,
-                             float *weight, void *host)
-{
-    return irc__lookup_or_compute(c, &irc__kind_sh, 0.0f, p, n, out, weight, host, 0u);
-}
-
-int irc_sh_record(irc_cache *c, uint32_t id, irc_sh *out)
-{
-    return irc__record_get(c, &irc__kind_sh, id, out);
-}
 
 #else /* IRC_NO_SH: the public calls and the kind's table are absent.c's */
 

@@ -16,6 +16,10 @@
 #include "index.h"
 #include "sampler.h"
 #include "estimator.h"
+#include "check.h"
+#include "config.h"
+#include "lock.h"
+#include "verify.h"
 
 typedef struct irc__layout {
     uint64_t lock, scratch, records, ix, nodes, refs, ctr, used, gtab, total;

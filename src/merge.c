@@ -6,7 +6,12 @@
  */
 #include "cache.h"
 #include "index.h"
+#include "bytes.h"
 #include "snapshot.h"
+#include "check.h"
+#include "lock.h"
+#include "store.h"
+#include "torn.h"
 
 /* The canonical order: field by field in the format's order, each field
  * compared as an unsigned integer of its width, so every machine sorts

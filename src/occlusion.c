@@ -5,6 +5,8 @@
 #include "cache.h"
 #include "sampler.h"
 #include "estimator.h"
+#include "check.h"
+#include "lookup.h"
 
 #ifndef IRC_NO_VISIBILITY
 

@@ -9,6 +9,10 @@
 #include "cache.h"
 #include "index.h"
 #include "snapshot.h"
+#include "check.h"
+#include "lock.h"
+#include "stats.h"
+#include "store.h"
 
 int irc_pass_begin(irc_cache *c)
 {

@@ -9,6 +9,7 @@
 #include "cache.h"
 #include "sampler.h"
 #include "estimator.h"
+#include "check.h"
 
 /* splitmix64's finaliser: a bijective 64-bit mix. */
 static uint64_t irc__mix(uint64_t x)

@@ -14,6 +14,7 @@
  */
 #include "cache.h"
 #include "shrec.h"
+#include "check.h"
 
 #ifndef IRC_NO_SH
 

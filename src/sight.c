@@ -6,16 +6,16 @@
  * through a record placed outside it.  This is V-Ray's "check sample
  * visibility"; Ward's weight and the leak guard look at the record's own
  * hemisphere only, and a record's reach can span geometry smaller than
- * itself (Krivanek and Gautron 2009, Sec. 2.3.3).
+ * itself (Krivanek and Gautron 2009, Sec. 2.3.3).  The lookup collects
+ * the candidates and their positions (lookup.c, walk.c); this file only
+ * casts the rays and says which records are hidden.
  */
 #include "cache.h"
 #include "octa.h"
 #include "sampler.h"
+#include "sight.h"
 
 #ifndef IRC_NO_SIGHT
-
-#define IRC__SIGHT_CAP 32u   /* records checked per lookup; more: unchecked */
-#define IRC__SIGHT_BATCH 8u  /* rays per callback call, at most */
 
 /* A hit this far along the way to the record, or nearer, hides it.  The
  * rest is the record's own surface and what lies just before it, which
@@ -68,18 +68,17 @@ static void irc__sort_ids(uint32_t *ids, uint32_t n)
 }
 
 /* Casts rays from k->q.p toward the records ids[first .. first + n - 1]
- * and moves the ids of the hidden ones to the front of ids, in place (k->
- * q.n_hidden counts them; none is written past the one being read).  Only
- * status and dist of the hits are read. */
-static int irc__sight_batch(irc__call *k, uint32_t *ids, uint32_t first, uint32_t n)
+ * (at pos, coded normals nrm) and moves the ids of the hidden ones to the
+ * front of ids, in place (k->q.n_hidden counts them; none is written past
+ * the one being read).  Only status and dist of the hits are read. */
+int irc__sight_batch(irc__call *k, uint32_t *ids, uint32_t first, uint32_t n,
+                     const float (*pos)[3], const uint32_t *nrm)
 {
     irc_ray rays[IRC__SIGHT_BATCH];
     irc_hit hits[IRC__SIGHT_BATCH];
-    float len[IRC__SIGHT_BATCH], pos[IRC__SIGHT_BATCH][3];
-    uint32_t i, m = 0, at[IRC__SIGHT_BATCH], nrm[IRC__SIGHT_BATCH];
+    float len[IRC__SIGHT_BATCH];
+    uint32_t i, m = 0, at[IRC__SIGHT_BATCH];
     int j, st;
-    if ((st = irc__positions(k->c, ids + first, n, pos, nrm)) < 0)
-        return st;
     for (i = 0; i < n; i++) {
         float d[3], l;
         for (j = 0; j < 3; j++)
@@ -111,33 +110,13 @@ static int irc__sight_batch(irc__call *k, uint32_t *ids, uint32_t first, uint32_
     return IRC_OK;
 }
 
-int irc__find_in_sight(irc__call *k, void *out, float *weight)
+void irc__sight_hide(irc__call *k, uint32_t *ids)
 {
-    irc_cache *c = k->c;
-    uint32_t ids[IRC__SIGHT_CAP], found, i, batch;
-    int st;
-    k->q.hidden = NULL;
-    k->q.n_hidden = 0;
-    if (!c->cfg.check_visibility || k->q.free)
-        return c->kind->lookup->find(c, &k->q, out, weight);
-    if ((st = irc__collect(c, &k->q, ids, IRC__SIGHT_CAP, &found)) < 0)
-        return st;
-    if (found > IRC__SIGHT_CAP)
-        found = IRC__SIGHT_CAP;
-    batch = c->cfg.max_batch < IRC__SIGHT_BATCH ? c->cfg.max_batch : IRC__SIGHT_BATCH;
-    for (i = 0; i < found && st >= 0; i += batch)
-        st = irc__sight_batch(k, ids, i, found - i < batch ? found - i : batch);
-    if (st < 0)
-        return st;
     irc__sort_ids(ids, k->q.n_hidden);
     k->q.hidden = ids;
-    st = c->kind->lookup->find(c, &k->q, out, weight);
-    k->q.hidden = NULL;
-    k->q.n_hidden = 0;
-    return st;
 }
 
-#else /* IRC_NO_SIGHT: absent.c's plain find */
+#else /* IRC_NO_SIGHT: lookup.c asks for no confirming rays */
 
 typedef int irc__sight_absent; /* ISO C wants something in a file */
 

@@ -7,6 +7,7 @@
  * cache's callback is told so instead of waiting for its own slot.
  */
 #include "cache.h"
+#include "slots.h"
 
 /* The claiming process's token: the port's (its process id), or 1 for
  * a port that cannot tell processes apart.  Never 0, which marks a free

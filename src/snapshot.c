@@ -5,7 +5,12 @@
  */
 #include "cache.h"
 #include "index.h"
+#include "bytes.h"
 #include "snapshot.h"
+#include "check.h"
+#include "lock.h"
+#include "store.h"
+#include "verify.h"
 
 
 /* CRC-32C (Castagnoli, reflected polynomial 0x82F63B78), four bits at a
@@ -25,50 +30,6 @@ static uint32_t irc__crc(uint32_t crc, const unsigned char *p, size_t n)
         crc = (crc >> 4) ^ irc__crc_nibble[crc & 15u];
     }
     return crc;
-}
-
-static void irc__le_put(unsigned char *dst, uint64_t v, unsigned width)
-{
-    unsigned i;
-    for (i = 0; i < width; i++)
-        dst[i] = (unsigned char)(v >> (8 * i));
-}
-
-uint64_t irc__le_get(const unsigned char *src, unsigned width)
-{
-    uint64_t v = 0;
-    unsigned i;
-    for (i = 0; i < width; i++)
-        v |= (uint64_t)src[i] << (8 * i);
-    return v;
-}
-
-/* A native value of `width` bytes at p, as an integer (and back). */
-uint64_t irc__native_get(const unsigned char *p, unsigned width)
-{
-    uint8_t b;
-    uint16_t h;
-    uint32_t w;
-    uint64_t d;
-    switch (width) {
-    case 1: IRC_MEMCPY(&b, p, 1); return b;
-    case 2: IRC_MEMCPY(&h, p, 2); return h;
-    case 4: IRC_MEMCPY(&w, p, 4); return w;
-    default: IRC_MEMCPY(&d, p, 8); return d;
-    }
-}
-
-static void irc__native_put(unsigned char *p, uint64_t v, unsigned width)
-{
-    uint8_t b = (uint8_t)v;
-    uint16_t h = (uint16_t)v;
-    uint32_t w = (uint32_t)v;
-    switch (width) {
-    case 1: IRC_MEMCPY(p, &b, 1); break;
-    case 2: IRC_MEMCPY(p, &h, 2); break;
-    case 4: IRC_MEMCPY(p, &w, 4); break;
-    default: IRC_MEMCPY(p, &v, 8); break;
-    }
 }
 
 /* The width of the packed record's field at byte `at`: the head's 4-byte

@@ -20,8 +20,5 @@ int irc__snap_check(const irc_cache *c, uint64_t fingerprint, const unsigned cha
                     size_t size, uint32_t room, uint32_t *count);
 void irc__convert(const irc_cache *c, const unsigned char *src, unsigned char *dst, int to_le);
 unsigned irc__field_width(const irc_cache *c, uint32_t at);
-uint64_t irc__native_get(const unsigned char *p, unsigned width);
-/* The little-endian value of `width` bytes at src (the format's order). */
-uint64_t irc__le_get(const unsigned char *src, unsigned width);
 
 #endif

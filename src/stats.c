@@ -5,6 +5,9 @@
  */
 #include "cache.h"
 #include "index.h"
+#include "check.h"
+#include "lock.h"
+#include "stats.h"
 
 /* The calling thread's stripe: its stack's address above 64 KiB
  * granules, hashed (threads' stacks lie megabytes apart; one thread's

@@ -8,13 +8,14 @@
  */
 #include "cache.h"
 #include "index.h"
-#include "snapshot.h"
+#include "bytes.h"
+#include "verify.h"
 
 int irc__rec_head_sane(const irc_cache *c, const irc__rec *r)
 {
     return irc__finite3(r->p) && irc__finite3(r->e) && irc__finite(r->r) && r->r > 0.0f &&
            r->e[0] >= 0.0f && r->e[1] >= 0.0f && r->e[2] >= 0.0f &&
-           (r->n != IRC__FREE || irc__kind_by_id(c->kind_id)->free_points);
+           (r->n != IRC__FREE || c->kind->free_points);
 }
 
 /* A float of a record as the block holds it, or as a snapshot does

@@ -32,6 +32,7 @@
 #include "sampler.h"
 #include "estimator.h"
 #include "strata.h"
+#include "check.h"
 
 #ifndef IRC_NO_VISIBILITY
 

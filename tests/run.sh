@@ -16,7 +16,8 @@
 #   stage 5  the header alone as C99 and as C++; no allocator symbol in
 #            libirrcache.a; no thread or I/O header in src/; the documents
 #            list every status, public call and source file (tests/docs.sh);
-#            every test is in a suite's list (tests/listed.sh);
+#            every test is in a suite's list (tests/listed.sh); no cycle
+#            among the library's modules (tests/cycles.sh);
 #            the one-file library builds alone, and the examples built on it
 #            print what the library's print (tests/amalgamation.sh)
 #   stage 2c the suite built for 32 bits (-m32: size_t and pointers of a
@@ -294,6 +295,7 @@ src_headers() {
 check src-headers src_headers
 check docs sh tests/docs.sh
 check listed sh tests/listed.sh
+check cycles $MAKE -s BUILD=build cycles
 check amalgamation sh tests/amalgamation.sh
 
 stage "stage 6: coverage of src/"

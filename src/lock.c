@@ -1,7 +1,8 @@
 /*
- * repair.c -- the write lock, taken so that a writer killed inside it
- * (a process sharing the block, irc_join) leaves nothing the next writer
- * cannot make whole.
+ * lock.c -- the port's locks as the library takes them: the write lock
+ * taken so that a writer killed inside it (a process sharing the block,
+ * irc_join) leaves nothing the next writer cannot make whole, and the
+ * read lock, which lets that repair run first.
  *
  * Writers keep two promises.  Every slot below count holds a whole
  * record, except the slots the block's torn word names while their bytes
@@ -18,36 +19,10 @@
  */
 #include "cache.h"
 #include "index.h"
-
-static void irc__set(irc_cache *c, uint64_t *w, uint64_t v)
-{
-    /* acq_rel: what follows is not written before the word is */
-    uint64_t old = c->port->load(w);
-    while (!c->port->cas(w, old, v))
-        old = c->port->load(w);
-}
-
-void irc__mark(irc_cache *c, uint32_t a, uint32_t b)
-{
-    irc__set(c, &c->home->torn, (uint64_t)(uint32_t)(a + 1u) | (uint64_t)(uint32_t)(b + 1u) << 32);
-}
-
-void irc__unmark(irc_cache *c) { c->port->store(&c->home->torn, 0); }
-
-void irc__rec_swap(irc_cache *c, uint32_t i, uint32_t j)
-{
-    unsigned char *a = (unsigned char *)irc__rec_at(c, i), *b = (unsigned char *)irc__rec_at(c, j);
-    unsigned char tmp[64]; /* no record of the largest kind on the stack */
-    uint32_t at, n;
-    irc__mark(c, i, j);
-    for (at = 0; at < c->rec_size; at += n) {
-        n = c->rec_size - at < 64u ? c->rec_size - at : 64u;
-        IRC_MEMCPY(tmp, a + at, n);
-        IRC_MEMCPY(a + at, b + at, n);
-        IRC_MEMCPY(b + at, tmp, n);
-    }
-    irc__unmark(c);
-}
+#include "lock.h"
+#include "torn.h"
+#include "verify.h"
+#include "store.h"
 
 void irc__repair_locked(irc_cache *c)
 {
@@ -116,3 +91,15 @@ int irc__read_lock(irc_cache *c)
 }
 
 void irc__read_unlock(irc_cache *c) { c->port->read_unlock(irc__lock(c)); }
+
+/* A call a fill pass forbids (clear, snapshot read, merge) takes the write
+ * lock only when no pass is open. */
+int irc__write_lock_idle(irc_cache *c)
+{
+    if (irc__write_lock(c) < 0)
+        return IRC_ERR_PORT;
+    if (!c->home->pass_open)
+        return IRC_OK;
+    irc__write_unlock(c);
+    return IRC_ERR_STATE;
+}
