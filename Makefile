@@ -41,22 +41,29 @@ CFLAGS_LIB = -std=c99 $(WARN) -Wdouble-promotion $(OPT) $(PIC) -fno-math-errno \
              -fvisibility=hidden -Iinclude $(CFLAGS)
 PIC = $(if $(filter none,$(PORT)),,-fPIC)
 
-SRC = src/status.c src/version.c src/check.c src/config.c src/kinds.c src/strata.c src/layout.c src/store.c src/walk.c src/lookup.c src/api_irr.c src/kind_irr.c src/gradient.c \
-      src/kind_sh.c src/api_sh.c src/sampler.c src/irradiance.c src/octa.c src/weight.c src/index.c src/cells.c src/query.c src/compact.c \
-      src/visibility.c src/hessian.c src/sh.c src/shgrad.c src/snapshot.c src/merge.c \
-      src/pass.c src/sight.c src/slots.c src/verify.c src/lock.c src/torn.c src/occlusion.c src/stats.c \
-      src/pixel.c src/detail.c
+SRC = src/status.c src/version.c \
+      src/block/check.c src/block/octa.c src/block/slots.c src/block/torn.c \
+      src/index/cells.c src/index/index.c src/index/query.c src/index/compact.c src/index/verify.c \
+      src/store/lock.c src/store/stats.c src/store/trace.c src/store/store.c src/store/walk.c \
+      src/store/sight.c src/store/lookup.c \
+      src/kind/weight.c src/sample/grid.c src/sample/sampler.c src/sample/strata.c \
+      src/irr/kind_irr.c src/irr/irradiance.c src/irr/gradient.c src/irr/visibility.c \
+      src/irr/hessian.c src/irr/detail.c \
+      src/sh/kind_sh.c src/sh/sh.c src/sh/shgrad.c \
+      src/api/kinds.c src/api/config.c src/api/layout.c src/api/api_irr.c src/api/api_sh.c \
+      src/api/occlusion.c src/api/pixel.c src/api/pass.c \
+      src/persist/snapshot.c src/persist/merge.c
 # make LEAVE_OUT="SH VISIBILITY HESSIAN SIGHT SUPERSAMPLE GUARD" (any of them): those parts are
 # not compiled, and util.h's IRC_NO_* switch tells the rest (the same
 # switches, set in a user config header, compile those files empty).
 LEAVE_OUT ?=
-LEFT_SH = src/kind_sh.c src/api_sh.c src/sh.c src/shgrad.c
-LEFT_VISIBILITY = src/visibility.c src/occlusion.c
-LEFT_HESSIAN = src/hessian.c
-LEFT_SIGHT = src/sight.c
+LEFT_SH = src/sh/kind_sh.c src/api/api_sh.c src/sh/sh.c src/sh/shgrad.c
+LEFT_VISIBILITY = src/irr/visibility.c src/api/occlusion.c
+LEFT_HESSIAN = src/irr/hessian.c
+LEFT_SIGHT = src/store/sight.c
 LEFT_SUPERSAMPLE =
 LEFT_GUARD =
-SRC := $(filter-out $(foreach x,$(LEAVE_OUT),$(LEFT_$(x))),$(SRC) src/absent.c)
+SRC := $(filter-out $(foreach x,$(LEAVE_OUT),$(LEFT_$(x))),$(SRC) src/api/absent.c)
 CFLAGS_LIB += $(foreach x,$(LEAVE_OUT),-DIRC_NO_$(x))
 # The chosen port, and the single-threaded one (it needs nothing).
 PORT_SRC = $(sort port/$(PORT)/irc_port.c port/none/irc_port.c) port/irc_port_default.c
@@ -77,7 +84,7 @@ THREAD_LIBS = $(if $(filter posix,$(PORT)),-lpthread,)
 all: $(LIBA) $(if $(filter none,$(PORT)),,$(LIBSO))
 lib: $(LIBA)
 
-$(BUILD)/src/%.o: src/%.c $(wildcard src/*.h) include/irrcache.h
+$(BUILD)/src/%.o: src/%.c $(wildcard src/*.h src/*/*.h) include/irrcache.h
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_LIB) -c $< -o $@
 
@@ -130,7 +137,7 @@ $(BUILD)/tests/port_c11.o: port/c11/irc_port.c include/irrcache.h
 # A record kind of the tests' own (tests/kind_occ.c): the registry
 # compiled again with it listed, linked before the library's.
 TEST_KINDS = $(BUILD)/tests/kinds.o
-$(BUILD)/tests/kinds.o: src/kinds.c src/kind.h include/irrcache.h
+$(BUILD)/tests/kinds.o: src/api/kinds.c src/kind/kind.h include/irrcache.h
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_LIB) -DIRC_KIND_EXTRA=irc__kind_occ -c $< -o $@
 
@@ -152,9 +159,10 @@ check: $(BUILD)/irc_tests
 
 # No module of the library uses another that uses it back (tests/cycles.sh
 # on the library's objects; DESIGN.md, "Layers").
+LAYERS = top block index store kind,sample irr,sh api,persist
 cycles: $(LIBA)
 	sh tests/cycles.sh --self-test
-	sh tests/cycles.sh $(OBJ)
+	LAYERS="$(LAYERS)" sh tests/cycles.sh $(OBJ)
 
 # Line and branch coverage of src/ (gcov): the core suite and the fuzz
 # corpora.  make test prints it too.
@@ -328,7 +336,7 @@ $(BUILD)/t_exr: tests/t_exr.c tests/harness.c tests/test.h $(IMAGE_SRC) demo/ima
 # chosen port in one file) and irrcache.h beside it (pkg/amalgamate.sh).
 AMALG = $(BUILD)/amalgamation
 amalgamation: $(AMALG)/irrcache.c $(AMALG)/irrcache.h
-$(AMALG)/irrcache.c: $(SRC) $(wildcard src/*.h) $(PORT_SRC) pkg/amalgamate.sh include/irrcache.h
+$(AMALG)/irrcache.c: $(SRC) $(wildcard src/*.h src/*/*.h) $(PORT_SRC) pkg/amalgamate.sh include/irrcache.h
 	@mkdir -p $(AMALG)
 	sh pkg/amalgamate.sh $(PORT) $(VERSION) $@ $(SRC)
 $(AMALG)/irrcache.h: include/irrcache.h

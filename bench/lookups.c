@@ -26,8 +26,8 @@
 #include <time.h>
 #include "bench_util.h"
 #include "box.h"
-#include "cache.h" /* irc__index_query: entries scanned and passed */
-#include "index.h"
+#include "block/cache.h" /* irc__index_query: entries scanned and passed */
+#include "index/index.h"
 
 static unsigned long long rng = 1;
 

@@ -24,7 +24,7 @@ FLAGS="-std=c99 -Iinclude -fno-math-errno -fstack-usage -fcallgraph-info=su"
 sh embedded/need.sh
 rm -rf $B
 mkdir -p $B/x86 $B/m4
-for f in src/*.c port/none/irc_port.c port/irc_port_default.c; do
+for f in src/*.c src/*/*.c port/none/irc_port.c port/irc_port_default.c; do
     o=$(basename "$f" .c)
     $CC $FLAGS -O2 -DIRC_PORT_DEFAULT=irc_port_none -c "$f" -o $B/x86/$o.o
     ${CROSS}gcc $FLAGS $M4 -Os -ffunction-sections -fdata-sections \
@@ -33,7 +33,7 @@ done
 ${CROSS}ar rcs $B/m4/libirrcache.a $B/m4/*.o
 # The same with what an irradiance-only firmware leaves out (util.h).
 mkdir -p $B/m4-irr
-for f in src/*.c port/none/irc_port.c port/irc_port_default.c; do
+for f in src/*.c src/*/*.c port/none/irc_port.c port/irc_port_default.c; do
     ${CROSS}gcc $FLAGS $M4 -Os -ffunction-sections -fdata-sections \
         -DIRC_NO_SH -DIRC_NO_VISIBILITY -DIRC_NO_HESSIAN -DIRC_NO_SIGHT -DIRC_NO_SUPERSAMPLE \
         -DIRC_NO_GUARD -DIRC_PORT_DEFAULT=irc_port_none \
@@ -84,7 +84,7 @@ done
 echo "3. block bytes"
 $CC -std=c99 -O2 -Iinclude -DSIZE_PRINT embedded/size_host.c $B/x86/*.o -o $B/per_record -lm
 $B/per_record
-if $CC -m32 -std=c99 -O2 -Iinclude -DSIZE_PRINT embedded/size_host.c src/*.c port/none/irc_port.c \
+if $CC -m32 -std=c99 -O2 -Iinclude -DSIZE_PRINT embedded/size_host.c src/*.c src/*/*.c port/none/irc_port.c \
         port/irc_port_default.c -DIRC_PORT_DEFAULT=irc_port_none -o $B/per_record32 -lm 2>/dev/null; then
     # a kernel without IA-32 emulation cannot run it (status 126): said
     $B/per_record32 2>/dev/null || { [ $? -eq 126 ] && echo "  (32-bit figures: this kernel runs no i386 programs)"; } ||
@@ -127,7 +127,7 @@ grep -v 'is not a library function' $B/stack-switched.txt | sed 's/^/    /'
 [ $st -eq 0 ] && echo "  no recursion" || echo "  FAIL: recursion (above)"
 
 echo "5. double precision on the Cortex-M4F"
-for f in src/*.c; do
+for f in src/*.c src/*/*.c; do
     ${CROSS}gcc -std=c99 $M4 -Os -Iinclude -Wdouble-promotion -c "$f" -o /dev/null 2>&1
 done | grep 'warning:' | cut -d: -f1 | sort | uniq -c | sort -rn |
     awk '{ printf "  %-22s %4d -Wdouble-promotion warnings\n", $2, $1; t += $1 }

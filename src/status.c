@@ -1,7 +1,7 @@
 /*
  * status.c -- the one-line description of every status code.
  */
-#include "cache.h"
+#include "block/cache.h"
 
 const char *irc_strerror(int status)
 {

@@ -1,8 +1,9 @@
 #!/bin/sh
 # amalgamation.sh -- the one-file library (make amalgamation): it compiles
-# alone as C99 without a warning (gcc and clang, posix and none ports), the
-# example hosts built on it print what the normal build's print, and its
-# object is the library's size (within 5% of the archive's objects).
+# alone as C99 without a warning (gcc and clang, posix and none ports) and
+# exports the public calls only, the example hosts built on it print what
+# the normal build's print, and its object is the library's size (within
+# 5% of the archive's objects).
 # AMALG_QUICK=1 (make check): gcc and the posix port only, the minimal
 # example's output, no size.
 set -eu
@@ -22,6 +23,10 @@ for port in $ports; do
     done
 done
 A=$B/posix/amalgamation
+# Only the public calls leave the object: every internal has internal
+# linkage (pkg/amalgamate.sh).
+leaked=$(nm -g --defined-only $B/posix/irrcache-gcc.o | awk '{ print $3 }' | grep -v '^irc_[a-z]' || true)
+[ -z "$leaked" ] || { echo "amalgamation: exports more than irc_ calls:"; echo "$leaked" | head; exit 1; }
 if [ "$QUICK" = 1 ]; then
     $MAKE -s BUILD=build build/minimal
     cc -std=c99 -O2 -I$A examples/minimal.c $B/posix/irrcache-gcc.o -o $B/minimal -lm -lpthread
@@ -46,7 +51,7 @@ grep -q ", 0 errors" $B/threads.amalg.txt || { echo "threads: errors"; exit 1; }
 $MAKE -s BUILD=$B/lib OPT=-O2 lib
 text() { size "$@" | awk 'NR > 1 { t += $1 } END { print t }'; }
 one=$(text $B/posix/irrcache-gcc.o)
-many=$(text $B/lib/src/*.o $B/lib/port/*.o $B/lib/port/*/*.o)
+many=$(text $B/lib/src/*.o $B/lib/src/*/*.o $B/lib/port/*.o $B/lib/port/*/*.o)
 echo "amalgamation: $(wc -l < $A/irrcache.c) lines; text $one bytes in one object, $many in the library's"
 awk -v a="$one" -v b="$many" 'BEGIN { exit !(a <= 1.05 * b && a >= 0.80 * b) }' ||
     { echo "amalgamation: its size is not the library's"; exit 1; }

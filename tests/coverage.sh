@@ -12,15 +12,15 @@ IRC_TEST_QUICK=1 ./$B/irc_tests >/dev/null
 for t in api attach callback scene snapshot; do
     ./$B/replay_$t fuzz/corpus/api fuzz/corpus/attach fuzz/corpus/callback fuzz/corpus/scene fuzz/corpus/snapshot >/dev/null
 done
-cd $B/src
-printf '%-16s %8s %8s\n' file lines branches
-for f in ../../src/*.c; do
-    base=$(basename "$f" .c)
-    gcov -b -c -o . "$f" 2>/dev/null | sed -n "/File 'src\/$base.c'/,/^\$/p" |
-        awk -v f="$base.c" '
+cd $B
+printf '%-22s %8s %8s\n' file lines branches
+for f in $(cd .. && ls src/*.c src/*/*.c); do
+    name=${f#src/}
+    gcov -b -c -o "$(dirname "$f")" "../$f" 2>/dev/null | sed -n "\#File '$f'#,/^\$/p" |
+        awk -v f="$name" '
             /^Lines executed:/ { split($0, a, /[:% ]+/); lp = a[3]; ln = a[5] }
             /^Taken at least once:/ { split($0, a, /[:% ]+/); bp = a[5]; bn = a[7] }
-            END { printf "%-16s %7.2f%% %7.2f%% %d %d\n", f, lp, bp, ln, bn }'
+            END { printf "%-22s %7.2f%% %7.2f%% %d %d\n", f, lp, bp, ln, bn }'
 done | awk '
-    { printf "%-16s %8s %8s\n", $1, $2, $3; l += $4; b += $5; hl += $2 * $4 / 100; hb += $3 * $5 / 100 }
-    END { printf "%-16s %7.2f%% %7.2f%%  (%d lines, %d branches)\n", "total", 100 * hl / l, 100 * hb / b, l, b }'
+    { printf "%-22s %8s %8s\n", $1, $2, $3; l += $4; b += $5; hl += $2 * $4 / 100; hb += $3 * $5 / 100 }
+    END { printf "%-22s %7.2f%% %7.2f%%  (%d lines, %d branches)\n", "total", 100 * hl / l, 100 * hb / b, l, b }'

@@ -12,10 +12,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "cache.h"
-#include "sampler.h"
-#include "octa.h"
-#include "weight.h"
+#include "block/cache.h"
+#include "sample/sampler.h"
+#include "block/octa.h"
+#include "kind/weight.h"
 #include "scenes.h"
 #include "test.h"
 

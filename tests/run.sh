@@ -17,7 +17,8 @@
 #            libirrcache.a; no thread or I/O header in src/; the documents
 #            list every status, public call and source file (tests/docs.sh);
 #            every test is in a suite's list (tests/listed.sh); no cycle
-#            among the library's modules (tests/cycles.sh);
+#            among the library's modules (tests/cycles.sh); the refactors'
+#            fingerprint runs (make fingerprint);
 #            the one-file library builds alone, and the examples built on it
 #            print what the library's print (tests/amalgamation.sh)
 #   stage 2c the suite built for 32 bits (-m32: size_t and pointers of a
@@ -125,7 +126,7 @@ check portless-build portless
 user_config() {
     d=build/user-config
     mkdir -p "$d"
-    for f in src/*.c; do
+    for f in src/*.c src/*/*.c; do
         gcc -std=c99 -O1 -Iinclude -Itests -DIRC_USER_CONFIG='"user_config.h"' -c "$f" \
             -o "$d/$(basename "$f" .c).o" || return 1
     done
@@ -282,13 +283,13 @@ no_allocator() {
 }
 check no-allocator no_allocator
 src_headers() {
-    bad=$(grep -hoE '#[[:space:]]*include[[:space:]]*<[^>]+>' src/*.c src/*.h include/*.h |
+    bad=$(grep -hoE '#[[:space:]]*include[[:space:]]*<[^>]+>' src/*.c src/*.h src/*/*.c src/*/*.h include/*.h |
         sed -E 's/.*<([^>]+)>.*/\1/' | sort -u |
         grep -vxE 'assert.h|float.h|math.h|stddef.h|stdint.h|string.h')
     [ -z "$bad" ] || { echo "src/ includes: $bad"; return 1; }
     # every libc and libm call goes through a macro of util.h
     call='(^|[^_A-Za-z0-9])(sqrtf?|sinf?|cosf?|tanf?|asin|acos|atan2?|fabsf?|floor|ceil|frexp|ldexp|pow|exp|log|memcpy|memmove|memset|assert)[[:space:]]*\('
-    bare=$(grep -nE "$call" src/*.c src/*.h | grep -v '^src/util.h:' |
+    bare=$(grep -nE "$call" src/*.c src/*.h src/*/*.c src/*/*.h | grep -v '^src/util.h:' |
         grep -vE '^[^:]+:[0-9]+:[[:space:]]*/?\*' | sed -E 's#/\*.*##' | grep -E "$call")
     [ -z "$bare" ] || { echo "calls past util.h: $bare"; return 1; }
 }
@@ -296,6 +297,7 @@ check src-headers src_headers
 check docs sh tests/docs.sh
 check listed sh tests/listed.sh
 check cycles $MAKE -s BUILD=build cycles
+check fingerprint $MAKE -s BUILD=build fingerprint
 check amalgamation sh tests/amalgamation.sh
 
 stage "stage 6: coverage of src/"

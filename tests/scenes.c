@@ -3,7 +3,7 @@
 
 #include <stdio.h>
 
-#include "cache.h" /* the lock's place in the block, on purpose */
+#include "block/cache.h" /* the lock's place in the block, on purpose */
 
 #include <math.h>
 #include <stdlib.h>

@@ -10,7 +10,7 @@
 #include <string.h>
 
 #include "irrcache.h"
-#include "cache.h" /* a block header poked on purpose: as a full build writes it */
+#include "block/cache.h" /* a block header poked on purpose: as a full build writes it */
 
 static int passed, failed;
 

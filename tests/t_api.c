@@ -4,7 +4,7 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "cache.h" /* internals on purpose: a busy slot, no_wait */
+#include "block/cache.h" /* internals on purpose: a busy slot, no_wait */
 #include "scenes.h"
 #include "test.h"
 

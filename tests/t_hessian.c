@@ -5,8 +5,8 @@
 #include <math.h>
 #include <string.h>
 
-#include "cache.h"
-#include "estimator.h"
+#include "block/cache.h"
+#include "irr/estimator.h"
 #include "scenes.h"
 #include "test.h"
 

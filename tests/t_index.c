@@ -3,11 +3,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "cache.h" /* internals on purpose: records scanned without the index */
-#include "index.h"
-#include "sampler.h"
-#include "octa.h"
-#include "weight.h"
+#include "block/cache.h" /* internals on purpose: records scanned without the index */
+#include "index/index.h"
+#include "sample/sampler.h"
+#include "block/octa.h"
+#include "kind/weight.h"
 #include "scenes.h"
 #include "test.h"
 

@@ -15,7 +15,7 @@
 #include <unistd.h>
 
 #include "irrcache.h"
-#include "cache.h" /* internals on purpose: a writer stopped mid-write */
+#include "block/cache.h" /* internals on purpose: a writer stopped mid-write */
 #include "scenes.h"
 #include "share.h"
 #include "test.h"

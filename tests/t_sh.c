@@ -1,9 +1,9 @@
 /* t_sh.c -- the real SH basis and its Cartesian gradient. */
 #include <math.h>
 
-#include "cache.h" /* internals on purpose: the SH basis (irc__sh_eval) */
-#include "sampler.h"
-#include "shrec.h"
+#include "block/cache.h" /* internals on purpose: the SH basis (irc__sh_eval) */
+#include "sample/sampler.h"
+#include "sh/shrec.h"
 #include "scenes.h"
 #include "test.h"
 

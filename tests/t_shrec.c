@@ -10,7 +10,7 @@
 
 #include "test.h"
 #include "scenes.h"
-#include "../src/cache.h"
+#include "../src/block/cache.h"
 
 #define NC 25
 

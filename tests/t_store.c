@@ -8,8 +8,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "cache.h" /* internals on purpose: candidates the index hands over */
-#include "index.h"
+#include "block/cache.h" /* internals on purpose: candidates the index hands over */
+#include "index/index.h"
 #include "scenes.h"
 #include "test.h"
 

@@ -5,8 +5,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "cache.h" /* internals on purpose: stored bytes and index compared */
-#include "index.h"
+#include "block/cache.h" /* internals on purpose: stored bytes and index compared */
+#include "index/index.h"
 #include "scenes.h"
 #include "test.h"
 

@@ -1,0 +1,125 @@
+/*
+ * config.c -- the config's defaults and rules: zero in any field means its
+ * default, and every field is checked against its documented range.
+ */
+#include "../block/cache.h"
+#include "config.h"
+
+#define IRC__DEF_ACCURACY 0.2f
+/* Strata: 32 x 128 for irradiance records, whose noise is copied to
+ * every pixel they serve (on the bench's corpus, without a pixel floor,
+ * 16 x 64 records held the error at 2.5-5.5% whatever a, and 32 x 128
+ * halved it: bench/README.md, "The corpus"); 16 x 64 for SH records,
+ * whose two hemispheres double the rays and were not measured so. */
+#define IRC__DEF_THETA 32u
+#define IRC__DEF_PHI 128u
+#define IRC__DEF_SH_THETA 16u
+#define IRC__DEF_SH_PHI 64u
+/* A record's reach a R in pixels at its point, from the _px call's
+ * footprint (pbrt-v2's maximum pixel spacing; its 2.5-pixel minimum cost
+ * 2.5-3.7x the error on four of six corpus views: none). */
+#define IRC__DEF_MIN_PIXELS 0.0f
+#define IRC__DEF_MAX_PIXELS 15.0f
+#define IRC__LOCK_MAX 4096u
+
+int irc__port_ok(const irc_port *p)
+{
+    return p->lock_init && p->lock_destroy && p->read_lock && p->read_unlock &&
+           p->write_lock && p->write_unlock && p->load && p->store &&
+           p->fetch_add && p->fetch_or && p->cas && p->lock_size <= IRC__LOCK_MAX &&
+           !p->owner == !p->owner_alive;
+}
+
+/* One rule for both radius limits: finite, within [0, IRC_RADIUS_CAP],
+ * max above min; a max of 0 is the cap. */
+static int irc__radii_resolve(irc_config *out)
+{
+    if (out->max_radius == 0.0f)
+        out->max_radius = IRC__CAP;
+    if (!(out->min_radius >= 0.0f && out->min_radius < IRC__CAP) ||
+        !(out->max_radius > out->min_radius && out->max_radius <= IRC__CAP))
+        return IRC_ERR_CONFIG;
+    /* Pixel bounds: 0 the default, negative none (stored as 0); a default
+     * maximum never falls below the host's minimum. */
+    if (!(out->min_pixels > -IRC__CAP && out->min_pixels < IRC__CAP) ||
+        !(out->max_pixels > -IRC__CAP && out->max_pixels < IRC__CAP))
+        return IRC_ERR_CONFIG;
+    if (out->min_pixels == 0.0f) out->min_pixels = IRC__DEF_MIN_PIXELS;
+    if (out->max_pixels == 0.0f)
+        out->max_pixels = out->min_pixels > IRC__DEF_MAX_PIXELS ? out->min_pixels
+                                                                  : IRC__DEF_MAX_PIXELS;
+    if (out->min_pixels < 0.0f) out->min_pixels = 0.0f;
+    if (out->max_pixels < 0.0f) out->max_pixels = 0.0f;
+    if (out->max_pixels > 0.0f && out->max_pixels < out->min_pixels)
+        return IRC_ERR_CONFIG;
+    return IRC_OK;
+}
+
+static int irc__sampling_resolve(irc_config *out)
+{
+    const int sh = (out->features & (IRC_FEATURE_SH | IRC_FEATURE_SH_GRADIENT)) != 0;
+    if (out->strata_theta == 0) out->strata_theta = sh ? IRC__DEF_SH_THETA : IRC__DEF_THETA;
+    if (out->strata_phi == 0) out->strata_phi = sh ? IRC__DEF_SH_PHI : IRC__DEF_PHI;
+    if (out->strata_theta > 1024u || out->strata_phi > 4096u ||
+        out->strata_theta * out->strata_phi > IRC_MAX_STRATA)
+        return IRC_ERR_CONFIG;
+    if (out->max_batch == 0) out->max_batch = 1;
+    if (out->max_batch > IRC_MAX_BATCH)
+        return IRC_ERR_CONFIG;
+    if (out->max_batch > out->strata_theta * out->strata_phi)
+        out->max_batch = out->strata_theta * out->strata_phi;
+    if (out->threads == 0) out->threads = 1;
+    if (out->threads > IRC_MAX_THREADS || out->no_wait > 1u)
+        return IRC_ERR_CONFIG;
+    return IRC_OK;
+}
+
+/* The kind's own fields and features (irc__kind.resolve), then the
+ * irc_switch fields, resolved to 0 (off) or 1 (on) after the kind has set
+ * its defaults for those left at IRC_DEFAULT. */
+static int irc__kind_resolve(const irc__kind *k, irc_config *out)
+{
+    int st;
+    if (out->clamp_neighbours > IRC_OFF || out->check_visibility > IRC_OFF)
+        return IRC_ERR_CONFIG;
+#ifdef IRC_NO_SIGHT /* confirming rays left out (util.h): off by default */
+    if (out->check_visibility == IRC_ON)
+        return IRC_ERR_UNSUPPORTED;
+    out->check_visibility = IRC_OFF;
+#endif
+    if ((st = k->resolve(out)) < 0)
+        return st;
+    out->clamp_neighbours = out->clamp_neighbours == IRC_ON;
+    out->check_visibility = out->check_visibility == IRC_ON;
+    return IRC_OK;
+}
+
+/* Copies cfg with defaults applied and checks every field. */
+int irc__config_resolve(const irc_config *in, irc_config *out)
+{
+    const irc__kind *k;
+    int st;
+    if (!in)
+        return IRC_ERR_NULL;
+    *out = *in;
+    if (!out->trace)
+        return IRC_ERR_NULL;
+    /* Which kind: its features, and no other kind's fields. */
+    if ((st = irc__kind_features(out->features)) < 0)
+        return st;
+    k = irc__kind_of(out->features);
+    if ((st = irc__kind_fields_alone(k, out)) < 0 || (st = irc__radii_resolve(out)) < 0 ||
+        (st = irc__sampling_resolve(out)) < 0 || (st = irc__kind_resolve(k, out)) < 0)
+        return st;
+    if (out->accuracy == 0.0f)
+        out->accuracy = IRC__DEF_ACCURACY;
+    if (!(out->accuracy > 0.0f && out->accuracy <= 10.0f))
+        return IRC_ERR_CONFIG;
+    if (out->evict > IRC_EVICT_CLOCK)
+        return IRC_ERR_CONFIG;
+    if (!out->port)
+        out->port = irc_port_default;
+    if (!irc__port_ok(out->port))
+        return IRC_ERR_CONFIG;
+    return IRC_OK;
+}

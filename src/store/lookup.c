@@ -1,0 +1,281 @@
+/*
+ * lookup.c -- the calls every kind's public calls drive: a lookup (the
+ * kind's find over the index walk, walk.c), a computation in a claimed
+ * scratch slot (slots.c), and lookup-or-compute, which looks up (with
+ * confirming rays when the config asks, sight.c) and on a miss computes
+ * the record in its slot and offers it to the pool (store.c).  The host's
+ * callback runs with no lock held.  Counters are updated only once a call
+ * has succeeded.
+ */
+#include "../block/cache.h"
+#include "../block/check.h"
+#include "../block/slots.h"
+#include "lookup.h"
+#include "sight.h"
+#include "stats.h"
+#include "store.h"
+#include "walk.h"
+
+/* A finite point and a usable normal; no normal is a free point, for the
+ * kinds that have them. */
+static int irc__query_make(const irc_cache *c, const float p[3], const float n[3],
+                           irc__query *q)
+{
+    int st, k;
+    if ((st = irc__check_vec(p)) < 0)
+        return st;
+    q->free = n == NULL;
+    if (q->free) {
+        if (!c->kind->free_points)
+            return IRC_ERR_NULL;
+        q->n[0] = q->n[1] = q->n[2] = 0.0f;
+    } else if ((st = irc__check_normal(n, q->n)) < 0) {
+        return st;
+    }
+    for (k = 0; k < 3; k++)
+        q->p[k] = p[k];
+    q->hidden = NULL;
+    q->n_hidden = 0;
+    q->marks = NULL;
+    return IRC_OK;
+}
+
+/* What every call that takes a query checks first, in this order: the
+ * cache, the output, the query. */
+static int irc__open(const irc_cache *c, const irc__kind *want, const void *out,
+                     const float p[3], const float n[3], irc__query *q)
+{
+    int st = irc__enter(c, want);
+    if (st < 0)
+        return st;
+    return out ? irc__query_make(c, p, n, q) : IRC_ERR_NULL;
+}
+
+/* Runs fn with slot t, which stays claimed. */
+static int irc__run_in(irc_cache *c, irc__call *k, uint32_t t, void *host,
+                       int (*fn)(irc__call *k, void *out), void *out)
+{
+    k->c = c;
+    k->slot = irc__slot(c, t);
+    k->host = host;
+    k->rays = 0;
+    k->sight = 0;
+    return fn(k, out);
+}
+
+/* Runs fn with slot t, then gives the slot back. */
+static int irc__run(irc_cache *c, irc__call *k, uint32_t t, void *host,
+                    int (*fn)(irc__call *k, void *out), void *out)
+{
+    int st = irc__run_in(c, k, t, host, fn, out);
+    irc__slot_release(c, t);
+    return st;
+}
+
+static void irc__count_compute(irc_cache *c, const irc__call *k, int record, int waited)
+{
+    if (record)
+        irc__count(c, IRC__C_COMPUTES, 1);
+    if (waited)
+        irc__count(c, IRC__C_WAITS, 1);
+    irc__count(c, IRC__C_RAYS, k->rays);
+}
+
+/* Runs fn in a claimed slot; its rays in *rays and whether it waited in
+ * *waited, counted by the caller (nothing of a failed call is). */
+int irc__compute_quiet(irc_cache *c, const irc__kind *want, const float p[3], const float n[3],
+                       void *out, void *host, int (*fn)(irc__call *k, void *out),
+                       uint32_t *rays, int *waited)
+{
+    irc__call k;
+    uint32_t t;
+    int st;
+    k.footprint = 0.0f;
+    *waited = 0;
+    *rays = 0;
+    if ((st = irc__open(c, want, out, p, n, &k.q)) < 0 ||
+        (st = irc__slot_claim(c, &t, waited)) < 0 ||
+        (st = irc__run(c, &k, t, host, fn, out)) < 0)
+        return st;
+    *rays = k.rays;
+    return IRC_OK;
+}
+
+int irc__compute(irc_cache *c, const irc__kind *want, const float p[3], const float n[3],
+                 void *out, void *host, int (*fn)(irc__call *k, void *out), int record)
+{
+    irc__call k;
+    int st, waited;
+    if ((st = irc__compute_quiet(c, want, p, n, out, host, fn, &k.rays, &waited)) < 0)
+        return st;
+    irc__count_compute(c, &k, record, waited);
+    return IRC_OK;
+}
+
+/* Counts a lookup that returned st (and a hit when it answered).  Errors
+ * count nothing. */
+static int irc__count_lookup(irc_cache *c, int st)
+{
+    if (st < 0)
+        return st;
+    irc__count(c, IRC__C_LOOKUPS, 1);
+    if (st == IRC_OK)
+        irc__count(c, IRC__C_HITS, 1);
+    return st;
+}
+
+int irc__lookup(irc_cache *c, const irc__kind *want, const irc__acc *ops, const float p[3],
+                const float n[3], void *out, float *weight)
+{
+    irc__query q;
+    irc__marks marks;
+    int st = irc__open(c, want, out, p, n, &q);
+    if (st < 0)
+        return st;
+    marks.n = 0;
+    q.marks = &marks;
+    /* A lookup that read records and then failed (its answer past float)
+     * takes its use bits back. */
+    if ((st = ops->find(c, &q, out, weight)) < 0)
+        irc__unmark_used(c, &marks);
+    return irc__count_lookup(c, st);
+}
+
+/* The end of a miss: the computed record offered to the pool.  A full
+ * pool is IRC_NOT_STORED, counted, not an error. */
+static int irc__keep(irc_cache *c, const void *rec, void *out, float *weight)
+{
+    int st = irc__insert_checked(c, rec);
+    if (st < 0 && st != IRC_ERR_FULL)
+        return st;
+    irc__count(c, IRC__C_LOOKUPS, 1);
+    if (st == IRC_ERR_FULL)
+        irc__count(c, IRC__C_NOT_STORED, 1);
+    c->kind->answer(c, rec, out);
+    if (weight)
+        *weight = 0.0f;
+    return st == IRC_ERR_FULL ? IRC_NOT_STORED : IRC_OK;
+}
+
+/* Confirming rays (cfg.check_visibility, sight.c): the records a lookup
+ * would use, up to IRC__SIGHT_CAP, their positions read IRC__SIGHT_BATCH
+ * at a time and handed to sight.c, which hides those out of the query's
+ * sight; the kind's find then leaves the hidden ones out. */
+#ifndef IRC_NO_SIGHT
+static int irc__find_confirmed(irc__call *k, void *out, float *weight)
+{
+    irc_cache *c = k->c;
+    uint32_t ids[IRC__SIGHT_CAP], nrm[IRC__SIGHT_BATCH], found, i, n, batch;
+    float pos[IRC__SIGHT_BATCH][3];
+    int st;
+    if ((st = irc__collect(c, &k->q, ids, IRC__SIGHT_CAP, &found)) < 0)
+        return st;
+    if (found > IRC__SIGHT_CAP)
+        found = IRC__SIGHT_CAP;
+    batch = c->cfg.max_batch < IRC__SIGHT_BATCH ? c->cfg.max_batch : IRC__SIGHT_BATCH;
+    for (i = 0; i < found && st >= 0; i += batch) {
+        n = found - i < batch ? found - i : batch;
+        if ((st = irc__positions(c, ids + i, n, pos, nrm)) >= 0)
+            st = irc__sight_batch(k, ids, i, n, (const float(*)[3])pos, nrm);
+    }
+    if (st < 0)
+        return st;
+    irc__sight_hide(k, ids);
+    st = c->kind->lookup->find(c, &k->q, out, weight);
+    k->q.hidden = NULL;
+    k->q.n_hidden = 0;
+    return st;
+}
+#endif
+
+/* The kind's find at k->q (k->c, k->host set), without the records out
+ * of the query's sight when the config asks. */
+static int irc__find_in_sight(irc__call *k, void *out, float *weight)
+{
+    k->q.hidden = NULL;
+    k->q.n_hidden = 0;
+#ifndef IRC_NO_SIGHT
+    if (k->c->cfg.check_visibility && !k->q.free)
+        return irc__find_confirmed(k, out, weight);
+#endif
+    return k->c->kind->lookup->find(k->c, &k->q, out, weight);
+}
+
+/* A lookup-or-compute's lookup: what it read, and the rays it cast to
+ * confirm its records, counted only if the call succeeds. */
+static int irc__lookup_first(irc__call *k, void *out, float *weight, uint32_t *rays)
+{
+    int st = irc__find_in_sight(k, out, weight);
+    *rays += k->rays;
+    return st;
+}
+
+static int irc__miss(irc_cache *c, irc__call *k, void *out, float *weight, void *host,
+                     uint32_t *rays)
+{
+    uint32_t t;
+    void *rec;
+    int st, waited = 0;
+    if ((st = irc__slot_claim(c, &t, &waited)) < 0)
+        return st;
+    /* While this thread waited, another may have stored a record here. */
+    k->rays = 0;
+    if (waited && (st = irc__lookup_first(k, out, weight, rays)) != IRC_MISS) {
+        irc__slot_release(c, t);
+        return irc__count_lookup(c, st);
+    }
+    /* The record is built in the slot's tail and kept before the slot is
+     * given back; its rays are counted with it, the lookups' by the
+     * caller. */
+    rec = irc__slot_record(c, t);
+    if ((st = irc__run_in(c, k, t, host, c->kind->compute, rec)) >= 0 &&
+        (st = irc__keep(c, rec, out, weight)) >= 0)
+        irc__count_compute(c, k, 1, waited);
+    irc__slot_release(c, t);
+    return st;
+}
+
+int irc__lookup_or_compute(irc_cache *c, const irc__kind *want, float footprint,
+                           const float p[3], const float n[3], void *out, float *weight,
+                           void *host, uint32_t rays0)
+{
+    irc__call k;
+    irc__marks marks;
+    uint32_t rays = rays0;
+    int st;
+    if ((st = irc__open(c, want, out, p, n, &k.q)) < 0)
+        return st;
+    if (!irc__finite(footprint))
+        return IRC_ERR_NONFINITE;
+    if (footprint < 0.0f)
+        return IRC_ERR_RANGE;
+    marks.n = 0;
+    k.q.marks = &marks;
+    k.footprint = footprint;
+    k.c = c;
+    k.host = host;
+    k.rays = 0;
+    k.sight = 0;
+    st = irc__lookup_first(&k, out, weight, &rays);
+    st = st == IRC_MISS ? irc__miss(c, &k, out, weight, host, &rays) : irc__count_lookup(c, st);
+    /* Nothing of a failed call stays in the block: not its use bits, nor
+     * its rays in the counters. */
+    if (st < 0)
+        irc__unmark_used(c, &marks);
+    else
+        irc__count(c, IRC__C_RAYS, rays);
+    return st;
+}
+
+int irc_cache_neighbours(irc_cache *c, const float p[3], const float n[3],
+                         uint32_t *ids, uint32_t cap, uint32_t *count)
+{
+    irc__query q;
+    int st;
+    if ((st = irc__enter(c, NULL)) < 0 || (st = irc__query_make(c, p, n, &q)) < 0)
+        return st;
+    if (!count || (!ids && cap))
+        return IRC_ERR_NULL;
+    return irc__collect(c, &q, ids, cap, count);
+}
+

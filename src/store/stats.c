@@ -1,0 +1,71 @@
+/*
+ * stats.c -- the counters, in stripes of one cache line so that threads on
+ * other cores rarely write the same line (cache.h, IRC__STRIPES), and
+ * irc_cache_stats, which sums them and reports the block's bytes.
+ */
+#include "../block/cache.h"
+#include "../block/check.h"
+#include "../index/index.h"
+#include "lock.h"
+#include "stats.h"
+
+/* The calling thread's stripe: its stack's address above 64 KiB
+ * granules, hashed (threads' stacks lie megabytes apart; one thread's
+ * calls stay within one granule or two). */
+static uint32_t irc__my_stripe(void)
+{
+    unsigned char here;
+    uint64_t a = (uint64_t)(uintptr_t)&here >> 16;
+    return (uint32_t)((a * 0x9e3779b97f4a7c15ull) >> 61) % IRC__STRIPES;
+}
+
+void irc__count(irc_cache *c, int which, uint64_t v)
+{
+    c->port->fetch_add(&irc__stripe(c, irc__my_stripe())[which], v);
+}
+
+static uint64_t irc__counter(const irc_cache *c, int which)
+{
+    uint64_t sum = 0;
+    uint32_t s;
+    for (s = 0; s < IRC__STRIPES; s++)
+        sum += c->port->load(&irc__stripe(c, s)[which]);
+    return sum;
+}
+
+
+int irc_cache_stats(irc_cache *c, irc_stats *out)
+{
+    int st = irc__enter(c, NULL);
+    if (st < 0)
+        return st;
+    if (!out)
+        return IRC_ERR_NULL;
+    if (irc__read_lock(c) < 0)
+        return IRC_ERR_PORT;
+    IRC_MEMSET(out, 0, sizeof *out);
+    out->records = c->home->count;
+    out->index_nodes = c->home->nodes_used;
+    out->index_refs = c->home->refs_live;
+    irc__read_unlock(c);
+    out->capacity = c->capacity;
+    out->inserts = irc__counter(c, IRC__C_INSERTS);
+    out->evictions = irc__counter(c, IRC__C_EVICTIONS);
+    out->lookups = irc__counter(c, IRC__C_LOOKUPS);
+    out->hits = irc__counter(c, IRC__C_HITS);
+    out->computes = irc__counter(c, IRC__C_COMPUTES);
+    out->not_stored = irc__counter(c, IRC__C_NOT_STORED);
+    out->waits = irc__counter(c, IRC__C_WAITS);
+    out->rays = irc__counter(c, IRC__C_RAYS);
+    out->index_nodes_max = c->node_cap;
+    out->index_refs_max = c->ref_cap;
+    out->record_bytes = c->rec_size;
+    out->bytes_records = (size_t)c->capacity * c->rec_size;
+    out->bytes_index = (size_t)c->capacity * sizeof(irc__ixe) +
+                       (size_t)c->node_cap * sizeof(irc__node) +
+                       (size_t)c->ref_cap * sizeof(irc__ref) +
+                       (c->o_used ? ((size_t)c->capacity + 63u) / 64u * 8u : 0u);
+    out->bytes_scratch = (size_t)c->cfg.threads * c->slot_bytes;
+    out->bytes_total = c->total_bytes;
+    return IRC_OK;
+}

@@ -1,0 +1,36 @@
+/*
+ * trace.c -- the host's trace callback, called from one place: every ray
+ * the library casts (records' hemispheres, visibility bisections, per-pixel
+ * probes, confirming rays) goes through irc__cast.
+ */
+#include "../block/cache.h"
+#include "trace.h"
+
+/* One call of the host's callback: every ray cast goes through here, so
+ * the host always sees the same arguments (its per-call pointer, the
+ * record's position and normal) and the same checks apply.  Returns
+ * IRC_OK or a negative code (the callback's own, passed through). */
+int irc__cast(irc__call *k, irc_ray *rays, irc_hit *hits, uint32_t count)
+{
+    const irc_cache *c = k->c;
+    irc_trace_args args;
+    uint32_t i;
+    int st;
+    args.context = c->cfg.context;
+    args.host = k->host;
+    for (i = 0; i < 3; i++) {
+        args.p[i] = k->q.p[i];
+        args.n[i] = k->q.n[i];
+    }
+    args.rays = rays;
+    args.hits = hits;
+    args.count = count;
+    args.visibility_only = k->sight;
+    for (i = 0; i < count; i++)
+        hits[i].status = -1;
+    st = c->cfg.trace(&args);
+    if (st > 0)
+        return IRC_ERR_CALLBACK;
+    k->rays += count;
+    return st;
+}

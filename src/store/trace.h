@@ -1,0 +1,14 @@
+/*
+ * trace.h -- the host's trace callback (trace.c).
+ */
+#ifndef IRC_TRACE_H
+#define IRC_TRACE_H
+
+#include "../block/cache.h"
+
+/* Casts count rays through cfg.trace with the call's arguments; k->rays
+ * counts them.  IRC_OK, IRC_ERR_CALLBACK for a positive return, or the
+ * callback's negative code. */
+int irc__cast(irc__call *k, irc_ray *rays, irc_hit *hits, uint32_t count);
+
+#endif
