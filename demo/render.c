@@ -108,8 +108,8 @@ int renderer_init(renderer *r, const scene *s, const render_opts *o, char *err, 
         cfg.irr.full_pixels = o->full_pixels;
         cfg.irr.detail_pixels = o->detail_pixels;
         cfg.min_radius = o->min_radius;
-        cfg.min_pixels = o->min_pixels;
-        cfg.max_pixels = o->max_pixels;
+        cfg.irr.min_pixels = o->min_pixels;
+        cfg.irr.max_pixels = o->max_pixels;
         cfg.irr.leak_guard = (uint32_t)o->leak_guard;
         cfg.check_visibility = (uint32_t)o->check_visibility;
         cfg.clamp_neighbours = (uint32_t)o->clamp_neighbours;

@@ -37,7 +37,7 @@ typedef struct render_opts {
     float min_radius, max_radius; /* max < 0: 0.1 x the diagonal of what
                                      the camera sees; 0: the library's */
     int leak_guard;       /* cache: irc_config.irr.leak_guard (an irc_switch) */
-    float min_pixels, max_pixels; /* cache: irc_config's screen-space bounds
+    float min_pixels, max_pixels; /* cache: irc_config.irr's screen-space bounds
                                      on records made for camera rays */
     int clamp_neighbours; /* cache: irc_config.clamp_neighbours (an irc_switch) */
     int no_footprint;     /* cache: records ignore the pixel's footprint

@@ -76,6 +76,7 @@ static void read_config(fuzz_in *in, irc_config *cfg, host *h, uint32_t *cap)
                                          {1, 3}, {4, 9}, {0, 0}, {0, 0}, {1024, 64}, {256, 256}};
     uint8_t s = fz_u8(in);
     int k;
+    float px[2];
     memset(cfg, 0, sizeof *cfg);
     cfg->trace = trace;
     cfg->context = h;
@@ -84,12 +85,15 @@ static void read_config(fuzz_in *in, irc_config *cfg, host *h, uint32_t *cap)
     cfg->min_radius = fz_u8(in) & 1 ? fz_float(in) : 0.0f;
     cfg->max_radius = fz_u8(in) & 1 ? fz_float(in) : 0.0f;
     k = fz_u8(in);
-    cfg->min_pixels = k & 1 ? fz_float(in) : 0.0f;
-    cfg->max_pixels = k & 2 ? fz_float(in) : 0.0f;
-    /* The irradiance kind's field: set for SH records too in one input of
-     * four, where it must be refused. */
-    if (!(cfg->features & (IRC_FEATURE_SH | IRC_FEATURE_SH_GRADIENT)) || (k >> 6) == 3)
+    px[0] = k & 1 ? fz_float(in) : 0.0f;
+    px[1] = k & 2 ? fz_float(in) : 0.0f;
+    /* The irradiance kind's fields: set for SH records too in one input of
+     * four, where they must be refused. */
+    if (!(cfg->features & (IRC_FEATURE_SH | IRC_FEATURE_SH_GRADIENT)) || (k >> 6) == 3) {
+        cfg->irr.min_pixels = px[0];
+        cfg->irr.max_pixels = px[1];
         cfg->irr.leak_guard = (uint32_t)(k >> 2) % 4u;
+    }
     cfg->clamp_neighbours = (uint32_t)(k >> 4) & 3u;
     cfg->strata_theta = strata[s < 252 ? s % 14u : s - 238u][0];
     cfg->strata_phi = strata[s < 252 ? s % 14u : s - 238u][1];

@@ -472,20 +472,6 @@ typedef struct irc_config {
                                 point, where a lookup answers from it;
                                 set max_radius for open scenes, or use
                                 the _px call) */
-    float min_pixels;        /* screen-space bounds on a record's reach a R
-                                (pbrt-v2's minimum and maximum pixel
-                                spacing): a record computed by
-                                irc_cache_lookup_or_compute_px with a
-                                footprint f > 0 gets a R in [min_pixels f,
-                                max_pixels f], then R in [min_radius,
-                                max_radius]; one whose rays all escaped
-                                gets max_pixels f.  Finite; 0 the default:
-                                no lower bound and 15 (why none:
-                                bench/README.md, "The corpus"), negative:
-                                that side unbounded; max_pixels >=
-                                min_pixels (a default max_pixels is at
-                                least min_pixels) */
-    float max_pixels;        /* see min_pixels */
     uint32_t strata_theta;   /* M rows in theta, 1..1024 (default 32 for
                                 irradiance records, 16 for SH records) */
     uint32_t strata_phi;     /* N columns in phi, 1..4096 (default 128,
@@ -549,6 +535,20 @@ typedef struct irc_config {
                                 light through thin walls between spaces
                                 lit differently.  Default off (why:
                                 bench/README.md, "On real geometry") */
+        float min_pixels;    /* screen-space bounds on a record's reach a R
+                                (pbrt-v2's minimum and maximum pixel
+                                spacing): a record computed by
+                                irc_cache_lookup_or_compute_px with a
+                                footprint f > 0 gets a R in [min_pixels f,
+                                max_pixels f], then R in [min_radius,
+                                max_radius]; one whose rays all escaped
+                                gets max_pixels f.  Finite; 0 the default:
+                                no lower bound and 15 (why none:
+                                bench/README.md, "The corpus"), negative:
+                                that side unbounded; max_pixels >=
+                                min_pixels (a default max_pixels is at
+                                least min_pixels) */
+        float max_pixels;    /* see min_pixels */
         float full_pixels;   /* records whose rays follow the pixels they
                                 serve: a record made by the _px call whose
                                 radius R (within the pixel bounds) spans
@@ -909,7 +909,7 @@ IRC_API int irc_cache_lookup_or_compute(irc_cache *cache, const float p[3],
  * pixel covers on the surface (pbrt's sqrt(|dp/dx x dp/dy|) from ray
  * differentials; for a pinhole camera about distance x pixel angle /
  * sqrt(|cos|) of the surface to the ray).  A record computed here gets a
- * reach a R in [cfg.min_pixels, cfg.max_pixels] x footprint (by default
+ * reach a R in [cfg.irr.min_pixels, cfg.irr.max_pixels] x footprint (by default
  * none to 15 pixels) before the world bounds [min_radius, max_radius] (its
  * gradient is then limited to that radius, as always); so an open scene
  * needs no max_radius, and the records a frame makes are bounded by its

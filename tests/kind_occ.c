@@ -18,6 +18,12 @@
 #include "kind/weight.h"
 #include "scenes.h"
 #include "test.h"
+#include "block/check.h"
+#include "kind/kind.h"
+#include "sample/grid.h"
+#include "store/lookup.h"
+#include "store/store.h"
+#include "store/walk.h"
 
 #define OCC_FEATURE (1u << 16) /* a bit no library kind claims */
 #define OCC_ID 3u
@@ -185,9 +191,18 @@ static void occ_scratch(const irc_config *cfg, irc__scratch *s)
 }
 
 const irc__kind irc__kind_occ = {
-    OCC_ID, OCC_FEATURE, 0u, 0, 0, (uint32_t)sizeof(occ_record), 0, 0, {0, 0},
-    occ_resolve, occ_parts, occ_scratch, occ_make, occ_check,
-    occ_pack, occ_unpack, occ_answer, &occ_lookup_ops};
+    .id = OCC_ID,
+    .features = OCC_FEATURE,
+    .record_bytes = (uint32_t)sizeof(occ_record),
+    .resolve = occ_resolve,
+    .parts = occ_parts,
+    .scratch = occ_scratch,
+    .compute = occ_make,
+    .check = occ_check,
+    .pack = occ_pack,
+    .unpack = occ_unpack,
+    .answer = occ_answer,
+    .lookup = &occ_lookup_ops};
 
 /* The kind's calls, as a public header would declare them. */
 static int occ_compute(irc_cache *c, const float p[3], const float n[3], occ_record *out)

@@ -50,6 +50,7 @@ TEST(test_config_checks)
     /* the irradiance kind's fields in an SH config */
     CASE((cfg.features = IRC_FEATURE_SH, cfg.irr.leak_guard = IRC_OFF), IRC_ERR_CONFIG);
     CASE((cfg.features = IRC_FEATURE_SH, cfg.irr.supersamples = 1), IRC_ERR_CONFIG);
+    CASE((cfg.features = IRC_FEATURE_SH, cfg.irr.max_pixels = 4.0f), IRC_ERR_CONFIG);
     CASE(cfg.features = IRC_FEATURE_VISIBILITY, IRC_OK);
     CASE(cfg.features = 1u << 20, IRC_ERR_CONFIG);
     CASE(cfg.accuracy = -1.0f, IRC_ERR_CONFIG);
@@ -57,14 +58,14 @@ TEST(test_config_checks)
     CASE(cfg.accuracy = NAN, IRC_ERR_CONFIG);
     CASE(cfg.min_radius = -1.0f, IRC_ERR_CONFIG);
     CASE((cfg.min_radius = 2.0f, cfg.max_radius = 1.0f), IRC_ERR_CONFIG);
-    CASE(cfg.min_pixels = -1.0f, IRC_OK); /* no lower bound */
-    CASE(cfg.max_pixels = -INFINITY, IRC_ERR_CONFIG);
-    CASE((cfg.min_pixels = 40.0f, cfg.max_pixels = 0.0f), IRC_OK); /* max defaults to 40 */
-    CASE(cfg.max_pixels = NAN, IRC_ERR_CONFIG);
-    CASE(cfg.min_pixels = INFINITY, IRC_ERR_CONFIG);
-    CASE((cfg.min_pixels = 4.0f, cfg.max_pixels = 2.0f), IRC_ERR_CONFIG);
-    CASE((cfg.min_pixels = 4.0f, cfg.max_pixels = 0.0f), IRC_OK);
-    CASE((cfg.min_pixels = 2.5f, cfg.max_pixels = 15.0f), IRC_OK);
+    CASE(cfg.irr.min_pixels = -1.0f, IRC_OK); /* no lower bound */
+    CASE(cfg.irr.max_pixels = -INFINITY, IRC_ERR_CONFIG);
+    CASE((cfg.irr.min_pixels = 40.0f, cfg.irr.max_pixels = 0.0f), IRC_OK); /* max defaults to 40 */
+    CASE(cfg.irr.max_pixels = NAN, IRC_ERR_CONFIG);
+    CASE(cfg.irr.min_pixels = INFINITY, IRC_ERR_CONFIG);
+    CASE((cfg.irr.min_pixels = 4.0f, cfg.irr.max_pixels = 2.0f), IRC_ERR_CONFIG);
+    CASE((cfg.irr.min_pixels = 4.0f, cfg.irr.max_pixels = 0.0f), IRC_OK);
+    CASE((cfg.irr.min_pixels = 2.5f, cfg.irr.max_pixels = 15.0f), IRC_OK);
     CASE(cfg.irr.leak_guard = 3, IRC_ERR_CONFIG);
     CASE(cfg.irr.leak_guard = IRC_ON, IRC_OK);
     CASE(cfg.irr.leak_guard = IRC_OFF, IRC_OK);
@@ -230,7 +231,7 @@ TEST(test_defaults)
     cfg.context = &s;
     cfg.strata_theta = 8;
     cfg.strata_phi = 32;
-    cfg.min_pixels = -1.0f;
+    cfg.irr.min_pixels = -1.0f;
     c = block_cache(&cfg, 8, 0);
     CHECK(c && irc_cache_lookup_or_compute_px(c, under, n, 1.0f, rgb, &w, NULL) == IRC_OK &&
               irc_cache_record(c, 0, &back) == IRC_OK && back.radius < 2.0f,

@@ -54,8 +54,8 @@ static irc_cache *detail_cache(detail_host *h, irc_config *cfg, float full_pixel
     *cfg = scene_config(&h->s, 0, 16, 64);
     cfg->trace = detail_trace;
     cfg->max_batch = 48; /* batches that straddle rows and levels */
-    cfg->min_pixels = -1.0f;
-    cfg->max_pixels = -1.0f;
+    cfg->irr.min_pixels = -1.0f;
+    cfg->irr.max_pixels = -1.0f;
     cfg->check_visibility = IRC_OFF;
     cfg->irr.full_pixels = full_pixels;
     cfg->irr.detail_pixels = -1.0f; /* the probes are not the grid's rays */

@@ -646,8 +646,8 @@ TEST(test_screen_bound)
     cfg = scene_config(&s, IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION | IRC_FEATURE_HESSIAN,
                        8, 32);
     cfg.accuracy = 0.5f;
-    cfg.min_pixels = 5.0f;
-    cfg.max_pixels = 10.0f;
+    cfg.irr.min_pixels = 5.0f;
+    cfg.irr.max_pixels = 10.0f;
     c = block_cache(&cfg, 4096, 0);
     CHECK(c != NULL, "init");
     if (!c) return;

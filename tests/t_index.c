@@ -10,6 +10,9 @@
 #include "kind/weight.h"
 #include "scenes.h"
 #include "test.h"
+#include "block/check.h"
+#include "index/verify.h"
+#include "util.h"
 
 static tscene dummy;
 

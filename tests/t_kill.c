@@ -19,6 +19,9 @@
 #include "scenes.h"
 #include "share.h"
 #include "test.h"
+#include "block/torn.h"
+#include "index/verify.h"
+#include "store/lock.h"
 
 /* A block in a file mapped shared (the file itself unlinked at once),
  * then a page for the tests' own flags; *mapped: the bytes to unmap. */

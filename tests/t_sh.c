@@ -6,6 +6,7 @@
 #include "sh/shrec.h"
 #include "scenes.h"
 #include "test.h"
+#include "util.h"
 
 void sh_eval_d(int bands, const double s[3], double *y, double (*g)[3])
 {

@@ -17,10 +17,11 @@
  * them is unsupported rather than wrong (kinds.c); nothing reaches its
  * operations. */
 const irc__kind irc__kind_sh = {
-    IRC__KIND_SH_ID, IRC_FEATURE_SH | IRC_FEATURE_SH_GRADIENT,
-    IRC_FEATURE_SH | IRC_FEATURE_SH_GRADIENT, 0, 0, 0, (uint32_t)offsetof(irc_config, sh),
-    (uint32_t)sizeof(struct irc_config_sh), {0, 0},
-    NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL};
+    .id = IRC__KIND_SH_ID,
+    .features = IRC_FEATURE_SH | IRC_FEATURE_SH_GRADIENT,
+    .unbuilt = IRC_FEATURE_SH | IRC_FEATURE_SH_GRADIENT,
+    .cfg_at = (uint32_t)offsetof(irc_config, sh),
+    .cfg_bytes = (uint32_t)sizeof(struct irc_config_sh)};
 
 /* As on an irradiance cache: no cache of this build holds SH records. */
 static int irc__no_sh(const irc_cache *c)

@@ -15,11 +15,6 @@
 #define IRC__DEF_PHI 128u
 #define IRC__DEF_SH_THETA 16u
 #define IRC__DEF_SH_PHI 64u
-/* A record's reach a R in pixels at its point, from the _px call's
- * footprint (pbrt-v2's maximum pixel spacing; its 2.5-pixel minimum cost
- * 2.5-3.7x the error on four of six corpus views: none). */
-#define IRC__DEF_MIN_PIXELS 0.0f
-#define IRC__DEF_MAX_PIXELS 15.0f
 #define IRC__LOCK_MAX 4096u
 
 int irc__port_ok(const irc_port *p)
@@ -31,26 +26,14 @@ int irc__port_ok(const irc_port *p)
 }
 
 /* One rule for both radius limits: finite, within [0, IRC_RADIUS_CAP],
- * max above min; a max of 0 is the cap. */
+ * max above min; a max of 0 is the cap (the pixel bounds are the
+ * irradiance kind's, kind_irr.c). */
 static int irc__radii_resolve(irc_config *out)
 {
     if (out->max_radius == 0.0f)
         out->max_radius = IRC__CAP;
     if (!(out->min_radius >= 0.0f && out->min_radius < IRC__CAP) ||
         !(out->max_radius > out->min_radius && out->max_radius <= IRC__CAP))
-        return IRC_ERR_CONFIG;
-    /* Pixel bounds: 0 the default, negative none (stored as 0); a default
-     * maximum never falls below the host's minimum. */
-    if (!(out->min_pixels > -IRC__CAP && out->min_pixels < IRC__CAP) ||
-        !(out->max_pixels > -IRC__CAP && out->max_pixels < IRC__CAP))
-        return IRC_ERR_CONFIG;
-    if (out->min_pixels == 0.0f) out->min_pixels = IRC__DEF_MIN_PIXELS;
-    if (out->max_pixels == 0.0f)
-        out->max_pixels = out->min_pixels > IRC__DEF_MAX_PIXELS ? out->min_pixels
-                                                                  : IRC__DEF_MAX_PIXELS;
-    if (out->min_pixels < 0.0f) out->min_pixels = 0.0f;
-    if (out->max_pixels < 0.0f) out->max_pixels = 0.0f;
-    if (out->max_pixels > 0.0f && out->max_pixels < out->min_pixels)
         return IRC_ERR_CONFIG;
     return IRC_OK;
 }

@@ -82,9 +82,10 @@ static void irc__record_layout(const irc_config *cfg, const irc__kind *k, irc__l
     }
 }
 
-/* A scratch slot's working area, its parts one after another (kind.h,
- * IRC__S_*): the samples, the sampler's batch of rays and hits, then what
- * the kind asks for; returns its bytes. */
+/* A scratch slot's working area, its parts one after another in kind.h's
+ * order (IRC__S_*): the samples, the sampler's batch of rays and hits,
+ * the kind's parts, the sampler's directions and normals; returns its
+ * bytes. */
 static uint64_t irc__slot_layout(const irc_config *cfg, const irc__kind *k, irc__layout *l)
 {
     irc__scratch s;
@@ -97,8 +98,10 @@ static uint64_t irc__slot_layout(const irc_config *cfg, const irc__kind *k, irc_
     l->keep_geom = s.keep_geom;
     at = (uint64_t)s.samples * sizeof(irc__sample);
     for (i = 0; i < IRC__S_COUNT; i++) {
-        l->soff[i] = at;
-        at += s.bytes[i];
+        /* the rays, the kind's parts, the directions, the normals */
+        const int p = i == 0 ? IRC__S_RAYS : i < IRC__S_COUNT - 2 ? i + 2 : i - IRC__S_COUNT + 3;
+        l->soff[p] = at;
+        at += s.bytes[p];
     }
     return irc__up(at);
 }
@@ -359,10 +362,6 @@ static int irc__header_sane(const irc_config *cfg, const irc_cache *h)
         return IRC_ERR_CORRUPT;
     if (in.features == 0) /* bare records, stored resolved */
         in.features = IRC_FEATURE_NONE;
-    if (in.min_pixels == 0.0f) /* no pixel bound, stored as 0 */
-        in.min_pixels = -1.0f;
-    if (in.max_pixels == 0.0f)
-        in.max_pixels = -1.0f;
     /* the layout with a port whose lock is the room the block has */
     lockless = irc_port_none;
     lockless.lock_size = h->lock_bytes;

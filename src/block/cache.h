@@ -18,7 +18,7 @@
 
 /* What a block must agree on to be re-attached (irc_attach): the layout's
  * version, pointer and size_t widths, byte order. */
-#define IRC__LAYOUT_VERSION 17u
+#define IRC__LAYOUT_VERSION 18u
 #define IRC__ABI                                                           \
     (IRC__LAYOUT_VERSION | (uint32_t)sizeof(void *) << 8 |                 \
      (uint32_t)sizeof(size_t) << 16 | (uint32_t)sizeof(double) << 24)
@@ -143,12 +143,20 @@ static inline irc__rec *irc__rec_at(const irc_cache *c, uint32_t id)
     return (irc__rec *)(void *)irc__part(c, c->o_records + (size_t)id * c->rec_size);
 }
 
+/* A record's reach a R (Ward's accuracy times its radius), written once so
+ * that the index's bounds, the weights' first test and the estimators
+ * agree on it to the bit. */
+static inline float irc__reach(const irc_cache *c, float radius)
+{
+    return c->cfg.accuracy * radius;
+}
+
 /* The first test of every weight (weight.c), inlined where records are scanned: most
  * candidates fail it, and it needs only the record's first 16 bytes. */
 static inline int irc__within_reach(const irc_cache *c, const irc__rec *r, const float p[3])
 {
     float dx = (float)p[0] - r->p[0], dy = (float)p[1] - r->p[1],
-           dz = (float)p[2] - r->p[2], ra = (float)c->cfg.accuracy * r->r;
+           dz = (float)p[2] - r->p[2], ra = irc__reach(c, r->r);
     float d2 = dx * dx + dy * dy + dz * dz;
     /* d2 == 0: a record serves its own point even when (a R)^2 underflows
      * (an open-sky record's R is FLT_MIN) */

@@ -402,7 +402,7 @@ void irc__index_insert(irc_cache *c, uint32_t id)
     int L;
     double half;
     IRC_ASSERT(e->refs == 0);
-    e->reach = (float)((double)c->cfg.accuracy * (double)irc__rec_at(c, id)->r);
+    e->reach = irc__reach(c, irc__rec_at(c, id)->r);
     half = irc__half(p, (double)e->reach);
     irc__root_cover(c, p);
     if (!irc__nodes(c)[0].child && c->home->root_h < IRC__ROOT_MAX &&

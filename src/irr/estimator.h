@@ -22,6 +22,15 @@ typedef struct irc__grad_out {
     irc_gradient *grad;
 } irc__grad_out;
 enum { IRC__P_GRAD_T, IRC__P_GRAD_R, IRC__P_ELLIPSE, IRC__P_GUARD };
+/* Its scratch slot's parts (kind.h), placed in this order after the
+ * sampler's rays: the gradients' inverse hit distances and five rows of
+ * boundary weights (gradient.c); the Hessian's rows of vertices and
+ * triangle radiances (hessian.c), which take the rays' and the gradients'
+ * bytes first (the Hessian runs after the last ray is cast and the
+ * gradients are summed, and both fill their parts before they read them)
+ * and ask only for what those lack; the strata's edges and their
+ * crossings (visibility.c). */
+enum { IRC__S_INV = IRC__S_KIND, IRC__S_HESS, IRC__S_EDGES, IRC__S_CROSS };
 
 /* A gradient in the record's tangent frame (t1, t2 of the decoded normal),
  * one 2D vector per channel as int16 mantissas, each channel with its own

@@ -196,7 +196,7 @@ static uint64_t irc__leak_guard(const irc_cache *c, const irc__grid *g, const ir
         sec = irc__sector(x, y);
         cu = x * ax[0] + y * ax[1];
         inv_reach = IRC_SQRTF(cu * cu + (1.0f - cu * cu) / (q * q)) /
-                    (c->cfg.accuracy * rec->radius);
+                    irc__reach(c, rec->radius);
         for (j = m / 2; j < m; j++) {
             const irc__sample *a = &s[j * nphi + k];
             float f;
@@ -251,12 +251,12 @@ static void irc__radii(const irc_cache *c, const irc__sample *s, const float n[3
      * record that saw nothing (every ray escaped: open sky; far is then 0
      * unless max_radius stood in) is as wide as they allow. */
     fp /= c->cfg.accuracy;
-    if (far == 0.0f && fp > 0.0f && c->cfg.max_pixels > 0.0f)
+    if (far == 0.0f && fp > 0.0f && c->cfg.irr.max_pixels > 0.0f)
         rad[0] = rad[1] = IRC__CAP;
     for (k = 0; k < 2; k++) {
-        if (rad[k] < c->cfg.min_pixels * fp) rad[k] = c->cfg.min_pixels * fp;
-        if (c->cfg.max_pixels > 0.0f && fp > 0.0f && rad[k] > c->cfg.max_pixels * fp)
-            rad[k] = c->cfg.max_pixels * fp;
+        if (rad[k] < c->cfg.irr.min_pixels * fp) rad[k] = c->cfg.irr.min_pixels * fp;
+        if (c->cfg.irr.max_pixels > 0.0f && fp > 0.0f && rad[k] > c->cfg.irr.max_pixels * fp)
+            rad[k] = c->cfg.irr.max_pixels * fp;
         if (rad[k] < c->cfg.min_radius) rad[k] = c->cfg.min_radius;
         if (rad[k] > c->cfg.max_radius) rad[k] = c->cfg.max_radius;
         if (rad[k] < FLT_MIN) rad[k] = FLT_MIN;

@@ -72,20 +72,16 @@ typedef struct irc__recpart {
     uint32_t lead, bytes;
 } irc__recpart;
 
-/* A scratch slot's working area, part by part in this order: the samples
- * (at 0), one batch of rays and of hits (the sampler's), then what the
- * kind's estimators ask for: with translational or rotational gradients
- * the inverse hit distances and five rows of boundary weights
- * (gradient.c); the Hessian's rows of vertices and triangle radiances
- * (hessian.c), which take the rays' and the gradients' bytes first (the
- * Hessian runs after the last ray is cast and the gradients are summed,
- * and both fill their parts before they read them) and ask here only
- * for what those lack; each sample's direction and hit normal; the
- * strata's edges and their crossings (visibility.c).
- * layout.c places them (a part of 0 bytes takes no room) and the block
- * keeps each one's byte offset, irc_cache.soff[IRC__S_*]. */
-enum { IRC__S_RAYS, IRC__S_INV, IRC__S_HESS, IRC__S_DIRS, IRC__S_NORMALS, IRC__S_EDGES,
-       IRC__S_CROSS, IRC__S_COUNT };
+/* A scratch slot's working area: the samples (at 0), then its parts.
+ * The sampler's are numbered here: one batch of rays and of hits, and
+ * each sample's direction and hit normal (for kinds that keep them).  A
+ * kind numbers up to four parts of its own from IRC__S_KIND (the
+ * irradiance kind's: estimator.h).  layout.c places the rays first, then
+ * the kind's parts in its numbering, then the directions and normals (a
+ * part of 0 bytes takes no room), so a kind's first parts follow the rays
+ * directly (the Hessian's rows run over the rays' bytes into its own);
+ * the block keeps each one's byte offset, irc_cache.soff[IRC__S_*]. */
+enum { IRC__S_RAYS, IRC__S_DIRS, IRC__S_NORMALS, IRC__S_KIND, IRC__S_COUNT = IRC__S_KIND + 4 };
 
 /* Bytes of the sampler's batch of rays and hits. */
 static inline uint64_t irc__rays_bytes(const irc_config *cfg)
@@ -94,8 +90,9 @@ static inline uint64_t irc__rays_bytes(const irc_config *cfg)
 }
 
 /* What a kind's scratch holds for a resolved config: bytes of each part
- * after the rays (IRC__S_INV ..), samples per slot, and whether the
- * sampler keeps each sample's direction and hit normal. */
+ * but the rays (the sampler's directions and normals, the kind's own),
+ * samples per slot, and whether the sampler keeps each sample's direction
+ * and hit normal. */
 typedef struct irc__scratch {
     uint64_t bytes[IRC__S_COUNT];
     uint32_t samples;

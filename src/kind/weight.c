@@ -190,7 +190,7 @@ void irc__extrapolate(const irc_cache *c, const irc__rec *r, const float ni[3],
 float irc__weigh_extrapolate(const irc_cache *c, const irc__rec *r, const float p[3],
                              const float n[3], float out[3])
 {
-    const float a = c->cfg.accuracy, rad = r->r, ra = a * rad;
+    const float a = c->cfg.accuracy, rad = r->r, ra = irc__reach(c, rad);
     const float d[3] = {p[0] - r->p[0], p[1] - r->p[1], p[2] - r->p[2]};
     const float d2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
     float ni[3], e;

@@ -130,7 +130,7 @@ static int irc__sh_weigh(const irc_cache *c, const irc__rec *r, const irc__query
                          float *w, float ni[3])
 {
     float dx = q->p[0] - r->p[0], dy = q->p[1] - r->p[1],
-           dz = q->p[2] - r->p[2], d, ra = c->cfg.accuracy * r->r;
+           dz = q->p[2] - r->p[2], d, ra = irc__reach(c, r->r);
     if (!q->free)
         return irc__weigh(c, r, q->p, q->n, 0, w, ni);
     if (r->n != IRC__FREE)
@@ -310,12 +310,24 @@ static const irc__acc irc__sh_lookup = {.weigh = irc__sh_weigh,
     .find = irc__sh_find};
 
 const irc__kind irc__kind_sh = {
-    IRC__KIND_SH_ID, IRC_FEATURE_SH | IRC_FEATURE_SH_GRADIENT, 0u, 1, 1,
-    (uint32_t)sizeof(irc_sh), (uint32_t)offsetof(irc_config, sh),
-    (uint32_t)sizeof(struct irc_config_sh),
-    {(uint32_t)offsetof(irc_config, sh.bands), (uint32_t)offsetof(irc_config, sh.channels)},
-    irc__sh_resolve, irc__sh_parts, irc__sh_scratch, irc__sh_compute, irc__sh_check,
-    irc__sh_pack, irc__sh_unpack, irc__sh_answer, &irc__sh_lookup};
+    .id = IRC__KIND_SH_ID,
+    .features = IRC_FEATURE_SH | IRC_FEATURE_SH_GRADIENT,
+    .free_points = 1,
+    .uniform = 1,
+    .record_bytes = (uint32_t)sizeof(irc_sh),
+    .cfg_at = (uint32_t)offsetof(irc_config, sh),
+    .cfg_bytes = (uint32_t)sizeof(struct irc_config_sh),
+    .snap_at = {(uint32_t)offsetof(irc_config, sh.bands),
+                (uint32_t)offsetof(irc_config, sh.channels)},
+    .resolve = irc__sh_resolve,
+    .parts = irc__sh_parts,
+    .scratch = irc__sh_scratch,
+    .compute = irc__sh_compute,
+    .check = irc__sh_check,
+    .pack = irc__sh_pack,
+    .unpack = irc__sh_unpack,
+    .answer = irc__sh_answer,
+    .lookup = &irc__sh_lookup};
 
 #else /* IRC_NO_SH: the public calls and the kind's table are absent.c's */
 
