@@ -66,7 +66,11 @@ LEFT_GUARD =
 SRC := $(filter-out $(foreach x,$(LEAVE_OUT),$(LEFT_$(x))),$(SRC) src/api/absent.c)
 CFLAGS_LIB += $(foreach x,$(LEAVE_OUT),-DIRC_NO_$(x))
 # The chosen port, and the single-threaded one (it needs nothing).
-PORT_SRC = $(sort port/$(PORT)/irc_port.c port/none/irc_port.c) port/irc_port_default.c
+# port/unbuilt.c defines the other declared ports as ports that cannot
+# make a lock, so that every port irrcache.h declares is defined.
+PORT_SRC = $(sort port/$(PORT)/irc_port.c port/none/irc_port.c) port/irc_port_default.c port/unbuilt.c
+PORT_BUILT_posix = -DIRC_BUILT_POSIX
+PORT_BUILT_c11 = -DIRC_BUILT_C11
 OBJ = $(SRC:%.c=$(BUILD)/%.o)
 PORT_OBJ = $(PORT_SRC:%.c=$(BUILD)/%.o)
 # The version: irrcache.h's macros, the one place it is defined.
@@ -92,6 +96,10 @@ $(BUILD)/src/%.o: src/%.c $(wildcard src/*.h src/*/*.h) include/irrcache.h
 $(BUILD)/port/irc_port_default.o: port/irc_port_default.c include/irrcache.h Makefile
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_LIB) -DIRC_PORT_DEFAULT=irc_port_$(PORT) -c $< -o $@
+
+$(BUILD)/port/unbuilt.o: port/unbuilt.c include/irrcache.h Makefile
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_LIB) $(PORT_BUILT_$(PORT)) -c $< -o $@
 
 # Each port is compiled with the standard its platform needs.
 $(BUILD)/port/posix/%.o: port/posix/%.c include/irrcache.h
@@ -210,14 +218,23 @@ embedded-host: $(BUILD)/embedded_host
 # The demo tracer: every demo/*.c but the two stand-alone programs.
 DEMO_LIB_SRC = $(filter-out demo/main.c,$(wildcard demo/*.c))
 DEMO_CFLAGS = -std=c99 $(WARN) -Iinclude -Idemo $(OPT) $(CFLAGS)
+# An archive, so that each program links the demo's parts it uses.
+DEMO_OBJ = $(DEMO_LIB_SRC:demo/%.c=$(BUILD)/demo-lib/%.o)
+DEMO_LIBA = $(BUILD)/libdemo.a
+$(BUILD)/demo-lib/%.o: demo/%.c demo/*.h include/irrcache.h
+	@mkdir -p $(dir $@)
+	$(CC) $(DEMO_CFLAGS) -c $< -o $@
+$(DEMO_LIBA): $(DEMO_OBJ)
+	rm -f $@
+	$(AR) rcs $@ $(DEMO_OBJ)
 DEMO_OUT = $(BUILD)/demo
 # The Cornell box at the same rays per shading point in both modes (16 x 64
 # strata per record, 1024 rays per pixel for the reference); a second
 # reference with another seed measures the reference's own noise.
 DEMO_ARGS = --size 256x256 --strata 16x64 --exposure 4
 
-$(BUILD)/irc_demo: demo/main.c $(DEMO_LIB_SRC) demo/*.h $(LIBA)
-	$(CC) $(DEMO_CFLAGS) demo/main.c $(DEMO_LIB_SRC) $(LIBA) -o $@ -lm -lpthread
+$(BUILD)/irc_demo: demo/main.c $(DEMO_LIBA) demo/*.h $(LIBA)
+	$(CC) $(DEMO_CFLAGS) demo/main.c $(DEMO_LIBA) $(LIBA) -o $@ -lm -lpthread
 
 demo: $(BUILD)/irc_demo
 	@mkdir -p $(DEMO_OUT)
@@ -252,8 +269,8 @@ $(BUILD)/scenes/%.mtl: $(CORPUS)/%.mtl
 real-scenes: $(REAL_SCENES) $(CORPUS_MODELS)
 
 # The first-order paper's Fig. 15 experiment (docs/DESIGN.md: "Visibility gradients").
-$(BUILD)/fig15: experiments/fig15.c $(DEMO_LIB_SRC) demo/*.h $(LIBA)
-	$(CC) $(DEMO_CFLAGS) experiments/fig15.c $(DEMO_LIB_SRC) $(LIBA) -o $@ -lm -lpthread
+$(BUILD)/fig15: experiments/fig15.c $(DEMO_LIBA) demo/*.h $(LIBA)
+	$(CC) $(DEMO_CFLAGS) experiments/fig15.c $(DEMO_LIBA) $(LIBA) -o $@ -lm -lpthread
 
 fig15: $(BUILD)/fig15
 	$(BUILD)/fig15 demo/scenes/fig15.scene 200 16384 64 256
@@ -264,11 +281,15 @@ fig15: $(BUILD)/fig15
 # against the full render, on the Fig. 5 scene and the Cornell box (each
 # with the gradient check); then the gradient's SV and CDV terms and their
 # ratio as the light rises (Fig. 5-6).
-$(BUILD)/adaptive: experiments/adaptive.c $(DEMO_LIB_SRC) demo/*.h $(LIBA)
-	$(CC) $(DEMO_CFLAGS) experiments/adaptive.c $(DEMO_LIB_SRC) $(LIBA) -o $@ -lm -lpthread
+# The experiments' own machinery (adaptive image sampling, the image
+# gradient), linked only where used.
+EXP_SAMPLING = experiments/sampling.c experiments/delaunay.c
+EXP_IMGRAD = experiments/imgrad.c
+$(BUILD)/adaptive: experiments/adaptive.c $(EXP_SAMPLING) $(EXP_IMGRAD) experiments/*.h $(DEMO_LIBA) demo/*.h $(LIBA)
+	$(CC) $(DEMO_CFLAGS) -Iexperiments experiments/adaptive.c $(EXP_SAMPLING) $(EXP_IMGRAD) $(DEMO_LIBA) $(LIBA) -o $@ -lm -lpthread
 
-$(BUILD)/terms: experiments/terms.c $(DEMO_LIB_SRC) demo/*.h $(LIBA)
-	$(CC) $(DEMO_CFLAGS) experiments/terms.c $(DEMO_LIB_SRC) $(LIBA) -o $@ -lm -lpthread
+$(BUILD)/terms: experiments/terms.c $(EXP_IMGRAD) experiments/imgrad.h $(DEMO_LIBA) demo/*.h $(LIBA)
+	$(CC) $(DEMO_CFLAGS) -Iexperiments experiments/terms.c $(EXP_IMGRAD) $(DEMO_LIBA) $(LIBA) -o $@ -lm -lpthread
 
 adaptive: $(BUILD)/adaptive $(BUILD)/terms
 	$(BUILD)/adaptive demo/scenes/fig5.scene --check
@@ -279,8 +300,8 @@ adaptive: $(BUILD)/adaptive $(BUILD)/terms
 
 # Glossy indirect light from SH records against sampling the lobe, by
 # Phong exponent (experiments/README.md: "Glossy indirect light").
-$(BUILD)/glossy: experiments/glossy.c $(DEMO_LIB_SRC) demo/*.h $(LIBA)
-	$(CC) $(DEMO_CFLAGS) experiments/glossy.c $(DEMO_LIB_SRC) $(LIBA) -o $@ -lm -lpthread
+$(BUILD)/glossy: experiments/glossy.c $(DEMO_LIBA) demo/*.h $(LIBA)
+	$(CC) $(DEMO_CFLAGS) experiments/glossy.c $(DEMO_LIBA) $(LIBA) -o $@ -lm -lpthread
 
 glossy: $(BUILD)/glossy
 	$(BUILD)/glossy demo/scenes/sh.scene object 128 128
@@ -289,8 +310,8 @@ glossy: $(BUILD)/glossy
 
 # The SH-gradient paper's experiments (experiments/README.md).
 SHOBJ = experiments/shobj.c experiments/shobj.h
-$(BUILD)/shexp: experiments/shexp.c $(SHOBJ) $(DEMO_LIB_SRC) demo/*.h $(LIBA)
-	$(CC) $(DEMO_CFLAGS) experiments/shexp.c experiments/shobj.c $(DEMO_LIB_SRC) $(LIBA) \
+$(BUILD)/shexp: experiments/shexp.c $(SHOBJ) $(DEMO_LIBA) demo/*.h $(LIBA)
+	$(CC) $(DEMO_CFLAGS) experiments/shexp.c experiments/shobj.c $(DEMO_LIBA) $(LIBA) \
 	      -o $@ -lm -lpthread
 
 sh-experiments: $(BUILD)/shexp
@@ -300,8 +321,8 @@ sh-experiments: $(BUILD)/shexp
 # shaded per frame from 1 or 8 records with and without gradients against
 # a record per pixel, with Eq. 16's exponent at the default 2 and at 8
 # (experiments/README.md: "A moving object").  About 8 minutes.
-$(BUILD)/shanim: experiments/shanim.c $(SHOBJ) $(DEMO_LIB_SRC) demo/*.h $(LIBA)
-	$(CC) $(DEMO_CFLAGS) experiments/shanim.c experiments/shobj.c $(DEMO_LIB_SRC) $(LIBA) \
+$(BUILD)/shanim: experiments/shanim.c $(SHOBJ) $(DEMO_LIBA) demo/*.h $(LIBA)
+	$(CC) $(DEMO_CFLAGS) experiments/shanim.c experiments/shobj.c $(DEMO_LIBA) $(LIBA) \
 	      -o $@ -lm -lpthread
 
 sh-animation: $(BUILD)/shanim
@@ -309,11 +330,30 @@ sh-animation: $(BUILD)/shanim
 	$(BUILD)/shanim --power 2 --out $(BUILD)/sh-animation/b2 demo/scenes/sh.scene
 	$(BUILD)/shanim --power 8 --out $(BUILD)/sh-animation/b8 demo/scenes/sh.scene
 
-$(BUILD)/demo_tests: tests/t_demo.c tests/t_bounce.c tests/harness.c tests/scenes.c $(DEMO_LIB_SRC) demo/*.h tests/*.h $(LIBA)
-	$(CC) $(TEST_CFLAGS) -Idemo $(OPT) $(CFLAGS) tests/t_demo.c tests/t_bounce.c tests/harness.c tests/scenes.c $(DEMO_LIB_SRC) $(LIBA) -o $@ -lm -lpthread
+# Small forms of the long documented targets, seconds each: make test runs
+# them (stage 2b), so a change that breaks one fails there.  Their figures
+# mean nothing at these sizes.
+adaptive-small: $(BUILD)/adaptive
+	$(BUILD)/adaptive demo/scenes/fig5.scene 64 48 --check
+fig15-small: $(BUILD)/fig15
+	$(BUILD)/fig15 demo/scenes/fig15.scene 20 256 8 32
+glossy-small: $(BUILD)/glossy
+	$(BUILD)/glossy demo/scenes/sh.scene object 16 16 --exponents 10
+sh-experiments-small: $(BUILD)/shexp
+	$(BUILD)/shexp demo/scenes/sh.scene 8 8 16
+sh-animation-small: $(BUILD)/shanim
+	$(BUILD)/shanim --frames 2 --size 32 --strata 8 16 --out $(BUILD)/sh-animation-small demo/scenes/sh.scene
+bench-bounces-small: $(BUILD)/bench_run
+	BENCH_SCENES=bounces2-cornell BENCH_A=0.4 $(BUILD)/bench_run quick
+SMALL_TARGETS = adaptive-small fig15-small glossy-small sh-experiments-small sh-animation-small bench-bounces-small
+small-targets:
+	@echo $(SMALL_TARGETS)
 
-$(BUILD)/adaptive_tests: tests/t_adaptive.c tests/harness.c tests/scenes.c demo/adaptive.c demo/delaunay.c demo/adaptive.h tests/*.h $(LIBA)
-	$(CC) $(TEST_CFLAGS) -Idemo $(OPT) $(CFLAGS) tests/t_adaptive.c tests/harness.c tests/scenes.c demo/adaptive.c demo/delaunay.c $(LIBA) -o $@ -lm -lpthread
+$(BUILD)/demo_tests: tests/t_demo.c tests/t_bounce.c tests/harness.c tests/scenes.c $(EXP_IMGRAD) experiments/imgrad.h $(DEMO_LIBA) demo/*.h tests/*.h $(LIBA)
+	$(CC) $(TEST_CFLAGS) -Idemo -Iexperiments $(OPT) $(CFLAGS) tests/t_demo.c tests/t_bounce.c tests/harness.c tests/scenes.c $(EXP_IMGRAD) $(DEMO_LIBA) $(LIBA) -o $@ -lm -lpthread
+
+$(BUILD)/adaptive_tests: tests/t_adaptive.c tests/harness.c tests/scenes.c $(EXP_SAMPLING) experiments/sampling.h tests/*.h $(LIBA)
+	$(CC) $(TEST_CFLAGS) -Iexperiments $(OPT) $(CFLAGS) tests/t_adaptive.c tests/harness.c tests/scenes.c $(EXP_SAMPLING) $(LIBA) -o $@ -lm -lpthread
 
 # The demo's own tests.  t_exr reads the demo's files with OpenEXR's C
 # library (OpenEXRCore): a test-only dependency, found by pkg-config.
@@ -388,8 +428,8 @@ fuzz-long:
 	$(MAKE) fuzz FUZZ_SECONDS=$(FUZZ_LONG_SECONDS) FUZZ_FLAGS=-runs=$(FUZZ_RUNS)
 
 # ---------------------------------------------------------------- bench
-$(BUILD)/bench_core: bench/bench_core.c bench/bench_util.h tests/scenes.c tests/scenes.h $(DEMO_LIB_SRC) demo/*.h $(LIBA)
-	$(CC) $(TEST_CFLAGS) -Idemo -O2 -g $(CFLAGS) bench/bench_core.c tests/scenes.c $(DEMO_LIB_SRC) $(LIBA) -o $@ -lm -lpthread
+$(BUILD)/bench_core: bench/bench_core.c bench/bench_util.h tests/scenes.c tests/scenes.h $(DEMO_LIBA) demo/*.h $(LIBA)
+	$(CC) $(TEST_CFLAGS) -Idemo -O2 -g $(CFLAGS) bench/bench_core.c tests/scenes.c $(DEMO_LIBA) $(LIBA) -o $@ -lm -lpthread
 
 $(BUILD)/bench_lookups: bench/lookups.c bench/bench_util.h bench/box.h $(LIBA)
 	$(CC) $(TEST_CFLAGS) -O2 -g $(CFLAGS) bench/lookups.c $(LIBA) -o $@ -lm
@@ -464,8 +504,8 @@ bench-records: $(BUILD)/bench_records
 # Speed against error on every shipped scene (bench/README.md: "Speed against
 # error").  BENCH_QUICK=1: small images, fewer runs, under two minutes.
 BENCH_RUN_SRC = bench/bench.c bench/report.c bench/bounces.c bench/select.c
-$(BUILD)/bench_run: $(BENCH_RUN_SRC) bench/bench.h $(DEMO_LIB_SRC) demo/*.h $(LIBA)
-	$(CC) $(DEMO_CFLAGS) $(BENCH_RUN_SRC) $(DEMO_LIB_SRC) $(LIBA) -o $@ -lm -lpthread
+$(BUILD)/bench_run: $(BENCH_RUN_SRC) bench/bench.h $(DEMO_LIBA) demo/*.h $(LIBA)
+	$(CC) $(DEMO_CFLAGS) $(BENCH_RUN_SRC) $(DEMO_LIBA) $(LIBA) -o $@ -lm -lpthread
 
 bench: $(BUILD)/bench_run $(BUILD)/glossy real-scenes
 	sh bench/bench.sh $(BUILD)/bench_run
@@ -484,8 +524,8 @@ farm-demo: $(BUILD)/irc_demo
 
 # What deterministic fill passes cost over free-running fills (bench/README.md:
 # "Deterministic fills"); about two minutes.
-$(BUILD)/bench_fill: bench/fill.c $(DEMO_LIB_SRC) demo/*.h $(LIBA)
-	$(CC) $(DEMO_CFLAGS) bench/fill.c $(DEMO_LIB_SRC) $(LIBA) -o $@ -lm -lpthread
+$(BUILD)/bench_fill: bench/fill.c $(DEMO_LIBA) demo/*.h $(LIBA)
+	$(CC) $(DEMO_CFLAGS) bench/fill.c $(DEMO_LIBA) $(LIBA) -o $@ -lm -lpthread
 
 bench-fill: $(BUILD)/bench_fill
 	$(BUILD)/bench_fill
@@ -523,9 +563,9 @@ uninstall:
 clean:
 	rm -rf build build-*
 
-.PHONY: cycles fingerprint amalgamation embree-example all lib cross embedded-test embedded-host size examples test check coverage demo real-scenes fig15 adaptive glossy sh-experiments sh-animation fuzz fuzz-long replay bench-core bench-host bench-anchor bench-lookups bench-records bench bench-bounces bench-fill farm-demo install uninstall clean
+.PHONY: small-targets adaptive-small fig15-small glossy-small sh-experiments-small sh-animation-small bench-bounces-small cycles fingerprint amalgamation embree-example all lib cross embedded-test embedded-host size examples test check coverage demo real-scenes fig15 adaptive glossy sh-experiments sh-animation fuzz fuzz-long replay bench-core bench-host bench-anchor bench-lookups bench-records bench bench-bounces bench-fill farm-demo install uninstall clean
 
 # Which records answer the worst pixels of a Sponza render, and why
 # (bench/README.md, "On real geometry"); needs make bench's cached references.
-$(BUILD)/outliers: experiments/outliers.c $(DEMO_LIB_SRC) demo/*.h $(LIBA)
-	$(CC) $(DEMO_CFLAGS) experiments/outliers.c $(DEMO_LIB_SRC) $(LIBA) -o $@ -lm -lpthread
+$(BUILD)/outliers: experiments/outliers.c $(DEMO_LIBA) demo/*.h $(LIBA)
+	$(CC) $(DEMO_CFLAGS) experiments/outliers.c $(DEMO_LIBA) $(LIBA) -o $@ -lm -lpthread

@@ -476,7 +476,7 @@ static int sweep(ctx *c, const bscene *b, FILE *csv)
         IRC_FEATURE_HESSIAN | IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION,
         IRC_FEATURE_SH | IRC_FEATURE_SH_GRADIENT};
     double a_set[8];
-    const char *al = getenv("BENCH_A");
+    const int n_set = bench_a_list(a_set, 8);
     int nb = c->quick ? 3 : 5, na = c->quick ? 3 : 5, ng = c->quick ? 1 : 2;
     const double *as = c->quick ? a_quick : a_full;
     /* The real scenes: four a. */
@@ -486,10 +486,8 @@ static int sweep(ctx *c, const bscene *b, FILE *csv)
         as = a_real;
         na = 4;
     }
-    if (al && *al) { /* BENCH_A=0.4,0.2: these a at the default grid only */
-        for (na = 0; na < 8 && al && sscanf(al, "%lf", &a_set[na]) == 1; na++)
-            if ((al = strchr(al, ',')))
-                al++;
+    if (n_set) { /* BENCH_A=0.4,0.2: these a at the default grid only */
+        na = n_set;
         as = a_set;
         ng = 1;
     }

@@ -98,6 +98,9 @@ int wanted(const char *var, const char *name);
 int wanted_method(const char *name);
 int wanted_family(const char *name);
 void experiment_opts(render_opts *o);
+/* BENCH_A="0.4,0.2": the a values a sweep runs instead of its own (up to
+ * max); returns how many, 0 when BENCH_A is unset. */
+int bench_a_list(double *out, int max);
 
 /* A scene of several bounces (bounces.c): path tracing, the cache at the
  * first level with path-traced gathers, and a cache at every level. */

@@ -47,7 +47,10 @@ typedef struct variant {
 int bounce_sweep(ctx *c, const bscene *b, FILE *csv)
 {
     static const int brute[] = {16, 64, 256, 1024};
-    static const double as[] = {0.4, 0.2, 0.1};
+    static const double as_def[] = {0.4, 0.2, 0.1};
+    double as_set[8];
+    const int n_set = bench_a_list(as_set, 8), na = n_set ? n_set : 3;
+    const double *as = n_set ? as_set : as_def;
     static const variant vs[] = {
         {"levels-scale2", 2.0f, -1.0f, 0, -1}, {"levels-scale4", 4.0f, -1.0f, 0, -1},
         {"levels-strata1", 0.0f, -1.0f, 1, -1}, {"levels-minr0.125", 0.0f, 0.125f, 0, -1},
@@ -68,7 +71,7 @@ int bounce_sweep(ctx *c, const bscene *b, FILE *csv)
      * error is not record noise (Sponza atrium, 2 bounces, a = 0.4:
      * 0.0709 in 436 s at 32x128, 0.0743 in 122 s at 16x64). */
     for (m = 0; m < 3; m++)
-        for (i = 0; i < 3 && wanted_method(m == 2 ? "levels" : "first"); i++) {
+        for (i = 0; i < na && wanted_method(m == 2 ? "levels" : "first"); i++) {
             render_opts o = cache_opts(c, m == 2 ? GATHER_CACHE : GATHER_PATH, as[i]);
             if (m == 1 && (c->quick || real))
                 break;

@@ -75,3 +75,15 @@ void experiment_opts(render_opts *o)
         l += *l == ',';
     }
 }
+
+int bench_a_list(double *out, int max)
+{
+    const char *al = getenv("BENCH_A");
+    int n;
+    if (!al || !*al)
+        return 0;
+    for (n = 0; n < max && al && sscanf(al, "%lf", &out[n]) == 1; n++)
+        if ((al = strchr(al, ',')))
+            al++;
+    return n;
+}

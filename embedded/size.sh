@@ -24,7 +24,7 @@ FLAGS="-std=c99 -Iinclude -fno-math-errno -fstack-usage -fcallgraph-info=su"
 sh embedded/need.sh
 rm -rf $B
 mkdir -p $B/x86 $B/m4
-for f in src/*.c src/*/*.c port/none/irc_port.c port/irc_port_default.c; do
+for f in src/*.c src/*/*.c port/none/irc_port.c port/irc_port_default.c port/unbuilt.c; do
     o=$(basename "$f" .c)
     $CC $FLAGS -O2 -DIRC_PORT_DEFAULT=irc_port_none -c "$f" -o $B/x86/$o.o
     ${CROSS}gcc $FLAGS $M4 -Os -ffunction-sections -fdata-sections \
@@ -33,7 +33,7 @@ done
 ${CROSS}ar rcs $B/m4/libirrcache.a $B/m4/*.o
 # The same with what an irradiance-only firmware leaves out (util.h).
 mkdir -p $B/m4-irr
-for f in src/*.c src/*/*.c port/none/irc_port.c port/irc_port_default.c; do
+for f in src/*.c src/*/*.c port/none/irc_port.c port/irc_port_default.c port/unbuilt.c; do
     ${CROSS}gcc $FLAGS $M4 -Os -ffunction-sections -fdata-sections \
         -DIRC_NO_SH -DIRC_NO_VISIBILITY -DIRC_NO_HESSIAN -DIRC_NO_SIGHT -DIRC_NO_SUPERSAMPLE \
         -DIRC_NO_GUARD -DIRC_PORT_DEFAULT=irc_port_none \

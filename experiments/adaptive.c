@@ -3,8 +3,8 @@
  * on a scene, against the full render: three importance metrics on the
  * same sample budgets, each sample at a pixel centre shaded by the demo's
  * integrator (cache for E, the full render's light samples there), the
- * image rebuilt by Delaunay interpolation (demo/adaptive.c).
- *   gradient:  |grad I| at the sample, the image gradient of demo/imgrad.c
+ * image rebuilt by Delaunay interpolation (experiments/sampling.c).
+ *   gradient:  |grad I| at the sample, the image gradient of experiments/imgrad.c
  *              (Eq. 25-27: spatial, curvature-directional, view and
  *              indirect terms; IMG_GRADIENT_FAST), and its visibility
  *              term: where the lit side of a shadow edge meets the other,
@@ -37,7 +37,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
-#include "adaptive.h"
+#include "sampling.h"
 #include "image.h"
 #include "imgrad.h"
 

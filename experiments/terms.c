@@ -1,6 +1,6 @@
 /*
  * terms.c -- the first-order paper's Fig. 5 and 6 on its scene: what each
- * term of the image gradient does (demo/imgrad.c).  SV, the lighting's
+ * term of the image gradient does (experiments/imgrad.c).  SV, the lighting's
  * spatial variation (the point moves, normal and view held), and CDV, the
  * curvature-weighted directional variation (the normal turns with
  * curvature and bumps), per pixel as |lum(d/dx)|, |lum(d/dy)| combined;

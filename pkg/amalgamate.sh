@@ -81,4 +81,7 @@ HEAD
     fi
     printf '\n/* ---- port/irc_port_default.c ---- */\n'
     strip port/irc_port_default.c
+    printf '\n/* ---- port/unbuilt.c ---- */\n'
+    case $port in posix) printf '#define IRC_BUILT_POSIX\n' ;; c11) printf '#define IRC_BUILT_C11\n' ;; esac
+    strip port/unbuilt.c
 } > "$out"

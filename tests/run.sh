@@ -115,11 +115,15 @@ check build-gcc $MAKE -s CC=gcc BUILD=build all
 check build-clang $MAKE -s CC=clang BUILD=build-clang all
 
 # Without a port that needs threads: no pthread or C11-thread symbol.
+WARN_TEST="-Wall -Wextra -Wpedantic -Werror"
 portless() {
     $MAKE -s CC=gcc BUILD=build-none PORT=none lib || return 1
     found=$(nm build-none/libirrcache.a | grep -E ' U (pthread_|thrd_|mtx_|cnd_|sched_)')
     [ -z "$found" ] || { echo "$found"; return 1; }
-    nm build-none/libirrcache.a | grep -q ' T irc_init$'
+    nm build-none/libirrcache.a | grep -q ' T irc_init$' || return 1
+    # the ports it did not compile are defined, and refuse to make a lock
+    gcc -std=c99 $WARN_TEST -Iinclude tests/unbuilt.c build-none/libirrcache.a \
+        -o build-none/unbuilt -lm && ./build-none/unbuilt
 }
 check portless-build portless
 # A user configuration header replaces single macros of src/util.h.
@@ -231,9 +235,12 @@ bad_scene() {
         [ "$(ls "$d")" = log ]
 }
 check bad-scene bad_scene
-# make adaptive's first run, small (its full size takes minutes): the
-# experiment's renders, checks and the gradient check at 64 x 48.
-check adaptive-small sh -c "$MAKE -s BUILD=build build/adaptive && ./build/adaptive demo/scenes/fig5.scene 64 48 --check"
+# The long documented targets in small forms (Makefile, SMALL_TARGETS):
+# make adaptive's first run at 64 x 48, fig15, glossy, sh-experiments,
+# sh-animation and bench-bounces, seconds each.
+for t in $($MAKE -s small-targets); do
+    check "$t" $MAKE -s BUILD=build "$t"
+done
 # The farm (make farm-demo): 4 tile jobs of a Slurm job array and a merging
 # job, on a single-node Slurm the script starts (its daemons need root).
 if [ "$(id -u)" = 0 ]; then

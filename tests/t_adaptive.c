@@ -5,7 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "adaptive.h"
+#include "sampling.h"
 #include "scenes.h"
 #include "test.h"
 

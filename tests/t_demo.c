@@ -361,7 +361,7 @@ TEST(test_deterministic_fill)
     scene_free(&s);
 }
 
-/* The image gradient (demo/imgrad.c) against central differences of the
+/* The image gradient (experiments/imgrad.c) against central differences of the
  * image it belongs to, on the Fig. 5 scene at 128 x 96: shaded with one set
  * of light samples everywhere, the direct part of the image is smooth
  * inside each object but for shadow edges, whose gradient the frozen

@@ -1,6 +1,6 @@
 /*
  * delaunay.c -- the Delaunay triangulation of points on an integer grid
- * inside a rectangle, by Bowyer-Watson insertion (adaptive.h).
+ * inside a rectangle, by Bowyer-Watson insertion (sampling.h).
  *
  * Coordinates are integers of at most 13 bits, so the orientation and
  * in-circle determinants are exact in 64-bit integers (the in-circle's
@@ -9,7 +9,7 @@
  * samples are full of co-circular fours).  A point on the circumcircle
  * is not inside it: ties keep the existing triangles.
  */
-#include "adaptive.h"
+#include "sampling.h"
 
 #include <stdlib.h>
 

@@ -1,8 +1,8 @@
 /*
- * adaptive.c -- the quad-tree of squares that places adaptive samples, and
- * the image rebuilt from them (adaptive.h).
+ * sampling.c -- the quad-tree of squares that places adaptive samples, and
+ * the image rebuilt from them (sampling.h).
  */
-#include "adaptive.h"
+#include "sampling.h"
 
 #include <math.h>
 #include <stdlib.h>

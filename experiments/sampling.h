@@ -1,5 +1,5 @@
 /*
- * adaptive.h -- adaptive image sampling as the first-order paper places its
+ * sampling.h -- adaptive image sampling as the first-order paper places its
  * samples (Ramamoorthi, Mahajan, Belhumeur 2007, Sec. 5), and the
  * reconstruction of an image from scattered samples.
  *
@@ -14,8 +14,8 @@
  * triangulated (Delaunay, exact integer predicates) and the image
  * interpolated linearly on the triangles.
  */
-#ifndef DEMO_ADAPTIVE_H
-#define DEMO_ADAPTIVE_H
+#ifndef EXP_SAMPLING_H
+#define EXP_SAMPLING_H
 
 typedef struct ad_sample {
     float x, y;        /* in pixels: (0, 0) is the image's top-left corner,

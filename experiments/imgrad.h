@@ -23,8 +23,8 @@
  * Shadow edges' own gradient (Sec. 6) is in the indirect part only
  * (frozen direct visibility; the paper's Sec. 5 does the same).
  */
-#ifndef DEMO_IMGRAD_H
-#define DEMO_IMGRAD_H
+#ifndef EXP_IMGRAD_H
+#define EXP_IMGRAD_H
 
 #include "camera.h"
 #include "render.h"
