@@ -1,7 +1,7 @@
 /*
  * status.c -- the one-line description of every status code.
  */
-#include "block/cache.h"
+#include "irrcache.h"
 
 const char *irc_strerror(int status)
 {

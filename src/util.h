@@ -26,6 +26,13 @@
 #include IRC_USER_CONFIG
 #endif
 
+/* The library defines the experimental calls (irrcache.h, "Experimental
+ * calls"), so it sees their declarations: every header of src/ that
+ * includes irrcache.h includes this one first. */
+#ifndef IRC_EXPERIMENTAL
+#define IRC_EXPERIMENTAL
+#endif
+
 #include <float.h>
 #include <math.h>
 #include <stddef.h>

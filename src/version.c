@@ -1,7 +1,7 @@
 /*
  * version.c -- the version the library was built as (irrcache.h).
  */
-#include "block/cache.h"
+#include "irrcache.h"
 
 unsigned irc_version_number(void)
 {

@@ -7,7 +7,6 @@
  * then empty or not compiled at all; nothing else of the library names
  * them.
  */
-#include "../block/cache.h"
 #include "../block/check.h"
 #include "../irr/estimator.h"
 #include "../sh/shrec.h"

@@ -4,7 +4,6 @@
  * (lookup.c) with the irradiance kind's table (kind_irr.c); the _px call
  * first answers points near finer geometry per pixel (detail.c).
  */
-#include "../block/cache.h"
 #include "../irr/detail.h"
 #include "../irr/estimator.h"
 #include "../store/lookup.h"

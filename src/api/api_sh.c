@@ -3,7 +3,6 @@
  * drives the store (store.c) and the lookup (lookup.c) with the SH kind's
  * table (kind_sh.c).
  */
-#include "../block/cache.h"
 #include "../sh/shrec.h"
 #include "../store/lookup.h"
 #include "../store/store.h"

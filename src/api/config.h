@@ -5,6 +5,7 @@
 #ifndef IRC_CONFIG_H
 #define IRC_CONFIG_H
 
+#include "../util.h" /* first: IRC_EXPERIMENTAL */
 #include "irrcache.h"
 
 int irc__config_resolve(const irc_config *in, irc_config *out);

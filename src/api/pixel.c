@@ -3,7 +3,8 @@
  * at a camera ray's hit, from what a pinhole camera knows, so that every
  * host bounds records by the same rule (the _px call's footprint).
  */
-#include "../block/cache.h"
+#include "../util.h"
+#include "irrcache.h"
 
 /* Below this |cos| between the ray and the surface the footprint stops
  * growing: at grazing angles 1/sqrt(|cos|) is unbounded, and a record a

@@ -10,11 +10,7 @@
 #include "irrcache.h"
 
 #define IRC__MAGIC 0x69726332u /* "irc2" */
-#define IRC__NIL 0xffffffffu
 #define IRC__ALIGN 64u
-/* The radius cap as a float: compared as the literal, an x87 build (i386)
- * keeps 1e30 unrounded and finds the stored cap above it. */
-#define IRC__CAP ((float)IRC_RADIUS_CAP)
 
 /* What a block must agree on to be re-attached (irc_attach): the layout's
  * version, pointer and size_t widths, byte order. */
@@ -28,8 +24,6 @@ enum {
     IRC__C_COMPUTES, IRC__C_RAYS, IRC__C_NOT_STORED, IRC__C_WAITS, IRC__C_COUNT
 }; /* IRC__C_COUNT * 8 bytes: one stripe, at most a cache line */
 
-/* irc__rec.n of a record at a free point (a kind with free_points). */
-#define IRC__FREE 0xffffffffu
 
 /* The cache, at the start of its part of the block.  Everything after it
  * is reached by offsets from the cache itself, so a block copied to

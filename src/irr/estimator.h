@@ -7,7 +7,7 @@
 #ifndef IRC_ESTIMATOR_H
 #define IRC_ESTIMATOR_H
 
-#include "../block/cache.h"
+#include "../kind/kind.h"
 #include "../sample/sampler.h"
 
 /* The irradiance record kind (kind_irr.c): its number in a block, and its

@@ -13,6 +13,14 @@
 #include "../util.h"
 #include "irrcache.h"
 
+/* No record (an id, a list's end). */
+#define IRC__NIL 0xffffffffu
+/* The radius cap as a float: compared as the literal, an x87 build (i386)
+ * keeps 1e30 unrounded and finds the stored cap above it. */
+#define IRC__CAP ((float)IRC_RADIUS_CAP)
+/* irc__rec.n of a record at a free point (a kind with free_points). */
+#define IRC__FREE 0xffffffffu
+
 /* Stored record: the position and radius come first so that the index's
  * distance test touches one cache line.  32 bytes; the kind's parts
  * follow. */

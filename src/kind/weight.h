@@ -5,7 +5,7 @@
 #ifndef IRC_WEIGHT_H
 #define IRC_WEIGHT_H
 
-#include "../block/cache.h"
+#include "kind.h"
 #include "../irr/estimator.h"
 /* weight.c */
 /* shaped: the record's ellipse and leak guard count (the irradiance

@@ -12,7 +12,6 @@
  * that equals y on the sphere; the gradient of y(s/|s|) is its part tangent
  * to the sphere over |s|, whichever polynomial that is.
  */
-#include "../block/cache.h"
 #include "../block/check.h"
 #include "shrec.h"
 

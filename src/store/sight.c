@@ -10,9 +10,8 @@
  * the candidates and their positions (lookup.c, walk.c); this file only
  * casts the rays and says which records are hidden.
  */
-#include "../block/cache.h"
 #include "../block/octa.h"
-#include "../store/trace.h"
+#include "trace.h"
 #include "sight.h"
 
 #ifndef IRC_NO_SIGHT

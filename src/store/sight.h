@@ -5,7 +5,7 @@
 #ifndef IRC_SIGHT_H
 #define IRC_SIGHT_H
 
-#include "../block/cache.h"
+#include "../kind/kind.h"
 
 #define IRC__SIGHT_CAP 32u   /* records checked per lookup; more: unchecked */
 #define IRC__SIGHT_BATCH 8u  /* rays per callback call, at most */
