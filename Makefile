@@ -149,8 +149,13 @@ $(BUILD)/tests/kinds.o: src/api/kinds.c src/kind/kind.h include/irrcache.h
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_LIB) -DIRC_KIND_EXTRA=irc__kind_occ -c $< -o $@
 
-$(BUILD)/irc_tests: $(TEST_SRC) tests/test.h tests/scenes.h tests/share.h $(LIBA) $(TEST_PORT_OBJ) $(TEST_KINDS)
-	$(CC) $(TEST_CFLAGS) $(OPT) $(CFLAGS) $(TEST_SRC) $(TEST_PORT_OBJ) $(TEST_KINDS) $(LIBA) -o $@ -lm -lpthread
+# One object a test file, so that a change recompiles what it touches.
+TEST_OBJ = $(TEST_SRC:tests/%.c=$(BUILD)/tests/obj/%.o)
+$(BUILD)/tests/obj/%.o: tests/%.c tests/*.h include/irrcache.h $(wildcard src/*.h src/*/*.h)
+	@mkdir -p $(dir $@)
+	$(CC) $(TEST_CFLAGS) $(OPT) $(CFLAGS) -c $< -o $@
+$(BUILD)/irc_tests: $(TEST_OBJ) $(LIBA) $(TEST_PORT_OBJ) $(TEST_KINDS)
+	$(CC) $(OPT) $(CFLAGS) $(TEST_OBJ) $(TEST_PORT_OBJ) $(TEST_KINDS) $(LIBA) -o $@ -lm -lpthread
 
 test:
 	WERROR=-Werror sh tests/run.sh

@@ -2,6 +2,7 @@
  * glossy.c -- glossy indirect light from SH records or the sampled lobe
  * (glossy.h).
  */
+#define IRC_EXPERIMENTAL /* irc_sh_radiance (irrcache.h) */
 #include "glossy.h"
 
 #include <math.h>

@@ -2,6 +2,7 @@
  * records.c -- the records view (render_records, render.h): each pixel
  * coloured by the record of largest weight there, centres in white.
  */
+#define IRC_EXPERIMENTAL /* irc_cache_neighbours (irrcache.h) */
 #include <float.h>
 #include <math.h>
 #include <string.h>

@@ -2,6 +2,7 @@
  * imgrad.c -- the image and its gradient at a point of the image plane
  * (imgrad.h).
  */
+#define IRC_EXPERIMENTAL /* irc_cache_lookup_gradient (irrcache.h) */
 #include "imgrad.h"
 
 #include <float.h>

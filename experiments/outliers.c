@@ -16,6 +16,7 @@
  * Prints counts over the worst pixels and over all lattice pixels, and the
  * twenty worst with their records.
  */
+#define IRC_EXPERIMENTAL /* irc_cache_neighbours (irrcache.h) */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <stdio.h>

@@ -10,6 +10,7 @@
  * a negative status left the block byte for byte as it was; lookups return
  * finite, non-negative values; guard bytes after the block are intact.
  */
+#define IRC_EXPERIMENTAL /* irc_cache_lookup_gradient, irc_cache_neighbours */
 #include <stdio.h>
 #include <stdlib.h>
 

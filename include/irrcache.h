@@ -1,81 +1,62 @@
 /*
  * irrcache.h -- an embeddable irradiance cache.  This header is the manual.
  *
- * irrcache caches irradiance for a host ray tracer.  The host casts rays
- * through a callback; the library samples hemispheres through it, builds
- * records carrying translational and rotational gradients, keeps them in one
- * memory block the host hands over at init, and answers Ward-Heckbert
- * weighted, gradient-extrapolated lookups.  A cache may hold spherical-
- * harmonic records of incident radiance instead (IRC_FEATURE_SH, "SH
- * records" below).
+ * The host casts rays through a callback; the library samples hemispheres
+ * through it, builds records carrying translational and rotational
+ * gradients, keeps them in one memory block the host hands over at init,
+ * and answers Ward-Heckbert weighted, gradient-extrapolated lookups.  A
+ * cache may hold spherical-harmonic records of incident radiance instead
+ * ("SH records" below).  Each record kind has its own typed calls
+ * (irc_cache_* / irc_record_*, irc_sh_*: docs/DESIGN.md, "Record kinds");
+ * a call of the other kind returns IRC_ERR_UNSUPPORTED.
  *
- *   - The library NEVER allocates.  Every structure (records, index nodes,
- *     sampling scratch, the lock) lives in the block given to irc_init().
- *     There is no free function for memory: the caller owns the block.
- *   - No global mutable state.  Any number of caches may coexist.
+ *   - The library NEVER allocates: every structure (records, index, sampling
+ *     scratch, the lock) lives in the block given to irc_init(), which the
+ *     caller owns.  No global mutable state: any number of caches coexist.
  *   - The block holds offsets, not pointers: copied byte for byte to another
  *     address, or mapped by another process, it is a working cache again
  *     after irc_attach() (same build of the library, same ABI).
- *   - Thread safety: with a locking port (the default of this build is
- *     POSIX threads), every call below may run concurrently from any
- *     threads on one cache, except irc_init, irc_attach, irc_cache_clear,
- *     irc_snapshot_read, irc_merge and irc_fini, which must not run
- *     concurrently with anything else on that cache.  Lookups take the port's read lock; inserts (and the insert of
- *     lookup_or_compute) its write lock; the trace callback runs with no
- *     lock held.  With irc_port_none, one thread at a time.
+ *   - Thread safety: with a locking port (this build's default is POSIX
+ *     threads), every call may run concurrently from any threads on one
+ *     cache, except irc_init, irc_attach, irc_cache_clear, irc_snapshot_read,
+ *     irc_merge, irc_pass_begin, irc_pass_end and irc_fini, which must not
+ *     run concurrently with anything else on that cache.  Lookups take the
+ *     port's read lock; inserts (and the insert of lookup_or_compute) its
+ *     write lock; the trace callback runs with no lock held.  With
+ *     irc_port_none, one thread at a time.
  *   - Stability: while the major version is 0, a minor release may change
  *     the block's layout (irc_attach refuses an older block) but keeps the
- *     stable calls' contracts: footprint, init, attach, fini, compute,
- *     insert, lookup, lookup_or_compute(_px), record, clear, stats,
- *     snapshots and merges, passes, the SH calls but irc_sh_radiance,
- *     irc_strerror and the version calls, and
- *     the ports.  Five calls are experimental, research tools whose
- *     contract may change in any release: irc_occlusion_compute,
- *     irc_cache_lookup_gradient, irc_cache_neighbours, irc_join and
- *     irc_sh_radiance; each says so.
- *   - Determinism: a record is a pure function of (p, n, config, seed, and
- *     the _px call's footprint) for a deterministic trace callback, one
- *     that answers the same ray with the same hit.  Its random numbers come
- *     from a hash of the query, so the same query gives the same record,
- *     bit for bit, in any thread and at any time; a callback that samples
- *     lights or paths with numbers of its own makes records that differ by
- *     that noise.  Which records a multi-threaded fill stores still
- *     depends on timing (fill passes make it not: "Fill passes").
+ *     contracts of what this header declares, except five experimental
+ *     calls, research tools whose contract may change in any release, which
+ *     a host sees only if it defines IRC_EXPERIMENTAL before it includes
+ *     this header: irc_occlusion_compute, irc_cache_lookup_gradient,
+ *     irc_cache_neighbours, irc_join and irc_sh_radiance ("Experimental
+ *     calls", at the end; the library always defines them).
+ *   - Determinism: for a trace callback that answers the same ray with the
+ *     same hit, a record is a pure function of (p, n, config, seed, and the
+ *     _px call's footprint): its random numbers are a hash of the query, so
+ *     it is the same bit for bit in any thread at any time (a callback that
+ *     samples with numbers of its own adds that noise).  Which records a
+ *     multi-threaded fill stores depends on timing, unless it fills in
+ *     passes ("Fill passes").
  *   - Errors: every call returns an int: IRC_OK (0), a positive informational
  *     status (IRC_MISS, IRC_NOT_STORED), or a negative irc_status code.  A
- *     call that returns a negative code has left the cache's block byte for
- *     byte as it was, but for the port's lock object (a call may take and
- *     release the lock before it fails, and a lock-unlock pair need not
- *     restore the lock's bytes).  A negative value returned
- *     by the host's trace callback is passed through unchanged, so keep host
- *     codes below IRC_ERR_LAST.  Positive statuses are not failures: a host
- *     that tests `st < 0` must still look at IRC_NOT_STORED (or at
+ *     call that returns a negative code has left the block byte for byte as
+ *     it was, but for the port's lock object (a lock-unlock pair need not
+ *     restore its bytes).  A negative code from the trace callback is passed
+ *     through unchanged: keep host codes below IRC_ERR_LAST.  A host that
+ *     tests `st < 0` must still look for IRC_NOT_STORED (or at
  *     irc_stats.not_stored) to learn that its pool is full.
  *
- * Quick start (examples/minimal.c is a complete host):
+ * Quick start (examples/minimal.c is a complete host): a config zeroed but
+ * for trace and context (zero fields: the measured defaults), irc_footprint,
+ * irc_init in a block of that size, irc_cache_lookup_or_compute_px at each
+ * camera ray's hit with the pixel's footprint there, irc_fini.
  *
- *   irc_config cfg = {0};             (zero: the measured defaults)
- *   cfg.trace = my_trace; cfg.context = my_scene;
- *   size_t bytes; irc_footprint(&cfg, 100000, &bytes);
- *   cfg.buffer = my_block; cfg.buffer_size = bytes;
- *   irc_cache *c; irc_init(&cfg, 100000, &c);
- *   ... at a camera ray's hit, with the pixel's footprint there:
- *   irc_cache_lookup_or_compute_px(c, p, n, footprint, rgb, NULL, my_thread_state);
- *   irc_fini(c);
- *
- * All vectors are float[3] in the host's world space.  Units of length are
- * the host's; nothing in the library depends on the scene's scale.
- * Irradiance E is radiance times steradians (the integral of L cos over the
- * hemisphere: E = pi L under a uniform sky of radiance L), in the host's
- * radiance units per channel.
- *
- * Record kinds.  An irradiance cache (the default) and an SH cache
- * (IRC_FEATURE_SH) keep different records behind one store; each kind has
- * its own typed calls (irc_cache_* / irc_record_* for irradiance, irc_sh_*
- * for SH), thin wrappers over the same insert, lookup and eviction.  Typed
- * calls were kept over one call taking `void *` so that the compiler, not a
- * runtime check, catches an irc_sh passed where an irc_record belongs; a
- * call of the other kind returns IRC_ERR_UNSUPPORTED.
+ * All vectors are float[3] in the host's world space, lengths in the host's
+ * units (nothing depends on the scene's scale).  Irradiance E is radiance
+ * times steradians (the integral of L cos over the hemisphere: E = pi L
+ * under a uniform sky of radiance L), in the host's units per channel.
  */
 #ifndef IRRCACHE_H
 #define IRRCACHE_H
@@ -87,15 +68,10 @@
 extern "C" {
 #endif
 
-/* The one place the version is defined (the Makefile reads it from here
- * for the shared object's name, irrcache.pc and the CMake package).  A
- * different major version, or a different minor one while the major is 0,
- * is another ABI.  A host written for one minor version can refuse to
- * build against another, where meanings may have changed under unchanged
- * code (CHANGES.md, "Upgrading"):
- *     #if IRC_VERSION_MAJOR != 0 || IRC_VERSION_MINOR != 3
- *     #error "written for irrcache 0.3"
- *     #endif */
+/* The one place the version is defined (the Makefile reads it).  Another
+ * major version, or another minor one while the major is 0, is another ABI
+ * where meanings may have changed under unchanged code (CHANGES.md,
+ * "Upgrading"); a host written for 0.3 may #error on another minor. */
 #define IRC_VERSION_MAJOR 0
 #define IRC_VERSION_MINOR 3
 #define IRC_VERSION_PATCH 0
@@ -107,9 +83,8 @@ extern "C" {
     IRC__STR(IRC_VERSION_MAJOR) "." IRC__STR(IRC_VERSION_MINOR) "." IRC__STR(IRC_VERSION_PATCH)
 
 /* Every declaration of this header, and nothing else of the library, is
- * visible from the shared library (the library builds with
- * -fvisibility=hidden).  Define IRC_API yourself to decorate it otherwise
- * (e.g. __declspec(dllexport)). */
+ * visible from the shared library (built with -fvisibility=hidden).  Define
+ * IRC_API yourself to decorate it otherwise (e.g. __declspec(dllexport)). */
 #ifndef IRC_API
 #if defined(__GNUC__) || defined(__clang__)
 #define IRC_API __attribute__((visibility("default")))
@@ -126,21 +101,15 @@ typedef enum irc_status {
     IRC_MISS = 1,             /* lookup: no record is close enough; a record
                                  read: the slot is empty (not an error) */
     IRC_NOT_STORED = 2,       /* lookup_or_compute: the value was computed and
-                                 returned, but the pool is full and eviction
-                                 is off, so it was not stored: every later
-                                 miss nearby computes again (counted in
-                                 irc_stats.not_stored) */
-    IRC_ERR_NULL = -1,        /* a required pointer argument is NULL, or
-                                 cfg.trace is */
-    IRC_ERR_CONFIG = -2,      /* a config field is out of its documented range;
-                                 also a handle that is not a live cache (never
-                                 initialised, after irc_fini, or a block not
-                                 re-attached), and a block irc_attach cannot
-                                 take (another ABI or layout version) */
-    IRC_ERR_NONFINITE = -3,   /* a NaN or infinite coordinate or value (also a
-                                 record whose irradiance or gradients overflow
-                                 float, from radiances near FLT_MAX, and a
-                                 lookup whose extrapolation overflows) */
+                                 returned, not stored (pool full, no eviction) */
+    IRC_ERR_NULL = -1,        /* a required pointer, or cfg.trace, is NULL */
+    IRC_ERR_CONFIG = -2,      /* a config field out of its range; a handle not
+                                 of a live cache (never made, finished, not
+                                 re-attached); a block irc_attach cannot take
+                                 (another ABI or layout version) */
+    IRC_ERR_NONFINITE = -3,   /* a NaN or infinite coordinate or value; a
+                                 record or lookup whose values overflow float
+                                 (radiances near FLT_MAX) */
     IRC_ERR_NORMAL = -4,      /* a normal is zero (or not finite) */
     IRC_ERR_NOMEM = -5,       /* the block is smaller than irc_footprint() asks */
     IRC_ERR_FULL = -6,        /* insert: the record pool is full, eviction is off */
@@ -150,59 +119,45 @@ typedef enum irc_status {
                                  unknown ray status */
     IRC_ERR_NOSAMPLES = -8,   /* fewer than half of the hemisphere's rays were
                                  usable (the host reported them as failed) */
-    IRC_ERR_BUSY = -9,        /* every scratch slot was in use and the cache
-                                 does not wait (cfg.no_wait, or a port that
-                                 cannot yield) */
+    IRC_ERR_BUSY = -9,        /* every scratch slot in use, and the cache does
+                                 not wait (cfg.no_wait, a port without yield) */
     IRC_ERR_UNSUPPORTED = -10,/* a call the cache's kind or features do not
                                  serve (an irradiance call on an SH cache, an
-                                 SH call on an irradiance cache, occlusion
-                                 without VISIBILITY), or a config or block
-                                 asking for what the library was built
-                                 without (IRC_NO_SH, IRC_NO_VISIBILITY,
-                                 IRC_NO_HESSIAN, IRC_NO_SIGHT,
-                                 IRC_NO_SUPERSAMPLE, IRC_NO_GUARD:
-                                 docs/PORTING.md); then
-                                 the SH calls, irc_sh_irradiance and
-                                 irc_sh_glossy included, return it too */
-    IRC_ERR_PORT = -11,       /* the port failed to initialise or take its
-                                 lock */
+                                 SH call on another, occlusion without
+                                 VISIBILITY), or a config or block asking for
+                                 what the build left out (an IRC_NO_* switch:
+                                 docs/PORTING.md; without SH every SH call,
+                                 irc_sh_irradiance and irc_sh_glossy too) */
+    IRC_ERR_PORT = -11,       /* the port failed to initialise or take its lock */
     IRC_ERR_RANGE = -12,      /* a value out of its range: a record id past
-                                 the capacity, a record with radius <= 0 or
-                                 negative irradiance, SH bands or channels
-                                 that do not match the cache, a lobe exponent
-                                 out of [0, 1e4] */
+                                 the capacity, a radius <= 0, negative
+                                 irradiance, SH bands or channels not the
+                                 cache's, a lobe exponent out of [0, 1e4] */
     IRC_ERR_TRUNCATED = -13,  /* a snapshot shorter than its header says */
     IRC_ERR_CORRUPT = -14,    /* a snapshot whose magic, checksums, length or
-                                 decoded values are wrong; irc_attach and
-                                 irc_join: a block whose header, records or
-                                 index no cache could have made */
+                                 values are wrong; irc_attach, irc_join: a
+                                 block no cache could have made */
     IRC_ERR_VERSION = -15,    /* a snapshot of another format version */
-    IRC_ERR_MISMATCH = -16,   /* a snapshot of another record kind, feature
-                                 set, record size, SH bands or channels,
-                                 accuracy or strata than the cache's */
-    IRC_ERR_FINGERPRINT = -17,/* a snapshot made for another scene (its
-                                 fingerprint differs from the one given) */
-    IRC_ERR_STATE = -18,      /* a call the cache's state forbids: a fill pass
-                                 begun while one is open or ended when none
-                                 is; clear, snapshot read or merge while a
-                                 pass is open */
-    IRC_ERR_NESTED = -19,     /* a trace callback called into the cache that
-                                 is computing its record, and the call would
-                                 compute one too (it would wait for its own
-                                 slot): see "Several bounces" below */
+    IRC_ERR_MISMATCH = -16,   /* a snapshot of another kind, features, record
+                                 size, SH bands, channels, accuracy, strata */
+    IRC_ERR_FINGERPRINT = -17,/* a snapshot for another scene (fingerprint) */
+    IRC_ERR_STATE = -18,      /* a pass begun in a pass or ended outside one;
+                                 clear, snapshot read or merge in a pass */
+    IRC_ERR_NESTED = -19,     /* a call that would compute a record in the
+                                 cache whose callback is running on this
+                                 thread ("Several bounces" below) */
     IRC_ERR_LAST = -19        /* the most negative code the library returns */
 } irc_status;
 
-/* A one-line English description of any status code (never NULL).  Thread
+/* A one-line English description of any status code (never NULL); thread
  * safe. */
 IRC_API const char *irc_strerror(int status);
 
 /* The version of the library the program runs with, as IRC_VERSION_NUMBER
- * and IRC_VERSION_STRING were when it was built: a host checks that the
- * header it compiled against matches the library it loaded, e.g.
- *     if (irc_version_number() / 100 != IRC_VERSION_NUMBER / 100) fail;
- * (major and minor, as long as the major is 0).  Any time, any thread; no
- * cache needed. */
+ * and IRC_VERSION_STRING were when it was built, to check the header
+ * against the library loaded (while the major is 0, major and minor:
+ * irc_version_number() / 100 == IRC_VERSION_NUMBER / 100).  Any time, any
+ * thread; no cache needed. */
 IRC_API unsigned irc_version_number(void);
 IRC_API const char *irc_version_string(void);
 
@@ -248,54 +203,35 @@ typedef struct irc_trace_args {
     const irc_ray *rays;    /* count rays to cast (read only) */
     irc_hit *hits;          /* count results to write, same order */
     uint32_t count;         /* 1 <= count <= cfg.max_batch */
-    uint32_t visibility_only; /* 1: confirming rays (cfg.check_visibility),
-                               each from the query toward a record (raised
-                               toward the plane of n by as much of its dip
-                               as the turn from n to the record's normal
-                               explains, so that a record on the same
-                               ball or column is not hidden by the bulge
-                               of the surface between them); a ray may
-                               still point a little below the plane of n.
-                               Only status and dist are read: the host may
-                               skip shading and leave normal and radiance
-                               unset */
+    /* 1: confirming rays (cfg.check_visibility) from the query toward a
+     * record each, raised toward the plane of n (bench/README.md,
+     * "Confirming rays on curved surfaces"), so a ray may point a little
+     * below it.  Only status and dist are read: shading may be skipped. */
+    uint32_t visibility_only;
 } irc_trace_args;
 
 /*
  * Cast args->count rays and fill args->hits.  The callback may touch only
  * args->hits[0 .. count-1] and its own state, and may call into other
- * caches (below); a call into the same cache that would compute a record
- * must not be made (it returns IRC_ERR_NESTED where the port can tell,
- * below).  For confirming rays (visibility_only) it calls
- * no cache.  It runs on the thread that called into the library, with no
- * lock of the cache held, possibly on several threads at once.  Return 0 on
- * success or a negative code of the host's own to abort the record (the
- * library returns it unchanged and keeps nothing of the record).
+ * caches (below); for confirming rays (visibility_only) it calls no cache.
+ * It runs on the thread that called into the library, with no lock of the
+ * cache held, possibly on several threads at once.  Return 0 on success or
+ * a negative code of the host's own to abort the record (the library
+ * returns it unchanged and keeps nothing of the record).
  *
- * Several bounces (Radiance's -ab N) take one cache per level: the
- * callback of level k's cache shades each hit with level k+1's lookup
- * (radiance = emission + direct + albedo / pi * E_{k+1}), the last
- * level's with direct light only, passing args->host on.  Why not one
- * cache with records tagged by level: a level-k record holds N - k
- * bounces, so records of different levels must not answer each other's
- * lookups, and tagging would scan every level's records in each lookup;
- * separate caches keep each level's index, size (irc_footprint), config
- * and snapshots its own.  What paid for deeper levels on the Cornell box
- * (bench/README.md, "Several bounces"): the same accuracy, radii floored
- * at half of max_radius, half the strata a level, no confirming rays;
- * fill them freely (in a pass, their records would stay out of sight of
- * the pass's other lookups).  No deadlock: a thread holding a slot of
- * level k waits only for a slot of level k+1, whose holders wait only on
- * deeper levels, and the last waits on none, so some thread always runs,
- * with any number of host threads and slots (cfg.threads = 1 included).
- * A callback that calls back into its own cache, directly or through a
- * cycle of caches, would wait for its own slot or recurse without end:
- * the call returns IRC_ERR_NESTED instead when the port tells threads
- * apart (irc_port thread: posix and c11) or runs one thread (none).
- * Across threads a cycle can deadlock: two threads may each hold the
- * last slot of one cache and wait for the other's.  Give every cache of
- * a cycle as many slots (cfg.threads) as host threads call into it, or
- * set no_wait (IRC_ERR_BUSY instead of waiting).
+ * Several bounces (Radiance's -ab N) take one cache per level: level k's
+ * callback shades each hit with level k+1's lookup (radiance = emission +
+ * direct + albedo / pi * E_{k+1}), passing args->host on; the last level's
+ * with direct light only.  Fill deeper levels outside passes (a pass would
+ * hide their records from its other lookups).  Levels cannot deadlock
+ * (docs/DESIGN.md, "Threads and memory"; settings: bench/README.md,
+ * "Several bounces"; a host: examples/levels.c).  A call that would
+ * compute a record in a cache whose callback is running on this thread,
+ * directly or through a cycle of caches, returns IRC_ERR_NESTED where the
+ * port tells threads apart (irc_port thread: posix and c11) or runs one
+ * (none).  Across threads a cycle can deadlock, each thread holding the
+ * last slot of one cache: give every cache of a cycle as many slots
+ * (cfg.threads) as host threads call into it, or set no_wait.
  */
 typedef int (*irc_trace_fn)(const irc_trace_args *args);
 
@@ -327,21 +263,10 @@ typedef int (*irc_trace_fn)(const irc_trace_args *args);
  *     finds every slot taken (at once with no_wait, else every 256 waits)
  *     takes over a slot whose process is gone: a process killed inside a
  *     record computation does not hang the others (irc_join).
- *     irc_port_posix has them (the process id, asked once per process;
- *     alive while kill(pid, 0) finds it and it has not exited: an exited
- *     child not yet reaped counts as gone, for its parent always, for
- *     others on Linux), and its lock asks them too: a process killed
- *     holding the read lock (in a lookup) is counted out, one killed
- *     holding the write lock (in an insert, a pass's end, a merge) is taken
- *     over with 1 as above.  Processes of one pid namespace; a reused
- *     process id looks alive.  irc_port_c11 has neither and recovers
- *     nothing: a process that dies inside its lock hangs the others, and
- *     one that dies computing keeps its slot (with every slot so kept,
- *     misses wait forever, or return IRC_ERR_BUSY with no_wait), until
- *     the block is attached anew (irc_attach makes a fresh lock, frees the
- *     slots and repairs).  Threads of one process are unaffected: a thread
- *     cannot die alone.  docs/DESIGN.md, "Reliability: how", tabulates
- *     what each port recovers.
+ *     irc_port_posix has them, and its lock counts out a dead reader and
+ *     takes over from a dead writer (1 above); irc_port_c11 has neither and
+ *     recovers nothing until irc_attach.  What each port recovers, and its
+ *     limits: docs/DESIGN.md, "Reliability: how".
  * The atomics act on naturally aligned 64-bit words inside the block.
  */
 typedef struct irc_port {
@@ -365,17 +290,16 @@ typedef struct irc_port {
     int (*owner_alive)(uint64_t token);   /* optional: 0 if the process
                                              whose owner() gave token is
                                              gone, else 1 */
-    uint64_t (*thread)(void);             /* optional: a nonzero token of the
-                                             calling thread, unique among
-                                             its process's live threads;
-                                             with it a call nested in its
-                                             own cache's callback returns
-                                             IRC_ERR_NESTED instead of
-                                             waiting for itself */
+    /* Optional: a nonzero token of the calling thread, unique among its
+     * process's live threads; with it a call nested in its own cache's
+     * callback returns IRC_ERR_NESTED instead of waiting for itself. */
+    uint64_t (*thread)(void);
 } irc_port;
 
-/* The ports.  A build compiles the one chosen by `make PORT=posix|c11|none`
- * (default posix) and irc_port_none; only those two are defined. */
+/* The ports, all defined in every build.  A build compiles the one chosen
+ * by `make PORT=posix|c11|none` (default posix) and irc_port_none; the
+ * others are ports that cannot make a lock: irc_init and irc_join with
+ * one return IRC_ERR_PORT. */
 IRC_API extern const irc_port irc_port_posix;  /* a lock that outlives its holders + GCC/Clang atomics */
 IRC_API extern const irc_port irc_port_c11;    /* C11 <stdatomic.h>, spinning rwlock */
 IRC_API extern const irc_port irc_port_none;   /* single-threaded: no locks at all */
@@ -386,204 +310,131 @@ IRC_API extern const irc_port *const irc_port_default; /* the chosen one: what
 /* Configuration.  Zero in any field means its default.                    */
 
 /* Gradient terms a record carries.  A cache pays in memory and time only for
- * the terms it enables: 32 bytes per record bare, +16 per gradient
- * (VISIBILITY changes how the translational gradient is made, not its
- * size). */
+ * the terms it enables: 32 bytes per record bare, +16 per gradient. */
 enum irc_feature {
     IRC_FEATURE_TRANSLATION = 1u << 0, /* translational gradient (Krivanek et
                                           al. 2005 stratified form) */
     IRC_FEATURE_ROTATION = 1u << 1,    /* rotational gradient (Ward-Heckbert 1992) */
-    IRC_FEATURE_VISIBILITY = 1u << 2,  /* the translational gradient from exact
-                                          visibility gradients at silhouettes
-                                          (first-order paper, Sec. 6-7): implies
-                                          TRANSLATION; costs extra rays (14 per
-                                          silhouette crossing of the strata
-                                          grid, + 1) and ~300 scratch bytes a
-                                          stratum */
-    IRC_FEATURE_SH = 1u << 3,          /* records hold spherical-harmonic
-                                          coefficients of incident radiance
-                                          instead of irradiance (see "SH
-                                          records" below); excludes the three
-                                          flags above */
-    IRC_FEATURE_SH_GRADIENT = 1u << 4, /* SH records also carry the
-                                          coefficients' translational
-                                          gradients (SH-gradient paper, Eq.
-                                          6-12), from the same rays: implies SH */
-    IRC_FEATURE_HESSIAN = 1u << 5,     /* irradiance records: the
-                                          occlusion-aware Hessian of E from
-                                          the rays already cast (Schwarzhaupt
-                                          et al. 2012), in irc_record.hessian,
-                                          and the ellipse it implies: along
-                                          each eigen-axis of the tangent
-                                          Hessian (curvature k) the radius
-                                          is sqrt(2 E/|k|), where first-order
-                                          extrapolation errs by about a^2 E
-                                          at the edge of reach; the major
-                                          radius at most IRC_ANISOTROPY x the
-                                          minor.  With TRANSLATION these
-                                          radii replace E/|grad E| and the
-                                          split sphere, bounded by the
-                                          farthest hit; without it the split
-                                          sphere still bounds them.  No extra
-                                          rays, 24 scratch bytes a stratum,
-                                          8 record bytes (the ellipse) */
-    IRC_FEATURE_NONE = 1u << 6         /* no gradients: bare records with
-                                          Ward's split-sphere radius; only
-                                          alone (features = 0 means the
-                                          default, TRANSLATION | ROTATION) */
+    /* TRANSLATION's gradient from exact visibility gradients at silhouettes
+     * (first-order paper, Sec. 6-7): implies TRANSLATION; extra rays (14 per
+     * silhouette crossing of the strata grid, + 1), ~300 scratch bytes a
+     * stratum. */
+    IRC_FEATURE_VISIBILITY = 1u << 2,
+    IRC_FEATURE_SH = 1u << 3,          /* SH records ("SH records" below);
+                                          not with the three flags above */
+    /* SH records with the coefficients' translational gradients, from the
+     * same rays (SH-gradient paper, Eq. 6-12): implies SH. */
+    IRC_FEATURE_SH_GRADIENT = 1u << 4,
+    /* Irradiance records: the occlusion-aware Hessian of E from the rays
+     * already cast (Schwarzhaupt et al. 2012), in irc_record.hessian, and
+     * the ellipse it implies (irc_record.radius; why: docs/DESIGN.md,
+     * "Error control").  No extra rays, 24 scratch bytes a stratum, 8
+     * record bytes. */
+    IRC_FEATURE_HESSIAN = 1u << 5,
+    IRC_FEATURE_NONE = 1u << 6         /* no gradients: Ward's split-sphere
+                                          radius; only alone (features = 0
+                                          is TRANSLATION | ROTATION) */
 };
 
 /* Settings that are on or off: 0 is the setting's default, which its
  * field names; IRC_ON and IRC_OFF say which the host wants. */
-enum irc_switch {
-    IRC_DEFAULT = 0,
-    IRC_ON = 1,
-    IRC_OFF = 2
-};
+enum irc_switch { IRC_DEFAULT = 0, IRC_ON = 1, IRC_OFF = 2 };
 
 /* What insert does when the record pool is full. */
 enum irc_evict {
     IRC_EVICT_NONE = 0,  /* refuse the insert: IRC_ERR_FULL (lookups go on) */
-    IRC_EVICT_CLOCK = 1  /* second-chance CLOCK: a hand sweeps the records in
-                            slot order; a record used by a lookup since the hand
-                            last passed gets a second chance, the first unused
-                            one is replaced.  Costs 1 bit per record. */
+    IRC_EVICT_CLOCK = 1  /* second-chance CLOCK, 1 bit a record: a hand sweeps
+                            the slots and replaces the first record no lookup
+                            used since it last passed */
 };
 
 typedef struct irc_config {
     irc_trace_fn trace;      /* required */
     void *context;           /* handed to trace unchanged */
-    uint32_t max_batch;      /* rays per trace call, 1..4096 (default 1, one
-                                ray per call; larger values serve packet
-                                tracers and cost 56 bytes per ray and thread) */
+    uint32_t max_batch;      /* rays per trace call, 1..4096 (default 1); more
+                                serve packet tracers, at 56 bytes per ray
+                                and thread */
     uint32_t features;       /* IRC_FEATURE_* bits (default 0: TRANSLATION |
-                                ROTATION; IRC_FEATURE_NONE for bare records) */
+                                ROTATION) */
     float accuracy;          /* Ward's a: a record counts at p when
                                 |p-p_i|/R_i + sqrt(1-n.n_i) < a; (0, 10]
                                 (default 0.2) */
     float min_radius;        /* R_i >= min_radius; finite, in
                                 [0, IRC_RADIUS_CAP) (default 0) */
-    float max_radius;        /* R_i <= max_radius; finite, in
-                                (min_radius, IRC_RADIUS_CAP] (default 0:
-                                IRC_RADIUS_CAP, no limit).  Also the radius
-                                of a record whose rays all escaped (with
-                                the default, such a record has the
-                                smallest radius and serves only its own
-                                point, where a lookup answers from it;
-                                set max_radius for open scenes, or use
-                                the _px call) */
-    uint32_t strata_theta;   /* M rows in theta, 1..1024 (default 32 for
-                                irradiance records, 16 for SH records) */
-    uint32_t strata_phi;     /* N columns in phi, 1..4096 (default 128,
-                                SH 64); M * N <= IRC_MAX_STRATA.  A
-                                record's noise reaches every pixel it
-                                serves (bench/README.md, "The corpus") */
-    uint32_t threads;        /* scratch slots: how many record computations
-                                may run at once, 1..64 (default 1).  Each
-                                costs irc_stats.bytes_scratch / threads.  A
-                                compute that finds every slot taken waits
-                                for one (see no_wait), so any number of host
-                                threads may share a cache; give it as many
-                                slots as host threads that compute at once
-                                (your worker count) to never wait. */
+    /* R_i <= max_radius; finite, in (min_radius, IRC_RADIUS_CAP] (default 0:
+     * the cap, no limit); also the radius of a record whose rays all escaped
+     * (by default the smallest float: set max_radius for open scenes, or use
+     * the _px call). */
+    float max_radius;
+    uint32_t strata_theta;   /* M rows in theta, 1..1024 (default 32; SH 16) */
+    uint32_t strata_phi;     /* N columns in phi, 1..4096 (default 128; SH
+                                64); M * N <= IRC_MAX_STRATA (why:
+                                bench/README.md, "The corpus") */
+    /* Scratch slots: how many record computations may run at once, 1..64
+     * (default 1), each irc_stats.bytes_scratch / threads bytes.  A compute
+     * that finds every slot taken waits for one (see no_wait): any number of
+     * host threads may share a cache; as many slots as workers never wait. */
+    uint32_t threads;
     uint32_t no_wait;        /* 1: a compute that finds every slot taken
-                                returns IRC_ERR_BUSY at once instead of
-                                waiting (default 0: wait through the port's
-                                yield) */
+                                returns IRC_ERR_BUSY at once (default 0:
+                                wait through the port's yield) */
     uint32_t evict;          /* an irc_evict (default IRC_EVICT_NONE) */
-    uint32_t clamp_neighbours; /* an irc_switch: neighbour clamping
-                                (Krivanek et al. 2006) at every insert: the
-                                new record's radius is at most R_j + |x -
-                                x_j| over the records j within it, and
-                                those are clamped back to R + |x - x_j|.
-                                Default: on for irradiance records (why:
-                                bench/README.md, "On real geometry"), off
-                                for SH records */
-    uint32_t check_visibility; /* an irc_switch: confirming rays (V-Ray's
-                                "check sample visibility").  The
-                                lookup_or_compute calls cast one ray from
-                                the query toward each record they would
-                                use (up to 32; the trace callback sees
-                                visibility_only = 1) and leave out those
-                                whose ray hits something before 0.9 of the
-                                way: records outside a crevice, behind a
-                                column or above a soffit stop lighting it;
-                                when none is left the call computes a
-                                record there.  Plain lookups do not check.
-                                Default: on for irradiance records (why:
-                                bench/README.md, "Confirming rays on
-                                curved surfaces"), off for SH records; off
-                                and refused in a build without them
-                                (IRC_NO_SIGHT) */
+    /* An irc_switch: neighbour clamping (Krivanek et al. 2006) at every
+     * insert: the new record's R <= R_j + |x - x_j| over the records j within
+     * it, which are clamped back to R + |x - x_j|.  On for irradiance records
+     * (why: bench/README.md, "On real geometry"), off for SH records. */
+    uint32_t clamp_neighbours;
+    /* An irc_switch: confirming rays (V-Ray's "check sample visibility"):
+     * the lookup_or_compute calls cast a ray from the query toward each
+     * record they would use (up to 32; visibility_only = 1) and leave out
+     * those whose ray hits something before 0.9 of the way; with none left
+     * they compute a record.  On for irradiance records (why:
+     * bench/README.md, "Confirming rays on curved surfaces"), off for SH
+     * records; refused in a build without them (IRC_NO_SIGHT). */
+    uint32_t check_visibility;
     /* Fields of one record kind: a kind's own, zero for its defaults,
      * and all zero in a config of the other kind (else IRC_ERR_CONFIG). */
     struct irc_config_irr {  /* irradiance records */
-        uint32_t supersamples; /* after the M x N rays, this many more, one a
-                                stratum, into the strata around which the
-                                radiance changes most (the spread of the
-                                four neighbours' samples: Radiance's
-                                ambient super-samples, -as); such a
-                                stratum's radiance is then the mean of its
-                                two samples and its distance the nearer,
-                                and the gradients read those.  Unbiased: a
-                                stratum's own sample never chooses it.
-                                0..M N (default 0: none); not with
-                                VISIBILITY (its silhouettes are the first
-                                rays') */
-        uint32_t leak_guard; /* an irc_switch: records keep a leak guard
-                                (irc_record.leak_guard, 8 bytes) against
-                                light through thin walls between spaces
-                                lit differently.  Default off (why:
-                                bench/README.md, "On real geometry") */
-        float min_pixels;    /* screen-space bounds on a record's reach a R
-                                (pbrt-v2's minimum and maximum pixel
-                                spacing): a record computed by
-                                irc_cache_lookup_or_compute_px with a
-                                footprint f > 0 gets a R in [min_pixels f,
-                                max_pixels f], then R in [min_radius,
-                                max_radius]; one whose rays all escaped
-                                gets max_pixels f.  Finite; 0 the default:
-                                no lower bound and 15 (why none:
-                                bench/README.md, "The corpus"), negative:
-                                that side unbounded; max_pixels >=
-                                min_pixels (a default max_pixels is at
-                                least min_pixels) */
-        float max_pixels;    /* see min_pixels */
-        float full_pixels;   /* records whose rays follow the pixels they
-                                serve: a record made by the _px call whose
-                                radius R (within the pixel bounds) spans
-                                fewer than full_pixels pixels (R /
-                                footprint) is sampled on a coarser grid,
-                                M/2 x N/2 below full_pixels, M/4 x N/4
-                                below full_pixels / 2 (levels that keep
-                                >= 64 strata, >= 2 rows, >= 8 columns).
-                                The call samples the coarsest grid first
-                                and refines it, keeping its rays.  Not
-                                with VISIBILITY, HESSIAN or supersamples.
-                                Finite; 0 the default, off, as is any
-                                negative value (why: bench/README.md,
-                                "Records that cost what they serve") */
-        float detail_pixels; /* the _px call's per-pixel detail: up to 8
-                                probe rays first; a point with a hit
-                                within detail_pixels x footprint is
-                                answered from its own M x N strata (E
-                                alone), stored nowhere (a frozen cache
-                                later misses there), weight 0, counted a
-                                lookup but not a hit.  With every slot
-                                taken (no_wait) or inside the cache's own
-                                callback: answered as without detail.
-                                Finite; 0: 0.5; negative: off (why:
-                                bench/README.md, "Detail computed per
-                                pixel") */
+        /* After the M x N rays, this many more, one a stratum, into the
+         * strata whose four neighbours' samples spread most (Radiance's
+         * -as; unbiased: a stratum's own sample never chooses it), which
+         * then take the mean of their two samples and the nearer distance,
+         * gradients included.  0..M N (default 0); not with VISIBILITY. */
+        uint32_t supersamples;
+        /* An irc_switch: records keep a leak guard (irc_record.leak_guard,
+         * 8 bytes) against light through thin walls.  Off by default (why:
+         * bench/README.md, "On real geometry"). */
+        uint32_t leak_guard;
+        /* Bounds in pixels on the reach a R of a record made by the _px
+         * call (pbrt-v2's pixel spacings; irc_record.radius).  Finite; 0:
+         * the defaults, no lower bound and 15 (why none: bench/README.md,
+         * "The corpus"); negative: that side unbounded; max_pixels >=
+         * min_pixels (a default max_pixels is at least min_pixels). */
+        float min_pixels;
+        float max_pixels;
+        /* A _px record whose R (within the pixel bounds) spans fewer than
+         * full_pixels pixels (R / footprint) is sampled on M/2 x N/2 strata,
+         * below full_pixels / 2 on M/4 x N/4 (levels that keep >= 64 strata,
+         * >= 2 rows, >= 8 columns), coarsest first, refined keeping its
+         * rays.  Not with VISIBILITY, HESSIAN or supersamples.  Finite; 0
+         * (default) or negative: off (why: bench/README.md, "Records that
+         * cost what they serve"). */
+        float full_pixels;
+        /* The _px call first casts up to 8 probe rays; a point with a hit
+         * within detail_pixels x footprint is answered from its own M x N
+         * strata (E alone), stored nowhere, weight 0, counted a lookup but
+         * not a hit (as without detail when every slot is taken with
+         * no_wait, or inside the cache's own callback).  Finite; 0: 0.5;
+         * negative: off (why: bench/README.md, "Detail computed per
+         * pixel"). */
+        float detail_pixels;
     } irr;
     struct irc_config_sh {   /* SH records (IRC_FEATURE_SH) */
-        uint32_t bands;      /* L, bands 0..L-1, L*L coefficients per
+        uint32_t bands;      /* L: bands 0..L-1, L*L coefficients per
                                 channel; 1..IRC_SH_MAX_BANDS (default 3) */
-        uint32_t channels;   /* 3 (RGB, default) or 1 (the hit's
-                                radiance[0] only) */
-        float power;         /* at free points: the exponent b of the
-                                weight (R_j/|p - p_j|)^b; (0, 16]
-                                (default 2) */
+        uint32_t channels;   /* 3 (RGB, default) or 1 (radiance[0] only) */
+        float power;         /* free points: b of the weight
+                                (R_j/|p - p_j|)^b; (0, 16] (default 2) */
     } sh;
     uint64_t seed;           /* mixed into every record's random numbers */
     const irc_port *port;    /* locks and atomics (default irc_port_default) */
@@ -596,9 +447,8 @@ typedef struct irc_config {
 #define IRC_MAX_BATCH 4096u
 #define IRC_MAX_THREADS 64u
 #define IRC_MAX_RECORDS 0x3fffffffu
-/* Radii are clamped to 2^100 (about 1.27e30; all rays escaped): a power of
- * two, so that it compares equal to a stored radius in any float
- * evaluation (x87's excess precision included). */
+/* Radii are clamped to 2^100 (about 1.27e30; all rays escaped), a power of
+ * two that compares equal to a stored radius in any float evaluation. */
 #define IRC_RADIUS_CAP 1267650600228229401496703205376.0f
 /* An ellipse's major radius is at most this multiple of its minor one
  * (HESSIAN records; hand-built records are clamped to it when stored). */
@@ -608,14 +458,12 @@ typedef struct irc_config {
 
 /*
  * Compile-time bounds on irc_footprint(), for static blocks: never less
- * than what irc_footprint() asks for the same numbers (make test checks a
- * grid of configs).  features: the irradiance cache's IRC_FEATURE_* bits;
- * records: max_records; s: strata M * N (4096 for an irradiance config's
- * default, 1024 for an SH config's); t: cfg.threads; b: cfg.max_batch;
- * for SH caches, bands L and channels ch.  The arithmetic is size_t's: on a
- * 32-bit target a bound above 4 GiB wraps (no static block is that large
- * there).  Each thread's slot also holds the record a lookup-or-compute
- * builds (sizeof(irc_record) or sizeof(irc_sh)).
+ * than it asks for the same numbers (make test checks a grid of configs).
+ * features: the irradiance cache's IRC_FEATURE_* bits; records:
+ * max_records; s: strata M * N (4096 for an irradiance config's default,
+ * 1024 for an SH config's); t: cfg.threads; b: cfg.max_batch; for SH
+ * caches, bands L and channels ch.  In size_t arithmetic: on a 32-bit
+ * target a bound above 4 GiB wraps.
  */
 #define IRC_FOOTPRINT_BOUND(features, records, s, t, b)                          \
     (8192u + (size_t)(s) * 40u +                                                 \
@@ -637,94 +485,54 @@ typedef struct irc_config {
 typedef struct irc_cache irc_cache; /* lives inside cfg.buffer; opaque */
 
 /*
- * Bytes of block a cache of max_records records needs with this config
- * (cfg->buffer and cfg->buffer_size are ignored).  1 <= max_records <=
- * IRC_MAX_RECORDS.  A config whose block would not fit a size_t is
- * IRC_ERR_CONFIG.  Thread safe.  Returns IRC_OK and writes *bytes, or a
- * negative error code on failure.
- *
- * Sizing max_records: a lookup-or-compute call stores at most one record,
- * so a frame that makes one such call a pixel never needs more records
- * than pixels (the hard bound): size max_records = pixels (what the
- * defaults make: bench/README.md, "The corpus").  When the pool fills,
- * inserts fail (IRC_ERR_FULL), lookup_or_compute returns IRC_NOT_STORED
- * and recomputes every later miss, irc_stats.not_stored counts those, and
- * inside a fill pass which records were kept depends on timing (a pass
- * never evicts): size the pool so that stays 0, or turn on
- * IRC_EVICT_CLOCK.
+ * Bytes of block a cache of max_records (1..IRC_MAX_RECORDS) records needs
+ * with this config (buffer and buffer_size ignored).  Thread safe.  Returns
+ * IRC_OK and writes *bytes, IRC_ERR_CONFIG when that would not fit a
+ * size_t, or a negative error code.  A lookup-or-compute call stores at
+ * most one record: a frame of one such call a pixel needs max_records =
+ * pixels at most (bench/README.md, "The corpus").  In a full pool inserts
+ * fail (IRC_ERR_FULL), lookup_or_compute returns IRC_NOT_STORED and
+ * computes every later miss again, and which records a fill pass kept
+ * depends on timing: size the pool so that irc_stats.not_stored stays 0,
+ * or turn on IRC_EVICT_CLOCK.
  */
 IRC_API int irc_footprint(const irc_config *cfg, uint32_t max_records, size_t *bytes);
 
 /*
  * Build an empty cache in cfg->buffer.  The config is copied; the cache
  * handle points into the block.  Returns IRC_OK and writes *cache, or a
- * negative error code on failure (IRC_ERR_NOMEM when the block is too small).
+ * negative error code (IRC_ERR_NOMEM when the block is too small).  Every
+ * error but IRC_ERR_PORT leaves the block untouched; IRC_ERR_PORT (the
+ * port's lock_init failed, or the port is one this build did not compile)
+ * comes after the block was laid out, which then holds no cache.
  */
 IRC_API int irc_init(const irc_config *cfg, uint32_t max_records, irc_cache **cache);
 
 /*
  * Re-attach a block that holds a cache made by irc_init (and filled) at
- * another address: a copy of it, a file read back, another process's
- * mapping.  cfg->buffer and cfg->buffer_size name the block (its first
- * buffer_size bytes, as copied); cfg->trace, cfg->context and cfg->port
- * are taken anew (the old process's pointers mean nothing here); every
- * other config field is the block's own and ignored here.  When the new
- * address differs from the old one modulo 64, the contents move within the
- * block to the new 64-byte boundary, so a block shared live between
- * processes should sit at addresses equal modulo 64 (pages are).  The lock
- * is initialised afresh: no other thread or process may use the cache
- * during the call.  The block must come from the same build of the library
- * on the same ABI (pointer and size_t widths, byte order): for anything
- * else use snapshots.  Nothing in the block is trusted: before any use,
- * the header must be one irc_init could have written for its stored
- * config and capacity, every record's values sane, every index link in
- * range and the index a tree whose lists hold each record at most once
- * (time linear in the block).  What no check can judge is made anew: the
- * strata's table and the scratch slots.  A block whose writer was killed
- * inside the write lock (a process sharing it, irc_join) is repaired
- * first, as the port's read_lock and write_lock returning 1 describe:
- * the record being written is dropped and the index rebuilt.  Returns
- * IRC_OK and writes
- * *cache; IRC_ERR_CONFIG when the block holds no cache or one of another
- * ABI or layout version; IRC_ERR_CORRUPT when it fails a check;
- * IRC_ERR_NOMEM when buffer_size is smaller than the cache; or a negative
- * error code (the block is then unchanged).
+ * another address: a copy, a file read back, another process's mapping.
+ * cfg->buffer and cfg->buffer_size name the block (its first buffer_size
+ * bytes, as copied); cfg->trace, cfg->context and cfg->port are taken anew;
+ * the other fields are the block's own and ignored.  When the address
+ * differs from the old one modulo 64, the contents move to the new 64-byte
+ * boundary (so a block shared live should sit at addresses equal modulo
+ * 64, as pages do).  The lock is made afresh: no other thread or process
+ * may use the cache during the call.  Same build of the library, same ABI
+ * (pointer and size_t widths, byte order); for anything else use
+ * snapshots.  Nothing in the block is trusted: its header, records and
+ * index are checked in time linear in the block (docs/DESIGN.md, "Threads
+ * and memory"), the strata's table and scratch slots made anew, and a
+ * block whose writer died inside the write lock is repaired first
+ * (irc_port, write_lock).  Returns IRC_OK and writes *cache;
+ * IRC_ERR_CONFIG when the block holds no cache or one of another ABI or
+ * layout version; IRC_ERR_CORRUPT when it fails a check; IRC_ERR_NOMEM
+ * when buffer_size is smaller than the cache; or a negative error code
+ * (the block unchanged).
  */
 IRC_API int irc_attach(const irc_config *cfg, irc_cache **cache);
 
-/*
- * Experimental (see "Stability" above).
- * Share a block live between processes on one machine: one process makes
- * the cache (irc_init) in memory every process maps (a file or shm object
- * mapped MAP_SHARED); each other process joins it with irc_join, which
- * builds that process's view of it in view (view_size >= IRC_VIEW_BYTES,
- * aligned for a double; process-local memory the caller keeps until
- * irc_fini of the view).  The view holds this process's callback, context
- * and port (cfg->trace, cfg->context, cfg->port), so each process's misses
- * call its own host; records, index, counters, passes and the lock are the
- * block's, shared.  cfg->buffer is this process's mapping of the block,
- * which may sit at another address than the creator's but at the same
- * offset from a 64-byte boundary (mappings are page aligned, so any mmap
- * does); the port must be the creator's (the posix port's lock is
- * process-shared; port/none shares nothing safely).  irc_fini of a view
- * releases the view only; the creator's irc_fini, after every view's,
- * destroys the lock.  A process killed inside a record computation
- * gives its scratch slot back (irc_port owner); one killed while it holds
- * the write lock leaves the others waiting (irc_port).  The block is
- * checked as irc_attach checks it, its records and index under the read
- * lock.  Returns IRC_OK and writes *cache; IRC_ERR_CONFIG when the block
- * holds no cache of this build, sits at another offset, or the port
- * differs; IRC_ERR_CORRUPT when it fails a check; IRC_ERR_NOMEM when
- * view_size is too small or buffer_size smaller than the cache; or a
- * negative error code.  The block is never written.
- */
-#define IRC_VIEW_BYTES 1024u
-IRC_API int irc_join(const irc_config *cfg, void *view, size_t view_size, irc_cache **cache);
-
-/*
- * Release what the port holds (the lock).  The block is the caller's again
- * afterwards.  Returns IRC_OK, or a negative error code on failure.
- */
+/* Release what the port holds (the lock).  The block is the caller's again
+ * afterwards.  Returns IRC_OK, or a negative error code on failure. */
 IRC_API int irc_fini(irc_cache *cache);
 
 /* ------------------------------------------------------------------------ */
@@ -739,163 +547,88 @@ typedef struct irc_record {
     float p[3];          /* position */
     float n[3];          /* unit normal */
     float e[3];          /* RGB irradiance (see the units above) */
-    float radius;        /* R_i, the record's reach along axis (the major
-                            radius): the harmonic mean distance of the rays
-                            that hit (escaped rays do not count: the
-                            distance to what the record saw), at most
-                            E/|grad E| per channel (with TRANSLATION and
-                            without HESSIAN), the Hessian's radius along
-                            axis (with HESSIAN, see there), then clamped to
-                            [min_pixels, max_pixels] x the footprint / a
-                            (irc_cache_lookup_or_compute_px) and to
-                            [min_radius, max_radius]; when no ray hit,
-                            max_pixels x the footprint / a, else
-                            max_radius, else the smallest float */
+    /* R_i, the reach along axis (the major radius): the harmonic mean
+     * distance of the rays that hit, at most E/|grad E| per channel
+     * (TRANSLATION).  With HESSIAN, sqrt(2 E/|k|) along each eigen-axis of
+     * the tangent Hessian (curvature k), the major at most IRC_ANISOTROPY x
+     * the minor, bounded by the farthest hit instead of E/|grad E| and the
+     * split sphere with TRANSLATION, by the split sphere without.  Then
+     * clamped to [min_pixels, max_pixels] x footprint / a (the _px call) and
+     * [min_radius, max_radius]; with no hit, max_pixels x footprint / a,
+     * else max_radius, else the smallest float. */
+    float radius;
     float minor_radius;  /* the reach across axis, in (0, radius]; 0 in a
-                            record a host builds means radius (a disk).
-                            Only caches with HESSIAN store ellipses;
-                            others store the disk of radius */
+                            host's record means radius (a disk).  Only
+                            HESSIAN caches store ellipses */
     float axis[3];       /* unit tangent direction of radius when
-                            minor_radius < radius (a host's axis need not
-                            be unit length nor exactly tangent: it is
-                            projected on the tangent plane); else zero */
+                            minor_radius < radius, else zero (a host's is
+                            projected on the tangent plane) */
     float mean_dist;     /* that harmonic mean before the other bounds */
-    float grad_t[3][3];  /* grad_t[c] = dE_c/dp: irradiance per unit of the
-                            host's length, along the surface (zero unless
-                            TRANSLATION).  Stored scaled down where needed
-                            so that |grad_t[c]| radius <= e[c]: a radius
-                            lifted (min_radius, the host) keeps the
-                            extrapolation within e (1 +- a) at the edge of
-                            reach */
+    /* grad_t[c] = dE_c/dp: irradiance per unit of length along the surface
+     * (zero unless TRANSLATION), stored scaled down where needed so that
+     * |grad_t[c]| radius <= e[c], whatever set the radius. */
+    float grad_t[3][3];
     float grad_r[3][3];  /* grad_r[c]: E_c(n') ~ e[c] + (n x n').grad_r[c],
-                            irradiance per radian of normal rotation (zero
-                            unless ROTATION) */
-    float hessian[3][6]; /* hessian[c]: second derivatives of E_c in p,
-                            world space, packed xx xy xz yy yz zz; only
-                            moves along the surface are meaningful (zero
-                            unless HESSIAN; not stored, zero when read
-                            back) */
-    uint64_t leak_guard; /* what the record saw near it, so that a lookup
-                            from behind that geometry (a wall between two
-                            rooms) does not use it: 16 sectors of 22.5
-                            degrees counter-clockwise about n from t1 =
-                            (1 - s n_x^2/(s + n_z), -s n_x n_y/(s + n_z),
-                            -s n_x), s = +1 if n_z >= 0 else -1 (Duff et
-                            al. 2017's frame of n), 4 bits each, sector k
-                            in bits 4k..4k+3.  Nibble v: 0 = nothing seen
-                            within reach; else the nearest hit at a
-                            grazing angle (more than 45 degrees from n) in
-                            the sector lies (15 - v)/15 of the reach away
-                            (rounded down).  A lookup at t of the reach in
-                            a direction between two sector centres is
-                            rejected when t times the inverse distance,
-                            interpolated linearly in angle between those
-                            centres, exceeds 1 (a straight wall's inverse
-                            distance is a cosine; v = 15 counts as 1/30).
-                            Set by compute; a host's record may carry 0
-                            (no guard).  Stored when cfg.irr.leak_guard is IRC_ON
-                            (8 bytes) */
+                            per radian of normal rotation (zero unless
+                            ROTATION) */
+    float hessian[3][6]; /* hessian[c]: d2E_c/dp2, world space, packed xx xy
+                            xz yy yz zz, meaningful along the surface (zero
+                            unless HESSIAN; not stored: zero read back) */
+    /* What the record saw near it, so that a lookup from behind that
+     * geometry (a wall between two rooms) does not use it: 16 sectors of
+     * 22.5 degrees counter-clockwise about n from t1 = (1 - s n_x^2/(s +
+     * n_z), -s n_x n_y/(s + n_z), -s n_x), s = +1 if n_z >= 0 else -1 (Duff
+     * et al. 2017's frame), 4 bits each, sector k in bits 4k..4k+3.  Nibble
+     * v: 0 = nothing seen within reach; else the nearest hit at a grazing
+     * angle (more than 45 degrees from n) in the sector lies (15 - v)/15 of
+     * the reach away (rounded down).  A lookup at t of the reach between
+     * two sector centres is rejected when t times the inverse distance,
+     * interpolated linearly in angle between them, exceeds 1 (v = 15 counts
+     * as 1/30).  Set by compute; a host's record may carry 0 (no guard).
+     * Stored when cfg.irr.leak_guard is IRC_ON. */
+    uint64_t leak_guard;
     uint32_t features;   /* which gradients are valid */
     uint32_t rays;       /* rays cast, and how many were usable: */
     uint32_t rays_used;
 } irc_record;
 
-/*
- * Sample the hemisphere around (p, n) through the trace callback and build a
- * record.  n need not be unit length.  host reaches the callback as
- * args->host.  Nothing is stored.  Waits for a scratch slot when all are in
- * use (see cfg.threads).  Returns IRC_OK, or a negative error code on
- * failure (the host's own code if trace returned one).
- */
+/* Sample the hemisphere around (p, n) (n of any length > 0) through the
+ * callback (args->host = host) and build a record; nothing is stored.
+ * Waits for a scratch slot when all are taken (cfg.threads).  Returns
+ * IRC_OK, or a negative error code (the host's own if trace returned one). */
 IRC_API int irc_record_compute(irc_cache *cache, const float p[3], const float n[3],
                                irc_record *out, void *host);
 
-/* Net visibility for hosts that cache occlusion rather than irradiance. */
-typedef struct irc_occlusion {
-    float visible;   /* the fraction of the hemisphere's solid angle whose rays
-                        escape (first-order paper, Eq. 47, over 2 pi); every
-                        hit blocks */
-    float grad[3];   /* its gradient along the surface (Eq. 48), per unit of
-                        length */
-    uint32_t rays;   /* rays cast */
-} irc_occlusion;
-
-/*
- * Experimental (see "Stability" above).
- * Sample the hemisphere around (p, n) and return its net visibility and
- * that visibility's exact gradient from the silhouettes.  Needs
- * IRC_FEATURE_VISIBILITY in the config (IRC_ERR_UNSUPPORTED otherwise).
- * Nothing is stored; the rays count in irc_stats.rays.  Returns IRC_OK, or
- * a negative error code on failure.
- */
-IRC_API int irc_occlusion_compute(irc_cache *cache, const float p[3], const float n[3],
-                                  irc_occlusion *out, void *host);
-
-/*
- * Store a record (a copy, packed).  rec->radius must be > 0 and rec->e >= 0
- * (IRC_ERR_RANGE) and every field finite.  Returns IRC_OK; IRC_ERR_FULL
- * when the pool is full and eviction is off (lookups keep working); or a
- * negative error code on failure.
- */
+/* Store a record (a copy, packed): rec->radius > 0 and rec->e >= 0 (else
+ * IRC_ERR_RANGE), every field finite.  Returns IRC_OK, IRC_ERR_FULL (pool
+ * full, eviction off; lookups go on), or a negative error code. */
 IRC_API int irc_cache_insert(irc_cache *cache, const irc_record *rec);
 
 /*
  * Interpolate irradiance at (p, n): every record with Ward-Heckbert weight
  * w_i = 1 / (|p - p_i|/R_i + sqrt(1 - n.n_i)) > 1/a that is not in front of p
  * ((p - p_i).(n + n_i)/2 >= -0.05 R_i) and that its leak guard does not
- * reject (irc_record.leak_guard) is extrapolated with its gradients,
- * E_i + (p - p_i).grad_t + (n_i x n).grad_r, clamped at 0 per channel, and
- * averaged with weights w_i (w_i is capped at 1e6).  For an ellipse,
- * |p - p_i|/R_i reads sqrt(d_u^2 + |d - d_u u|^2/q^2)/R_i, d = p - p_i,
- * u the major axis, d_u = d.u, q = minor/major.  Records facing away
- * (n.n_i <= 0) never count.  rgb gets the average and *weight (optional) the
- * summed weight.  Returns IRC_OK, IRC_MISS (rgb = 0, weight = 0) when no
- * record counts, IRC_ERR_NONFINITE when the extrapolated value overflows
- * float (records near FLT_MAX), or a negative error code on failure.
+ * reject is extrapolated with its gradients, E_i + (p - p_i).grad_t +
+ * (n_i x n).grad_r, clamped at 0 per channel, and averaged with weights w_i
+ * (capped at 1e6).  For an ellipse, |p - p_i|/R_i reads sqrt(d_u^2 +
+ * |d - d_u u|^2/q^2)/R_i, d = p - p_i, u the major axis, d_u = d.u, q =
+ * minor/major.  Records facing away (n.n_i <= 0) never count.  rgb gets
+ * the average and *weight (optional) the summed weight.  Returns IRC_OK,
+ * IRC_MISS (rgb = 0, weight = 0) when no record counts, IRC_ERR_NONFINITE
+ * when the extrapolation overflows float, or a negative error code.
  */
 IRC_API int irc_cache_lookup(irc_cache *cache, const float p[3], const float n[3],
                              float rgb[3], float *weight);
 
-/* Interpolated irradiance's first derivatives at a point, per channel c. */
-typedef struct irc_gradient {
-    float dp[3][3];  /* dE_c/dp: E_c changes by dp[c] . dx as p moves by dx
-                        (per unit of length; along the surface) */
-    float dn[3][3];  /* dE_c/dn: E_c changes by dn[c] . dm as the unit normal
-                        turns by a small dm (perpendicular to n; per radian) */
-} irc_gradient;
-
 /*
- * Experimental (see "Stability" above).
- * irc_cache_lookup, and the gradient of what it interpolates: the same
- * records with the same weights, each record's extrapolation E_i + (p -
- * p_i).grad_t + (n_i x n).grad_r differentiated, dp = grad_t and dn =
- * grad_r x n_i (a channel clamped at 0 contributes zeros), averaged with
- * weights w_i.  The weights' own derivatives are left out: they change
- * where records enter and leave reach, so that part is a property of the
- * record set, not of the light (the first-order paper's image-space
- * gradient, Sec. 5, takes the light field's gradient the same way).  A
- * cache without translational (rotational) gradients answers dp (dn) = 0.
- * rgb and grad must not be NULL (IRC_ERR_NULL); an SH cache answers
- * IRC_ERR_UNSUPPORTED.  rgb, *weight, the status and the lookup counters
- * are irc_cache_lookup's; on IRC_MISS grad is zero too, and
- * IRC_ERR_NONFINITE also covers a gradient that overflows float.
- */
-IRC_API int irc_cache_lookup_gradient(irc_cache *cache, const float p[3], const float n[3],
-                                      float rgb[3], irc_gradient *grad, float *weight);
-
-/*
- * Lookup; on a miss, compute a record at (p, n) (host reaches the callback),
- * insert it, and return its irradiance with *weight = 0 (a weight of 0 is
- * how the caller tells a fresh record from an interpolated value; the new
- * record's id is not reported: irc_cache_neighbours finds it).  With
- * cfg.check_visibility (the default for irradiance records) the lookup
- * first confirms its records with one ray each through the callback
- * (host reaches it, visibility_only = 1) and leaves out those out of
- * sight; a callback failure there returns as a record's would, with
- * nothing changed.  A miss that had to wait for a scratch slot looks up
- * again first, since another thread may have stored a record there
- * meanwhile.  Returns IRC_OK, IRC_NOT_STORED (value valid, pool full and
- * eviction off), or a negative error code on failure (IRC_ERR_NESTED from
+ * Lookup; on a miss, compute a record at (p, n) (the callback gets host),
+ * insert it, and return its irradiance with *weight = 0, which tells a
+ * fresh record from an interpolated value (its id is not reported:
+ * irc_cache_neighbours finds it).  With cfg.check_visibility the lookup
+ * first confirms its records (a callback failure there returns as a
+ * record's would, nothing changed).  A miss that waited for a scratch slot
+ * looks up again first.  Returns IRC_OK, IRC_NOT_STORED (value valid, pool
+ * full, eviction off), or a negative error code (IRC_ERR_NESTED from
  * inside this cache's own callback: see irc_trace_fn).
  */
 IRC_API int irc_cache_lookup_or_compute(irc_cache *cache, const float p[3],
@@ -904,22 +637,18 @@ IRC_API int irc_cache_lookup_or_compute(irc_cache *cache, const float p[3],
 
 /*
  * irc_cache_lookup_or_compute with a screen-space bound: the recommended
- * call for a renderer's camera-ray hits.  footprint is the width, in the
- * host's length unit, of one pixel at p: the square root of the area a
- * pixel covers on the surface (pbrt's sqrt(|dp/dx x dp/dy|) from ray
- * differentials; for a pinhole camera about distance x pixel angle /
- * sqrt(|cos|) of the surface to the ray).  A record computed here gets a
- * reach a R in [cfg.irr.min_pixels, cfg.irr.max_pixels] x footprint (by default
- * none to 15 pixels) before the world bounds [min_radius, max_radius] (its
- * gradient is then limited to that radius, as always); so an open scene
- * needs no max_radius, and the records a frame makes are bounded by its
- * pixels.  footprint 0 is the plain call (no pixel bound).  Points near
- * finer geometry get their own estimate first (cfg.irr.detail_pixels).
- * A host that computes with irc_record_compute and inserts itself sets
- * the radius (and minor_radius) of the record the same way before
- * irc_cache_insert.
- * Returns as irc_cache_lookup_or_compute; IRC_ERR_RANGE (nothing done)
- * when footprint is negative, IRC_ERR_NONFINITE when it is not finite.
+ * call at camera-ray hits.  footprint: the width of one pixel at p, the
+ * square root of the area it covers on the surface (pbrt's sqrt(|dp/dx x
+ * dp/dy|) from ray differentials; irc_pixel_footprint for a pinhole
+ * camera); 0 is the plain call.  A record computed here gets a reach a R
+ * in [cfg.irr.min_pixels, cfg.irr.max_pixels] x footprint (by default none
+ * to 15 pixels) before [min_radius, max_radius]: an open scene needs no
+ * max_radius, and a frame's records are bounded by its pixels.  Points
+ * near finer geometry get their own estimate first (cfg.irr.detail_pixels).
+ * A host that computes and inserts itself bounds radius and minor_radius
+ * the same way.  Returns as irc_cache_lookup_or_compute; IRC_ERR_RANGE
+ * (nothing done) for a negative footprint, IRC_ERR_NONFINITE for one not
+ * finite.
  */
 IRC_API int irc_cache_lookup_or_compute_px(irc_cache *cache, const float p[3],
                                            const float n[3], float footprint, float rgb[3],
@@ -931,59 +660,36 @@ IRC_API int irc_cache_lookup_or_compute_px(irc_cache *cache, const float p[3],
  * forward: the camera's viewing axis (any length); pixel_angle: a pixel's
  * width on the image plane at distance 1 along it (2 tan(fov_y / 2) /
  * height in pixels).  footprint = pixel_angle |p - eye| (d.f)^(3/2) /
- * sqrt(max(|d.n|, 0.05)), d the unit direction from eye to p, f forward's:
- * the square root of the surface area the pixel covers, with its solid
- * angle shrinking off axis as (d.f)^3 and its stretch at grazing angles
- * held at 1/sqrt(0.05).  A host with ray differentials may pass its own
- * sqrt(|dp/dx x dp/dy|) instead.  Returns IRC_OK, IRC_ERR_NULL,
- * IRC_ERR_NONFINITE, IRC_ERR_NORMAL (n zero or not finite), or
- * IRC_ERR_RANGE (pixel_angle <= 0, forward zero, p at eye or behind it);
- * *footprint is written only on IRC_OK.  Thread safe; needs no cache.
+ * sqrt(max(|d.n|, 0.05)), d the unit direction from eye to p, f forward's
+ * (a grazing pixel's stretch held at 1/sqrt(0.05)).  Returns IRC_OK,
+ * IRC_ERR_NULL, IRC_ERR_NONFINITE, IRC_ERR_NORMAL (n zero or not finite),
+ * or IRC_ERR_RANGE (pixel_angle <= 0, forward zero, p at eye or behind
+ * it); *footprint is written only on IRC_OK.  Thread safe; needs no cache.
  */
 IRC_API int irc_pixel_footprint(const float eye[3], const float forward[3], float pixel_angle,
                                 const float p[3], const float n[3], float *footprint);
 
-/*
- * Experimental (see "Stability" above).
- * The ids (slot numbers) of the records a lookup at (p, n) would use, in no
- * particular order: up to cap of them in ids, and how many there are in
- * *count (which may exceed cap).  Either kind of cache (n NULL in an SH
- * cache: free points).  For debugging and visualisation.  An id stays a
- * record's until irc_pass_end, irc_merge or irc_cache_clear (which
- * renumber or remove records) or its eviction.  Returns IRC_OK,
- * or a negative error code on failure.
- */
-IRC_API int irc_cache_neighbours(irc_cache *cache, const float p[3], const float n[3],
-                                 uint32_t *ids, uint32_t cap, uint32_t *count);
-
-/*
- * Read the record in slot id (0 <= id < capacity).  Returns IRC_OK,
+/* Read the record in slot id (0 <= id < capacity).  Returns IRC_OK,
  * IRC_MISS when the slot is empty, IRC_ERR_RANGE past the capacity, or a
- * negative error code on failure.
- */
+ * negative error code. */
 IRC_API int irc_cache_record(irc_cache *cache, uint32_t id, irc_record *out);
 
-/* Remove every record, of either kind (the counters in irc_stats are kept).
- * Not concurrent with other calls.  Returns IRC_OK, or a negative error
- * code on failure. */
+/* Remove every record, of either kind (irc_stats' counters are kept).  Not
+ * concurrent with other calls.  Returns IRC_OK, or a negative error code. */
 IRC_API int irc_cache_clear(irc_cache *cache);
 
-
-
 /* ------------------------------------------------------------------------ */
-/* Snapshots: a cache's records as portable bytes (docs/FORMAT.md defines the */
-/* format byte by byte), to save a cache and load it in another process.   */
+/* Snapshots: a cache's records as portable bytes (docs/FORMAT.md defines   */
+/* the format), to save a cache and load it in another process.             */
 
 /* The format version this build writes and the only one it reads (bytes
  * 4-5 of a snapshot); another gets IRC_ERR_VERSION. */
 #define IRC_SNAPSHOT_VERSION 1u
 
-/*
- * A writer for streamed snapshots: takes count bytes; returns 0, or a
- * nonzero value to stop (a negative one is passed through, a positive one
- * becomes IRC_ERR_CALLBACK).  Called with the cache's read lock held: it
- * must not call the cache's writers.
- */
+/* A writer for streamed snapshots: takes count bytes; returns 0, or nonzero
+ * to stop (a negative value is passed through, a positive one becomes
+ * IRC_ERR_CALLBACK).  Called with the cache's read lock held: it must not
+ * call the cache's writers. */
 typedef int (*irc_write_fn)(void *context, const void *bytes, size_t count);
 
 /* The bytes irc_snapshot_write would write now (48 + records x record
@@ -993,7 +699,7 @@ IRC_API int irc_snapshot_size(irc_cache *cache, size_t *bytes);
 
 /*
  * Writes every stored record, with a header carrying the host's 64-bit
- * scene fingerprint, either into buffer (write NULL; size at least
+ * scene fingerprint, into buffer (write NULL; size at least
  * irc_snapshot_size, else IRC_ERR_NOMEM and nothing written) or through
  * write(context, ...) in pieces (buffer ignored).  *written (optional)
  * gets the bytes produced.  The cache is not changed.  Returns IRC_OK or a
@@ -1004,15 +710,14 @@ IRC_API int irc_snapshot_write(irc_cache *cache, uint64_t fingerprint, void *buf
                                size_t *written);
 
 /*
- * Replaces the cache's records with a snapshot's.  Checks everything before
- * it touches the cache: IRC_ERR_TRUNCATED, IRC_ERR_CORRUPT (bad magic,
- * either checksum, trailing bytes, a record value no cache makes),
- * IRC_ERR_VERSION, IRC_ERR_FINGERPRINT (not the fingerprint given),
- * IRC_ERR_MISMATCH (kind, features, record size, SH bands or channels,
- * accuracy or strata differ from the cache's config), IRC_ERR_FULL (more
- * records than the cache holds); on any of them the cache is as it was.
- * Lookups then answer as the written cache did, bit for bit.  Like
- * irc_cache_clear, not concurrently with other calls on the cache.
+ * Replaces the cache's records with a snapshot's, after checking everything:
+ * IRC_ERR_TRUNCATED, IRC_ERR_CORRUPT (bad magic, either checksum, trailing
+ * bytes, a record value no cache makes), IRC_ERR_VERSION,
+ * IRC_ERR_FINGERPRINT (not the fingerprint given), IRC_ERR_MISMATCH (kind,
+ * features, record size, SH bands or channels, accuracy or strata differ
+ * from the cache's), IRC_ERR_FULL (more records than the cache holds); on
+ * any of them the cache is as it was.  Lookups then answer as the written
+ * cache did, bit for bit.  Not concurrent with other calls on the cache.
  * Returns IRC_OK or a negative error code.
  */
 IRC_API int irc_snapshot_read(irc_cache *cache, uint64_t fingerprint, const void *data,
@@ -1021,20 +726,14 @@ IRC_API int irc_snapshot_read(irc_cache *cache, uint64_t fingerprint, const void
 /*
  * Adds a snapshot's records to the cache's, checked as irc_snapshot_read
  * checks (the same statuses, the cache unchanged on any of them;
- * IRC_ERR_FULL when the cache's records and the snapshot's together,
- * duplicates counted, exceed its capacity).  The result does not depend
- * on the order of merges: the records are put in one canonical order
- * (field by field in the format's order, each field as an unsigned
- * integer), records equal in every byte are kept once, the index is
- * rebuilt from that order, and the records are then renumbered in the
- * index's order (as at irc_pass_end); so merging a set of snapshots into an empty
- * cache in any order gives caches whose snapshots are byte-identical, and
- * merging one twice adds nothing.  Records from different snapshots that
- * differ in any bit are all kept (two tiles that computed a record at the
- * same point with the same config agree bit for bit: a record is a pure
- * function of its query).  Record ids change; neighbour clamping is not
- * applied.  Like irc_cache_clear, not concurrently with other calls.
- * Returns IRC_OK or a negative error code.
+ * IRC_ERR_FULL when the cache's records and the snapshot's, duplicates
+ * counted, exceed its capacity).  The records are put in one canonical
+ * order (docs/DESIGN.md, "Snapshots and merges"), records equal in every
+ * byte kept once, and renumbered as at irc_pass_end: merging snapshots
+ * into an empty cache in any order gives byte-identical snapshots, and
+ * merging one twice adds nothing.  Record ids change; neighbour clamping
+ * is not applied.  Not concurrent with other calls.  Returns IRC_OK or a
+ * negative error code.
  */
 IRC_API int irc_merge(irc_cache *cache, uint64_t fingerprint, const void *data, size_t size);
 
@@ -1043,117 +742,86 @@ IRC_API int irc_merge(irc_cache *cache, uint64_t fingerprint, const void *data, 
 
 /*
  * Opens a fill pass.  Until irc_pass_end, every lookup (of any call, on any
- * thread) sees the cache as it was here, frozen: records computed by
- * lookup_or_compute misses and records given to insert are kept aside in
- * free slots, not indexed, and the miss still returns the new record's
- * value (weight 0).  So a pass's answers and the records it adds depend
- * only on the cache it began with and on the set of queries made, never on
- * their order or on how many threads made them (a record is a pure
- * function of its query, the config and the host's callback).  A pass
- * never evicts: once the free slots are taken, further records of the pass
- * are not stored (IRC_NOT_STORED, IRC_ERR_FULL from insert, counted in
- * irc_stats.not_stored), and which ones were kept then depends on timing:
- * size the pool so that does not happen.  Within a pass, two misses close
- * together both compute a record where one might have served: a pass
- * should hold no two queries within a record's reach of each other.  The
- * rule the demo and the examples follow: pixels P apart in P^2 passes,
- * coarse to fine, P the power of two nearest the image width / 24 in [8,
- * 32] (8 up to 288 pixels, 16 up to 576, then 32), never from the thread
- * count (all pixels at strides 8, 4, 2, 1 in 4 passes made 1.5x the
- * records of a free fill, docs/DESIGN.md, "Fill passes").  Lookups in a pass take
- * no lock (nothing they read can change before irc_pass_end).  Not
- * concurrent with other calls on the cache.  Returns IRC_OK, IRC_ERR_STATE when a pass is
- * already open, or a negative error code.
+ * thread, taking no lock) sees the cache as it was here: records computed
+ * by misses and given to insert wait in free slots, not indexed (a miss
+ * still returns its record's value, weight 0), so the pass's answers and
+ * records depend only on the cache it began with and the set of queries.
+ * A pass never evicts: once the free slots are taken, its further records
+ * are not stored (IRC_NOT_STORED, IRC_ERR_FULL from insert; counted in
+ * irc_stats.not_stored) and which were kept depends on timing.  Two misses
+ * of a pass within a record's reach both compute a record: the demo and
+ * the examples shade pixels P apart in P^2 passes, coarse to fine, P the
+ * power of two nearest the image width / 24 in [8, 32] (docs/DESIGN.md,
+ * "Fill passes").  Not concurrent with other calls.
+ * Returns IRC_OK, IRC_ERR_STATE when a pass is open, or a negative code.
  */
 IRC_API int irc_pass_begin(irc_cache *cache);
 
 /*
- * Closes the open pass: its records, sorted in merge's canonical order
- * (see irc_merge) with exact duplicates kept once, are inserted one by one
- * in that order (neighbour clamping, when on, applies in that order too)
- * and become visible; the index is then built anew in an order that
- * spreads its nodes over the scene (the same for the same records).  Then every record of the cache is renumbered in the
- * order lookups visit the index (depth first), which puts the records a
- * lookup reads side by side in memory: lookups answer bit for bit as
- * before, faster (bench/README.md, "Speed and memory"), but record ids change, and
- * the end of a pass costs a move of every record (a pass with no records,
- * begun and ended at once, does only that, for a cache filled without
- * passes).  *added (optional) gets how many.  Not concurrent
- * with other calls on the cache: every thread of the pass must be done.
+ * Closes the open pass: its records, in merge's canonical order with exact
+ * duplicates kept once, are inserted (and clamped, when on) in that order;
+ * then every record is renumbered in the order lookups visit the index:
+ * lookups answer bit for bit as before, faster (bench/README.md, "Speed
+ * and memory"), record ids change, and every record moves (all a pass with
+ * no records does).  *added (optional) gets how many were added.  Not
+ * concurrent with other calls: every thread of the pass must be done.
  * Returns IRC_OK, IRC_ERR_STATE when no pass is open, or a negative error
  * code.  While a pass is open, irc_cache_clear, irc_snapshot_read and
  * irc_merge return IRC_ERR_STATE and change nothing.
  */
 IRC_API int irc_pass_end(irc_cache *cache, uint32_t *added);
+
 /* ------------------------------------------------------------------------ */
 /* SH records (IRC_FEATURE_SH).                                              */
 /*
- * An SH cache stores, per record, the real spherical-harmonic coefficients
- * c_i = integral of y_i(w) L(w) dw of the incident radiance, bands 0..L-1
- * (index l*l + l + m, Condon-Shortley phase), per channel, and with
- * IRC_FEATURE_SH_GRADIENT their translational gradients, so that
- * c_i(p + d) ~ c_i + grad c_i . d (SH-gradient paper, Eq. 14).  From the
- * coefficients, irc_sh_irradiance and irc_sh_glossy shade any normal.
- *
- * Two kinds of record:
- *   - surface records (n given): the hemisphere around n is sampled, the
- *     radiance below it counts as 0; lookups use the Ward-Heckbert weight of
- *     irc_cache_lookup and see surface records only;
- *   - free-point records (n NULL): the whole sphere is sampled (two
- *     hemispheres, twice the rays), as at an object's centre; lookups with
- *     n NULL see free-point records only, accept those with
- *     |p - p_j| < accuracy * R_j and weigh them (R_j/|p - p_j|)^b, b =
- *     cfg.sh.power (Eq. 16, made scale-free by R_j; capped at 1e6).
- * Strata are M x N of equal solid angle (cos theta uniform, not cosine
- * weighted): 2 pi/(M N) steradians each.  R_j is the harmonic mean hit
- * distance, clamped by |c_0|/|grad c_0| per channel (with gradients) and by
- * [min_radius, max_radius].
- *
- * Bytes per record: 32 + 4 L^2 channels, + 12 L^2 channels with gradients
- * (L = 3, RGB: 140, with gradients 464).  The irradiance calls
- * (irc_record_compute, irc_cache_insert, irc_cache_lookup,
- * irc_cache_lookup_gradient, irc_cache_lookup_or_compute, irc_cache_record,
- * irc_occlusion_compute) return
- * IRC_ERR_UNSUPPORTED on an SH cache, and the irc_sh_* calls on any other.
+ * An SH cache stores, per record and channel, the real spherical-harmonic
+ * coefficients c_i = integral of y_i(w) L(w) dw of the incident radiance,
+ * bands 0..L-1 (index l*l + l + m, Condon-Shortley phase), and with
+ * IRC_FEATURE_SH_GRADIENT their translational gradients: c_i(p + d) ~ c_i
+ * + grad c_i . d (SH-gradient paper, Eq. 14).  Surface records (n given)
+ * sample the hemisphere around n (radiance below it counts as 0) and serve
+ * lookups with n, weighted as irc_cache_lookup's; free-point records (n
+ * NULL) sample the whole sphere (twice the rays), as at an object's centre,
+ * and serve lookups with n NULL: those with |p - p_j| < accuracy * R_j,
+ * weighted (R_j/|p - p_j|)^b, b = cfg.sh.power (Eq. 16 made scale-free;
+ * capped at 1e6).  Strata have equal solid angle, 2 pi/(M N) sr each.  R_j:
+ * the harmonic mean hit distance, clamped by |c_0|/|grad c_0| per channel
+ * (with gradients) and [min_radius, max_radius].  Bytes per record: 32 + 4
+ * L^2 channels, + 12 L^2 channels with gradients (L = 3, RGB: 140, 464).
  */
 typedef struct irc_sh {
     float p[3];            /* position (a lookup: the query's) */
     float n[3];            /* unit normal; 0, 0, 0 for a free point */
     float radius;          /* R_j (a lookup: 0) */
-    float e[3];            /* irradiance about n integrated from the samples
-                              themselves, not band limited (0 for a free
-                              point; a lookup: the records' weighted mean) */
+    float e[3];            /* irradiance about n from the samples themselves,
+                              not band limited (0 for a free point; a
+                              lookup: the records' weighted mean) */
     uint32_t bands;        /* L */
     uint32_t channels;     /* 1 or 3 */
     float c[3][IRC_SH_MAX_COEFFS];       /* c[ch][i], i < L*L, ch < channels */
-    float grad[3][IRC_SH_MAX_COEFFS][3]; /* d c[ch][i] / dp, all three
-                                            components (a surface record's
-                                            along n includes what crosses
-                                            its horizon); zero without
-                                            IRC_FEATURE_SH_GRADIENT; a
-                                            lookup: the weighted mean */
+    /* d c[ch][i] / dp, all three components (a surface record's along n
+     * includes what crosses its horizon); zero without
+     * IRC_FEATURE_SH_GRADIENT; a lookup: the weighted mean. */
+    float grad[3][IRC_SH_MAX_COEFFS][3];
     uint32_t features;     /* cfg.features */
     uint32_t rays;         /* rays cast, and how many were usable */
     uint32_t rays_used;
 } irc_sh;
 
 /*
- * Sample around p through the trace callback and build an SH record: the
- * hemisphere around n, or with n NULL the whole sphere.  Nothing is stored.
- * Returns IRC_OK, or a negative error code on failure (IRC_ERR_NOSAMPLES
- * when fewer than half the rays were usable, the host's own code if trace
- * returned one).  host reaches the callback as args->host (whose n is 0, 0, 0
- * for a free point).
+ * Sample around p through the trace callback (args->host = host; args->n
+ * 0, 0, 0 for a free point) and build an SH record: the hemisphere around
+ * n, or with n NULL the whole sphere.  Nothing is stored.  Returns IRC_OK,
+ * or a negative error code (IRC_ERR_NOSAMPLES when fewer than half the rays
+ * were usable, the host's own if trace returned one).
  */
 IRC_API int irc_sh_compute(irc_cache *cache, const float p[3], const float n[3],
                            irc_sh *out, void *host);
 
-/*
- * Store an SH record (a copy).  rec->bands and rec->channels must match the
- * cache's config (IRC_ERR_RANGE), rec->radius > 0 and rec->e >= 0
- * (IRC_ERR_RANGE), every used field finite.  Returns IRC_OK, IRC_ERR_FULL,
- * or a negative error code.
- */
+/* Store an SH record (a copy).  rec->bands and rec->channels must match the
+ * cache's config, rec->radius > 0 and rec->e >= 0 (else IRC_ERR_RANGE),
+ * every used field finite.  Returns IRC_OK, IRC_ERR_FULL, or a negative
+ * error code. */
 IRC_API int irc_sh_insert(irc_cache *cache, const irc_sh *rec);
 
 /*
@@ -1185,11 +853,11 @@ IRC_API int irc_sh_record(irc_cache *cache, uint32_t id, irc_sh *out);
  * Irradiance about the unit-ish normal n from sh's coefficients: the
  * clamped-cosine convolution (Ramamoorthi-Hanrahan 2001), sum over l, m of
  * A_l c_lm y_lm(n) with A_0 = pi, A_1 = 2 pi/3, A_2 = pi/4, A_3 = 0,
- * A_4 = -pi/24.  Exact for radiance of band < L; the band-limit error of
- * L = 3 is about 1% average for smooth skies (docs/DESIGN.md, "SH records").  rgb gets
- * sh->channels values (one channel is copied to all three).  Returns IRC_OK,
- * IRC_ERR_NULL, IRC_ERR_NORMAL, or IRC_ERR_RANGE (bands or channels out of
- * range).
+ * A_4 = -pi/24.  Exact for radiance of band < L (the band limit's error
+ * at L = 3: docs/DESIGN.md, "Accuracy against closed forms").  rgb gets
+ * sh->channels values (one channel is copied to all three).  Returns
+ * IRC_OK, IRC_ERR_NULL, IRC_ERR_NORMAL, or IRC_ERR_RANGE (bands or
+ * channels out of range).
  */
 IRC_API int irc_sh_irradiance(const irc_sh *sh, const float n[3], float rgb[3]);
 
@@ -1204,14 +872,8 @@ IRC_API int irc_sh_irradiance(const irc_sh *sh, const float n[3], float rgb[3]);
  */
 IRC_API int irc_sh_glossy(const irc_sh *sh, const float r[3], float s, float rgb[3]);
 
-/*
- * Experimental (see "Stability" above).
- * The band-limited radiance arriving from the unit-ish direction w, sum
- * over l, m of c_lm y_lm(w): what a host integrates its own BRDF against
- * (e.g. over samples of a lobe whose product with the cosine is not
- * zonal).  Returns as irc_sh_irradiance.
- */
-IRC_API int irc_sh_radiance(const irc_sh *sh, const float w[3], float rgb[3]);
+/* ------------------------------------------------------------------------ */
+/* Counters and sizes.                                                       */
 
 typedef struct irc_stats {
     uint64_t records;        /* live records */
@@ -1225,10 +887,8 @@ typedef struct irc_stats {
                                 the pool was full (IRC_NOT_STORED) */
     uint64_t waits;          /* computes that waited for a scratch slot */
     uint64_t rays;           /* rays cast through the callback: records',
-                                occlusion's, confirming rays
-                                (cfg.check_visibility) and per-pixel
-                                detail (cfg.irr.detail_pixels: probes
-                                and estimates) */
+                                occlusion's, confirming rays and per-pixel
+                                detail's (probes and estimates) */
     uint64_t index_nodes;    /* index nodes in use */
     uint64_t index_nodes_max;
     uint64_t index_refs;     /* index references in use: a record is listed
@@ -1243,12 +903,110 @@ typedef struct irc_stats {
     size_t bytes_total;      /* all block bytes the cache uses */
 } irc_stats;
 
-/* Counters and sizes.  Thread safe; the counters are read one by one, so a
- * concurrent call may be half counted.  Returns IRC_OK, or a negative
- * error code on failure. */
+/* Thread safe; the counters are read one by one, so a concurrent call may
+ * be half counted.  Returns IRC_OK, or a negative error code. */
 IRC_API int irc_cache_stats(irc_cache *cache, irc_stats *out);
 
 #ifdef __cplusplus
 }
 #endif
 #endif /* IRRCACHE_H */
+
+/* ------------------------------------------------------------------------ */
+/* Experimental calls ("Stability" above): declared where the host defines  */
+/* IRC_EXPERIMENTAL before it includes this header, even after an include   */
+/* without it (the block has a guard of its own).                           */
+
+#if defined(IRC_EXPERIMENTAL) && !defined(IRC_EXPERIMENTAL_DEFINED)
+#define IRC_EXPERIMENTAL_DEFINED
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Net visibility, for hosts that cache occlusion rather than irradiance. */
+typedef struct irc_occlusion {
+    float visible;   /* the fraction of the hemisphere's solid angle whose rays
+                        escape (first-order paper, Eq. 47, over 2 pi); every
+                        hit blocks */
+    float grad[3];   /* its gradient along the surface (Eq. 48), per unit of
+                        length */
+    uint32_t rays;   /* rays cast */
+} irc_occlusion;
+
+/* Sample the hemisphere around (p, n) and return its net visibility and
+ * that visibility's exact gradient from the silhouettes.  Needs
+ * IRC_FEATURE_VISIBILITY (else IRC_ERR_UNSUPPORTED).  Nothing is stored;
+ * the rays count in irc_stats.rays.  Returns IRC_OK, or a negative error
+ * code. */
+IRC_API int irc_occlusion_compute(irc_cache *cache, const float p[3], const float n[3],
+                                  irc_occlusion *out, void *host);
+
+/* Interpolated irradiance's first derivatives at a point, per channel c. */
+typedef struct irc_gradient {
+    float dp[3][3];  /* dE_c/dp: E_c changes by dp[c] . dx as p moves by dx
+                        (per unit of length; along the surface) */
+    float dn[3][3];  /* dE_c/dn: E_c changes by dn[c] . dm as the unit normal
+                        turns by a small dm (perpendicular to n; per radian) */
+} irc_gradient;
+
+/*
+ * irc_cache_lookup, and the gradient of what it interpolates: the same
+ * records with the same weights w_i, each record's extrapolation
+ * differentiated, dp = grad_t and dn = grad_r x n_i (a channel clamped at
+ * 0 contributes zeros), averaged with the weights; the weights' own
+ * derivatives are left out (why: docs/DESIGN.md, "What a record is").  A
+ * cache without translational (rotational) gradients answers dp (dn) = 0.
+ * rgb and grad must not be NULL (IRC_ERR_NULL); an SH cache answers
+ * IRC_ERR_UNSUPPORTED.  rgb, *weight, the status and the lookup counters
+ * are irc_cache_lookup's; on IRC_MISS grad is zero too, and
+ * IRC_ERR_NONFINITE also covers a gradient that overflows float.
+ */
+IRC_API int irc_cache_lookup_gradient(irc_cache *cache, const float p[3], const float n[3],
+                                      float rgb[3], irc_gradient *grad, float *weight);
+
+/*
+ * The ids (slot numbers) of the records a lookup at (p, n) would use, in no
+ * particular order: up to cap of them in ids, and how many there are in
+ * *count (which may exceed cap).  Either kind of cache (n NULL in an SH
+ * cache: free points).  For debugging and visualisation.  An id stays a
+ * record's until irc_pass_end, irc_merge or irc_cache_clear (which
+ * renumber or remove records) or its eviction.  Returns IRC_OK, or a
+ * negative error code.
+ */
+IRC_API int irc_cache_neighbours(irc_cache *cache, const float p[3], const float n[3],
+                                 uint32_t *ids, uint32_t cap, uint32_t *count);
+
+/*
+ * Share a block live between processes of one machine: one makes the
+ * cache (irc_init) in memory every process maps (a file or shm object
+ * mapped MAP_SHARED); each other joins it with irc_join, which builds that
+ * process's view in view (view_size >= IRC_VIEW_BYTES, aligned for a
+ * double, process-local, kept until irc_fini of the view).  The view holds
+ * this process's cfg->trace, cfg->context and cfg->port, so its misses call
+ * its own host; records, index, counters, passes and the lock are the
+ * block's, shared.  cfg->buffer is this process's mapping, at any address
+ * at the creator's offset from a 64-byte boundary (any mmap is); the port
+ * must be the creator's (posix's lock is process-shared; none shares
+ * nothing safely).  irc_fini of a view releases the view only; the
+ * creator's, after every view's, destroys the lock.  What a process's
+ * death leaves: irc_port.  The block is checked as irc_attach checks it
+ * (records and index under the read lock) and never written.  Returns
+ * IRC_OK and writes *cache; IRC_ERR_CONFIG when the block holds no cache
+ * of this build, sits at another offset, or the port differs;
+ * IRC_ERR_CORRUPT when it fails a check; IRC_ERR_NOMEM when view_size is
+ * too small or buffer_size smaller than the cache; or a negative code.
+ */
+#define IRC_VIEW_BYTES 1024u
+IRC_API int irc_join(const irc_config *cfg, void *view, size_t view_size, irc_cache **cache);
+
+/* The band-limited radiance arriving from the unit-ish direction w, sum
+ * over l, m of c_lm y_lm(w): what a host integrates its own BRDF against
+ * (e.g. over samples of a lobe whose product with the cosine is not
+ * zonal).  Returns as irc_sh_irradiance. */
+IRC_API int irc_sh_radiance(const irc_sh *sh, const float w[3], float rgb[3]);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* IRC_EXPERIMENTAL */

@@ -66,7 +66,8 @@ internal_defs() {
  */
 HEAD
     [ "$port" = posix ] && printf '#ifndef _POSIX_C_SOURCE\n#define _POSIX_C_SOURCE 200809L\n#endif\n'
-    printf '#define IRC_PORT_DEFAULT irc_port_%s\n#include "irrcache.h"\n' "$port"
+    # the library defines the experimental calls: it sees their declarations
+    printf '#define IRC_EXPERIMENTAL\n#define IRC_PORT_DEFAULT irc_port_%s\n#include "irrcache.h"\n' "$port"
     for f in $HEADERS; do
         printf '\n/* ---- %s ---- */\n' "$f"
         strip "$f" | internal_decls

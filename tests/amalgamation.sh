@@ -48,6 +48,7 @@ done
 $B/threads > $B/threads.amalg.txt
 grep -q ", 0 errors" $B/threads.amalg.txt || { echo "threads: errors"; exit 1; }
 # Size: the amalgamation's text against the same code built file by file.
+rm -rf $B/lib
 $MAKE -s BUILD=$B/lib OPT=-O2 lib
 text() { size "$@" | awk 'NR > 1 { t += $1 } END { print t }'; }
 one=$(text $B/posix/irrcache-gcc.o)

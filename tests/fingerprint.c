@@ -8,6 +8,7 @@
  * on one compiler and machine; the hashes are not portable across
  * compilers or flags, so no test pins them.
  */
+#define IRC_EXPERIMENTAL /* irc_cache_lookup_gradient (irrcache.h) */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>

@@ -4,6 +4,7 @@
  * config gets the defaults this build has.  Built and run by make test
  * (tests/run.sh, stage 1) against a library built with the switches;
  * prints "N passed, N failed". */
+#define IRC_EXPERIMENTAL /* irc_occlusion_compute, irc_sh_radiance */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>

@@ -1,4 +1,5 @@
 /* t_api.c -- config checks, footprints, bad input, callback failures. */
+#define IRC_EXPERIMENTAL /* irc_cache_neighbours (irrcache.h) */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>

@@ -3,6 +3,7 @@
  * per-call host pointer and the record's position and normal reach the
  * callback, a miss always gets its value when host threads outnumber
  * scratch slots, and a full pool is counted. */
+#define IRC_EXPERIMENTAL /* irc_occlusion_compute (irrcache.h) */
 #include <math.h>
 #include <pthread.h>
 #include <sched.h>

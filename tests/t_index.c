@@ -1,4 +1,5 @@
 /* t_index.c -- the octree returns exactly what a scan of every record does. */
+#define IRC_EXPERIMENTAL /* irc_cache_neighbours (irrcache.h) */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>

@@ -5,6 +5,7 @@
  * within 10 s, every record it then holds equals a fresh computation at
  * its query and is found by a lookup there, and the index passes the
  * checks irc_attach makes. */
+#define IRC_EXPERIMENTAL /* irc_join (irrcache.h) */
 #include <fcntl.h>
 #include <signal.h>
 #include <stdio.h>

@@ -1,4 +1,5 @@
 /* t_lookup.c -- weights, extrapolation, misses, full pools and eviction. */
+#define IRC_EXPERIMENTAL /* irc_cache_lookup_gradient, irc_cache_neighbours */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>

@@ -2,6 +2,7 @@
  * each at its own address, the creator's handle and the other's view
  * (irc_join), both filling at once; then every record is checked against a
  * fresh computation at its query, from both processes. */
+#define IRC_EXPERIMENTAL /* irc_join (irrcache.h) */
 #include <fcntl.h>
 #include <math.h>
 #include <signal.h>

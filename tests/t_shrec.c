@@ -3,6 +3,7 @@
  * emitter against closed forms, the clamped-cosine and Phong convolutions
  * against independent quadrature, Eq. 14-16 lookups by hand, and bad input.
  */
+#define IRC_EXPERIMENTAL /* irc_sh_radiance (irrcache.h) */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>

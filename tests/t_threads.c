@@ -1,5 +1,6 @@
 /* t_threads.c -- concurrent use (run under ThreadSanitizer by make test)
  * and determinism across thread counts. */
+#define IRC_EXPERIMENTAL /* irc_cache_neighbours (irrcache.h) */
 #include <math.h>
 #include <pthread.h>
 #include <stdlib.h>

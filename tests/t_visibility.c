@@ -1,5 +1,6 @@
 /* t_visibility.c -- visibility gradients against closed forms, and against
  * the Krivanek (Ward-Heckbert) gradient on the same points. */
+#define IRC_EXPERIMENTAL /* irc_occlusion_compute (irrcache.h) */
 #include <math.h>
 #include <string.h>
 
