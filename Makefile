@@ -176,6 +176,7 @@ LAYERS = top block index store kind,sample irr,sh api,persist
 cycles: $(LIBA)
 	sh tests/cycles.sh --self-test
 	LAYERS="$(LAYERS)" sh tests/cycles.sh $(OBJ)
+	sh tests/state.sh
 
 # Line and branch coverage of src/ (gcov): the core suite and the fuzz
 # corpora.  make test prints it too.

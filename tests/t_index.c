@@ -64,7 +64,7 @@ static void fill(irc_cache *c, uint32_t count, int decades, unsigned long long *
 static uint32_t compare(irc_cache *c, uint32_t queries, int decades, unsigned long long *st)
 {
     uint32_t *ids = malloc(sizeof(uint32_t) * 4096), *scan = malloc(sizeof(uint32_t) * 4096);
-    uint32_t q, found = 0, bad = 0, m = c->count, i0;
+    uint32_t q, found = 0, bad = 0, m = irc__st(c)->count, i0;
     /* Every record's position and squared reach, scanned whole per query:
      * the prefilter only skips the weight call where d >= a R already. */
     float *px = malloc(sizeof(float) * m * 4), *py = px + m, *pz = py + m, *r2 = pz + m;
@@ -89,7 +89,7 @@ static uint32_t compare(irc_cache *c, uint32_t queries, int decades, unsigned lo
             /* At the edge of a record's reach, in its tangent plane and
              * with its normal: accepted, and only just, which is where a
              * too-tight pruning bound would lose it. */
-            const irc__rec *r = irc__rec_at(c, (uint32_t)(xrand(st) * c->count));
+            const irc__rec *r = irc__rec_at(c, (uint32_t)(xrand(st) * irc__st(c)->count));
             float t1[3], t2[3], nd[3];
             double ang = xrand(st) * 6.283185307179586;
             double d = (0.95 + 0.049 * xrand(st)) * c->cfg.accuracy * r->r;
@@ -104,7 +104,7 @@ static uint32_t compare(irc_cache *c, uint32_t queries, int decades, unsigned lo
             }
         } else {
             /* Near a record, where weights are rarely zero. */
-            const irc__rec *r = irc__rec_at(c, (uint32_t)(xrand(st) * c->count));
+            const irc__rec *r = irc__rec_at(c, (uint32_t)(xrand(st) * irc__st(c)->count));
             float ni[3];
             irc__oct_decode(r->n, ni);
             for (k = 0; k < 3; k++) {
@@ -277,14 +277,14 @@ static int cmp_held(const void *a, const void *b)
 
 static held *hold_all(const irc_cache *c)
 {
-    held *h = calloc(c->count, sizeof *h);
+    held *h = calloc(irc__st(c)->count, sizeof *h);
     uint32_t i;
-    for (i = 0; i < c->count; i++) {
+    for (i = 0; i < irc__st(c)->count; i++) {
         memcpy(h[i].b, irc__rec_at(c, i), c->rec_size);
         h[i].used = (int)(irc__used(c)[i >> 6] >> (i & 63u) & 1u);
     }
     held_size = c->rec_size;
-    qsort(h, c->count, sizeof *h, cmp_held);
+    qsort(h, irc__st(c)->count, sizeof *h, cmp_held);
     return h;
 }
 
@@ -337,14 +337,14 @@ TEST(test_index_compact)
         before[i][4] = (float)irc_cache_lookup(c, qp[i], qn[i], before[i], &before[i][3]);
     }
     seen = runs_check(c, &irc__nodes(c)[0], &rk);
-    CHECK(seen == c->refs_live && rk.home == N && rk.bad > N / 2,
+    CHECK(seen == irc__st(c)->refs_live && rk.home == N && rk.bad > N / 2,
           "filled freely, lists are scattered (%u of %u out of run)", rk.bad, seen);
     h0 = hold_all(c);
     CHECK(irc_pass_begin(c) == IRC_OK && irc_pass_end(c, &added) == IRC_OK && added == 0,
           "empty pass");
     memset(&rk, 0, sizeof rk);
     seen = runs_check(c, &irc__nodes(c)[0], &rk);
-    CHECK(seen == c->refs_live && rk.home == N && rk.bad == 0,
+    CHECK(seen == irc__st(c)->refs_live && rk.home == N && rk.bad == 0,
           "after the pass: %u of %u references or homes out of run", rk.bad, seen);
     h1 = hold_all(c);
     CHECK(memcmp(h0, h1, sizeof *h0 * N) == 0, "records or CLOCK bits changed in the move");
@@ -404,7 +404,7 @@ TEST(test_index_grow_faces)
     }
     seen = runs_check(c, &irc__nodes(c)[0], &k);
     CHECK(irc_cache_stats(c, &st) == IRC_OK && st.records == 40 && k.home == 40 &&
-              seen == c->refs_live && irc__block_sane(c) &&
+              seen == irc__st(c)->refs_live && irc__block_sane(c) &&
               st.evictions == 27 + 6 + 80 - 40 && lost == 0,
           "%u homes in the index for %u records, %u not found", k.home, (unsigned)st.records,
           lost);
@@ -524,9 +524,9 @@ TEST(test_index_far_scales)
             r.radius = (float)(size[k] * (0.01 + 0.02 * xrand(&st)));
             CHECK(irc_cache_insert(c, &r) == IRC_OK, "insert");
         }
-        frexp(c->root_h, &e);
+        frexp(irc__st(c)->root_h, &e);
         CHECK((e - 1 == 99) == (k == 0), "scene %d: root half edge 2^%d", k, e - 1);
-        CHECK(k == 0 || c->depth >= 30, "scene %d: depth %u", k, (unsigned)c->depth);
+        CHECK(k == 0 || irc__st(c)->depth >= 30, "scene %d: depth %u", k, (unsigned)irc__st(c)->depth);
         found = compare(c, irc_t_quick ? 1000u : 4000u, 0, &st);
         CHECK(found > 100, "scene %d: found %u", k, found);
         block_free(&cfg);
@@ -547,14 +547,14 @@ TEST(test_index_root_refused)
     fill(c, 1000, 0, &st);
     CHECK(irc__index_root_sane(c), "the root a fill makes");
     for (k = 0; k < 3; k++) {
-        const double was = c->root_c[0];
+        const double was = irc__st(c)->root_c[0];
         unsigned char *copy = malloc(cfg.buffer_size);
-        c->root_c[0] = k == 0 ? 40.0 * c->root_h : k == 1 ? was + c->root_h * 0x1p-40 : 1e300;
+        irc__st(c)->root_c[0] = k == 0 ? 40.0 * irc__st(c)->root_h : k == 1 ? was + irc__st(c)->root_h * 0x1p-40 : 1e300;
         memcpy(copy, cfg.buffer, cfg.buffer_size);
         ac = cfg;
         CHECK(irc_attach(&ac, &a) == IRC_ERR_CORRUPT, "root %d attached", k);
         CHECK(memcmp(copy, cfg.buffer, cfg.buffer_size) == 0, "root %d: block changed", k);
-        c->root_c[0] = was;
+        irc__st(c)->root_c[0] = was;
         free(copy);
     }
     ac = cfg;

@@ -206,8 +206,8 @@ TEST(test_threads_determinism)
                  (size_t)NPTS * cache[0]->rec_size) == 0,
           "stored records differ byte for byte");
     CHECK(memcmp(irc__nodes(cache[0]), irc__nodes(cache[1]),
-                 (size_t)cache[0]->nodes_used * sizeof(irc__node)) == 0 &&
-          cache[0]->nodes_used == cache[1]->nodes_used, "index differs");
+                 (size_t)irc__st(cache[0])->nodes_used * sizeof(irc__node)) == 0 &&
+          irc__st(cache[0])->nodes_used == irc__st(cache[1])->nodes_used, "index differs");
     for (k = 0; k < 2; k++)
         block_free(&cfg[k]);
 }

@@ -5,7 +5,7 @@
  * Byte 0 of the block holds the distance (1..64) from the block's start to
  * the cache, which sits on the first 64-byte boundary after byte 0; from
  * there on:
- *   struct irc_cache | lock | scratch slots | records | index entries | nodes |
+ *   struct irc_cache | its state | lock | scratch slots | records | index entries | nodes |
  *   references | counter stripes | CLOCK bits (only with eviction) | the strata's table
  *   (the columns' angles for the sampler and the gradients' weights)
  * each part on a 64-byte boundary, reached by its offset from the cache.
@@ -19,10 +19,11 @@
 #include "../irr/estimator.h"
 #include "../sample/sampler.h"
 #include "../store/lock.h"
+#include "../store/stats.h"
 #include "config.h"
 
 typedef struct irc__layout {
-    uint64_t lock, scratch, records, ix, nodes, refs, ctr, used, gtab, total;
+    uint64_t state, lock, scratch, records, ix, nodes, refs, ctr, used, gtab, total;
     uint64_t slot_bytes, slot_rec, lock_bytes;
     uint64_t soff[IRC__S_COUNT];
     uint32_t rec_size, off[IRC__PARTS], n_parts, node_cap, ref_cap, samples, keep_geom;
@@ -112,12 +113,16 @@ static void irc__layout_of(const irc_config *cfg, uint32_t capacity, irc__layout
     const irc__kind *k = irc__kind_of(cfg->features);
     uint64_t at = irc__up(sizeof(irc_cache));
     irc__record_layout(cfg, k, l);
+    /* the state on lines of its own: inserts write it, lookups read the
+     * cache's form beside it */
+    l->state = at;
+    at += irc__up(sizeof(irc__state));
     /* The slot ends with the record a lookup-or-compute builds, of the
      * cache's kind: on the stack it would sit over the whole lookup. */
     l->slot_bytes = irc__slot_layout(cfg, k, l);
     l->slot_rec = l->slot_bytes;
     l->slot_bytes += irc__up(k->record_bytes);
-    l->slot_bytes += IRC__ALIGN; /* the owner's head (cache.h irc__slot_owner) */
+    l->slot_bytes += IRC__ALIGN; /* the owner's head (form.h irc__slot_owner) */
     l->node_cap = irc__node_cap(capacity);
     l->ref_cap = irc__ref_cap(capacity);
     l->lock_bytes = irc__up(cfg->port->lock_size ? cfg->port->lock_size : 1);
@@ -207,6 +212,7 @@ static void irc__set_parts(irc_cache *c, const irc__layout *l)
     for (i = 0; i < IRC__S_COUNT; i++)
         c->soff[i] = (size_t)l->soff[i];
     c->total_bytes = (size_t)l->total;
+    c->o_state = (size_t)l->state;
     c->o_lock = (size_t)l->lock;
     c->o_scratch = (size_t)l->scratch;
     c->o_records = (size_t)l->records;
@@ -318,37 +324,38 @@ static int irc__parts_same(const irc_cache *a, const irc_cache *b)
            a->keep_geom == b->keep_geom &&
            a->node_cap == b->node_cap && a->ref_cap == b->ref_cap && a->lock_bytes == b->lock_bytes &&
            a->slot_bytes == b->slot_bytes && a->slot_rec == b->slot_rec &&
-           a->total_bytes == b->total_bytes && a->o_lock == b->o_lock &&
+           a->total_bytes == b->total_bytes && a->o_state == b->o_state && a->o_lock == b->o_lock &&
            a->o_scratch == b->o_scratch && a->o_records == b->o_records && a->o_ix == b->o_ix &&
            a->o_nodes == b->o_nodes && a->o_refs == b->o_refs && a->o_ctr == b->o_ctr && a->o_used == b->o_used &&
            a->o_gtab == b->o_gtab;
 }
 
-/* The header's mutable fields in range. */
-static int irc__mutable_sane(const irc_cache *h)
+/* The state's fields in range, for the cache c. */
+static int irc__state_sane(const irc_cache *c, const irc__state *h)
 {
-    return h->count <= h->capacity && h->nodes_used >= 1u && h->nodes_used <= h->node_cap &&
-           h->refs_used <= h->ref_cap && h->refs_live <= h->refs_used &&
+    return h->count <= c->capacity && h->nodes_used >= 1u && h->nodes_used <= c->node_cap &&
+           h->refs_used <= c->ref_cap && h->refs_live <= h->refs_used &&
            (h->ref_free == IRC__NIL || h->ref_free < h->refs_used) && h->indexed <= h->count &&
-           (uint64_t)h->refs_live + (h->capacity - h->indexed) <= h->ref_cap &&
-           h->hand < h->capacity && h->depth <= IRC__LEVELS && h->root_set <= 1u &&
-           h->pass_open <= 1u && h->pass_base <= h->capacity && h->pending <= h->capacity - h->pass_base &&
+           (uint64_t)h->refs_live + (c->capacity - h->indexed) <= c->ref_cap &&
+           h->hand < c->capacity && h->depth <= IRC__LEVELS && h->root_set <= 1u &&
+           h->pass_open <= 1u && h->pass_base <= c->capacity && h->pending <= c->capacity - h->pass_base &&
            h->packed <= h->pending &&
-           (uint32_t)h->torn <= h->capacity && (uint32_t)(h->torn >> 32) <= h->capacity &&
+           (uint32_t)h->torn <= c->capacity && (uint32_t)(h->torn >> 32) <= c->capacity &&
            h->writing <= 1u &&
            irc__finite_d(h->root_c[0]) && irc__finite_d(h->root_c[1]) &&
            irc__finite_d(h->root_c[2]) && h->root_h >= 0.0 && h->root_h <= 1e39 &&
-           (!h->root_set || irc__index_root_sane(h));
+           (!h->root_set || irc__root_ok(h->root_c, h->root_h));
 }
 
 /* Whether a block's header is one irc_init could have written: its
  * stored config resolves to itself, and every size and offset equals what
- * that config and capacity give; the mutable fields are in range.  The
- * switches are stored resolved (0 or 1) and read back as IRC_OFF / IRC_ON.
+ * that config and capacity give; its state (at offset at of the buffer,
+ * then o_state) is in range.  The switches are stored resolved (0 or 1) and read back as IRC_OFF / IRC_ON.
  * IRC_OK, IRC_ERR_CORRUPT, or IRC_ERR_UNSUPPORTED for a block asking for
  * what this build leaves out. */
-static int irc__header_sane(const irc_config *cfg, const irc_cache *h)
+static int irc__header_sane(const irc_config *cfg, const irc_cache *h, size_t at)
 {
+    irc__state state;
     irc_port lockless;
     irc_config in = h->cfg, r;
     irc_cache e;
@@ -385,7 +392,10 @@ static int irc__header_sane(const irc_config *cfg, const irc_cache *h)
     irc__set_parts(&e, &l);
     if (!irc__parts_same(&e, h) || h->strata != r.strata_theta * r.strata_phi)
         return IRC_ERR_CORRUPT;
-    return irc__mutable_sane(h) ? IRC_OK : IRC_ERR_CORRUPT;
+    /* o_state is the layout's, and the block holds total_bytes from at
+     * (irc__find); a copy, as the state may lie unaligned until moved */
+    IRC_MEMCPY(&state, (const unsigned char *)cfg->buffer + at + h->o_state, sizeof state);
+    return irc__state_sane(h, &state) ? IRC_OK : IRC_ERR_CORRUPT;
 }
 
 
@@ -407,9 +417,9 @@ static int irc__move_checked(const irc_config *cfg, irc_cache *head, size_t was,
     head->home = (irc_cache *)(void *)(b + pad);
     /* A writer killed inside the lock left it mid-write: repaired, not
      * refused (repair.c). */
-    if (head->home->writing || head->home->torn) {
+    if (irc__st(head)->writing || irc__st(head)->torn) {
         irc__repair_locked(head);
-        head->home->writing = 0;
+        irc__st(head)->writing = 0;
     }
     if (irc__block_sane(head))
         return IRC_OK;
@@ -433,7 +443,7 @@ int irc_attach(const irc_config *cfg, irc_cache **out)
         return st;
     if (!irc__port_ok(port) || port->lock_size > head.lock_bytes)
         return IRC_ERR_CONFIG;
-    if ((st = irc__header_sane(cfg, &head)) < 0)
+    if ((st = irc__header_sane(cfg, &head, was)) < 0)
         return st;
     head.port = port;
     pad = irc__pad(cfg->buffer);
@@ -486,7 +496,7 @@ int irc_join(const irc_config *cfg, void *view, size_t view_size, irc_cache **ou
         port->lock_size > head.lock_bytes ||
         !irc__same_bytes((const unsigned char *)name, (const unsigned char *)head.port_name, 16))
         return IRC_ERR_CONFIG;
-    if ((st = irc__header_sane(cfg, &head)) < 0)
+    if ((st = irc__header_sane(cfg, &head, at)) < 0)
         return st;
     home = (irc_cache *)(void *)((unsigned char *)cfg->buffer + at);
     IRC_MEMCPY(v, home, sizeof *v);

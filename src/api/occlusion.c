@@ -2,7 +2,7 @@
  * occlusion.c -- irc_occlusion_compute: a hemisphere's net visibility and
  * its gradient from the silhouettes (visibility.c), without a record.
  */
-#include "../block/cache.h"
+#include "../block/form.h"
 #include "../block/check.h"
 #include "../irr/estimator.h"
 #include "../sample/sampler.h"

@@ -21,13 +21,13 @@ int irc_pass_begin(irc_cache *c)
         return st;
     if (irc__write_lock(c) < 0)
         return IRC_ERR_PORT;
-    if (c->home->pass_open) {
+    if (irc__st(c)->pass_open) {
         st = IRC_ERR_STATE;
     } else {
-        c->home->pass_base = c->home->count;
-        c->port->store(&c->home->pending, 0);
-        c->port->store(&c->home->packed, 0);
-        c->home->pass_open = 1;
+        irc__st(c)->pass_base = irc__st(c)->count;
+        c->port->store(&irc__st(c)->pending, 0);
+        c->port->store(&irc__st(c)->packed, 0);
+        irc__st(c)->pass_open = 1;
     }
     irc__write_unlock(c);
     return st;
@@ -42,33 +42,33 @@ int irc_pass_end(irc_cache *c, uint32_t *added)
         return st;
     if (irc__write_lock(c) < 0)
         return IRC_ERR_PORT;
-    if (!c->home->pass_open) {
+    if (!irc__st(c)->pass_open) {
         irc__write_unlock(c);
         return IRC_ERR_STATE;
     }
-    pend = c->port->load(&c->home->pending);
-    room = c->capacity - c->home->pass_base;
+    pend = c->port->load(&irc__st(c)->pending);
+    room = c->capacity - irc__st(c)->pass_base;
     n = pend < (uint64_t)room ? (uint32_t)pend : room;
     /* Fewer whole than reserved: a process died while it packed one, and
      * which is torn cannot be told; the pass's records are dropped (their
      * queries compute them again). */
-    if (c->port->load(&c->home->packed) != n)
+    if (c->port->load(&irc__st(c)->packed) != n)
         n = 0;
     /* Slot order is the order threads happened to finish in; the
      * canonical order is not.  Two queries that made the same record made
      * it once as far as the cache is concerned. */
-    irc__sort(c, c->home->pass_base, n);
-    kept = irc__unique(c, c->home->pass_base, n);
-    irc__zero_slots(c, c->home->pass_base + kept, n - kept);
+    irc__sort(c, irc__st(c)->pass_base, n);
+    kept = irc__unique(c, irc__st(c)->pass_base, n);
+    irc__zero_slots(c, irc__st(c)->pass_base + kept, n - kept);
     /* Committed in canonical order (each one clamped by those before,
      * found through the index), indexed in a scattered one (compact.c):
      * without clamping only the scattered order indexes them. */
     for (i = 0; i < kept && c->cfg.clamp_neighbours; i++) {
-        c->home->count = c->home->pass_base + i + 1;
-        irc__commit_locked(c, c->home->pass_base + i);
+        irc__st(c)->count = irc__st(c)->pass_base + i + 1;
+        irc__commit_locked(c, irc__st(c)->pass_base + i);
     }
     if (!c->cfg.clamp_neighbours) {
-        c->home->count = c->home->pass_base + kept;
+        irc__st(c)->count = irc__st(c)->pass_base + kept;
         irc__count(c, IRC__C_INSERTS, kept);
     }
     if (kept) {
@@ -76,9 +76,9 @@ int irc_pass_end(irc_cache *c, uint32_t *added)
         irc__index_rebuild(c);
     }
     irc__index_compact(c);
-    c->home->pass_open = 0;
-    c->port->store(&c->home->pending, 0);
-    c->port->store(&c->home->packed, 0);
+    irc__st(c)->pass_open = 0;
+    c->port->store(&irc__st(c)->pending, 0);
+    c->port->store(&irc__st(c)->packed, 0);
     irc__write_unlock(c);
     if (added)
         *added = kept;

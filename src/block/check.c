@@ -1,7 +1,7 @@
 /*
  * check.c -- the checks every call makes of the vectors it is given.
  */
-#include "cache.h"
+#include "form.h"
 #include "check.h"
 
 int irc__check_vec(const float v[3])

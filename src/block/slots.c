@@ -1,12 +1,12 @@
 /*
  * Scratch slots: one per record computation in flight (cfg.threads), each
- * owned through a word in its head (cache.h irc__slot_owner) that holds
+ * owned through a word in its head (form.h irc__slot_owner) that holds
  * the claiming process's port token, so that a slot whose process died
  * can be taken over (irc_port owner / owner_alive), and the second the
  * claiming thread's (irc_port thread), so that a call nested in its own
  * cache's callback is told so instead of waiting for its own slot.
  */
-#include "cache.h"
+#include "form.h"
 #include "slots.h"
 
 /* The claiming process's token: the port's (its process id), or 1 for

@@ -17,10 +17,10 @@ void irc__set(irc_cache *c, uint64_t *w, uint64_t v)
 
 void irc__mark(irc_cache *c, uint32_t a, uint32_t b)
 {
-    irc__set(c, &c->home->torn, (uint64_t)(uint32_t)(a + 1u) | (uint64_t)(uint32_t)(b + 1u) << 32);
+    irc__set(c, &irc__st(c)->torn, (uint64_t)(uint32_t)(a + 1u) | (uint64_t)(uint32_t)(b + 1u) << 32);
 }
 
-void irc__unmark(irc_cache *c) { c->port->store(&c->home->torn, 0); }
+void irc__unmark(irc_cache *c) { c->port->store(&irc__st(c)->torn, 0); }
 
 void irc__rec_swap(irc_cache *c, uint32_t i, uint32_t j)
 {

@@ -19,20 +19,20 @@ void irc__node_empty(irc__node *n)
 
 void irc__root_cube(const irc_cache *c, irc__cube *q)
 {
-    q->c[0] = c->home->root_c[0];
-    q->c[1] = c->home->root_c[1];
-    q->c[2] = c->home->root_c[2];
-    q->h = c->home->root_h;
+    q->c[0] = irc__st(c)->root_c[0];
+    q->c[1] = irc__st(c)->root_c[1];
+    q->c[2] = irc__st(c)->root_c[2];
+    q->h = irc__st(c)->root_h;
 }
 
 /* The cube of the cell of depth d with low corner lo (units). */
 void irc__cell_cube(const irc_cache *c, const int64_t lo[3], int d, irc__cube *q)
 {
-    const double unit = 2.0 * c->home->root_h * 0x1p-58;
+    const double unit = 2.0 * irc__st(c)->root_h * 0x1p-58;
     int i;
-    q->h = IRC_LDEXP(c->home->root_h, -d);
+    q->h = IRC_LDEXP(irc__st(c)->root_h, -d);
     for (i = 0; i < 3; i++)
-        q->c[i] = c->home->root_c[i] - c->home->root_h + (double)lo[i] * unit + q->h;
+        q->c[i] = irc__st(c)->root_c[i] - irc__st(c)->root_h + (double)lo[i] * unit + q->h;
 }
 
 /* The half edge of the box a record of this reach is placed by: wider
@@ -64,12 +64,12 @@ static int64_t irc__units(double x, double k, double lok)
 /* The box clipped to the root (inside: it needed no clipping). */
 void irc__box_of(const irc_cache *c, const float p[3], double half, irc__box *b)
 {
-    const double k = 0x1p57 / c->home->root_h; /* units a length */
+    const double k = 0x1p57 / irc__st(c)->root_h; /* units a length */
     const int64_t top = IRC__ONE - 1;
     int i;
     b->inside = 1;
     for (i = 0; i < 3; i++) {
-        const double lok = (c->home->root_c[i] - c->home->root_h) * k;
+        const double lok = (irc__st(c)->root_c[i] - irc__st(c)->root_h) * k;
         const int64_t x0 = irc__units((double)p[i] - half, k, lok),
                       x1 = irc__units((double)p[i] + half, k, lok),
                       xc = irc__units((double)p[i], k, lok);
@@ -84,7 +84,7 @@ void irc__box_of(const irc_cache *c, const float p[3], double half, irc__box *b)
  * box then overlaps at most two a side. */
 int irc__level(const irc_cache *c, double half, int cap)
 {
-    double h = c->home->root_h;
+    double h = irc__st(c)->root_h;
     int d = 0;
     while (d < cap && 0.5 * h >= half) {
         h *= 0.5;
@@ -116,13 +116,13 @@ void irc__quantize(irc__ref *e, const irc__cube *q, const float p[3], double rea
 /* References an insertion may take beyond the one kept for it. */
 uint32_t irc__spare(const irc_cache *c)
 {
-    const irc_cache *h = c->home;
+    const irc__state *h = irc__st(c);
     return c->ref_cap - h->refs_live - (c->capacity - h->indexed);
 }
 
 static uint32_t irc__ref_take(irc_cache *c)
 {
-    irc_cache *h = c->home;
+    irc__state *h = irc__st(c);
     uint32_t r = h->ref_free;
     if (r != IRC__NIL)
         h->ref_free = irc__refs(c)[r].next;
@@ -135,9 +135,9 @@ static uint32_t irc__ref_take(irc_cache *c)
 
 void irc__ref_give(irc_cache *c, uint32_t r)
 {
-    irc__refs(c)[r].next = c->home->ref_free;
-    c->home->ref_free = r;
-    c->home->refs_live--;
+    irc__refs(c)[r].next = irc__st(c)->ref_free;
+    irc__st(c)->ref_free = r;
+    irc__st(c)->refs_live--;
 }
 
 /* A new reference to id at the head of node's list, whose cube is q. */
@@ -211,12 +211,12 @@ uint32_t irc__list_len(const irc_cache *c, uint32_t r, uint32_t limit)
 
 uint32_t irc__block_alloc(irc_cache *c)
 {
-    uint32_t b = c->home->nodes_used, i;
+    uint32_t b = irc__st(c)->nodes_used, i;
     if (c->node_cap - b < 8u)
         return 0;
     for (i = 0; i < 8; i++)
         irc__node_empty(&irc__nodes(c)[b + i]);
-    c->home->nodes_used += 8;
+    irc__st(c)->nodes_used += 8;
     return b;
 }
 

@@ -58,7 +58,7 @@ static void irc__number_homes(irc_cache *c, irc__node *n, void *ud)
     uint32_t *k = (uint32_t *)ud, r;
     const irc__ref *refs = irc__refs(c);
     for (r = n->head; r != IRC__NIL; r = refs[r].next)
-        if (refs[r].id & IRC__REF_HOME && (refs[r].id & ~IRC__REF_HOME) < c->home->count)
+        if (refs[r].id & IRC__REF_HOME && (refs[r].id & ~IRC__REF_HOME) < irc__st(c)->count)
             irc__ix(c)[refs[r].id & ~IRC__REF_HOME].refs = (*k)++;
 }
 
@@ -84,7 +84,7 @@ static void irc__permute_refs(irc_cache *c, uint32_t live)
 {
     irc__ref *refs = irc__refs(c), e;
     uint32_t i, to, r, nr, k = live;
-    for (r = c->home->ref_free; r != IRC__NIL; r = nr) {
+    for (r = irc__st(c)->ref_free; r != IRC__NIL; r = nr) {
         nr = refs[r].next;
         refs[r].next = k++;
     }
@@ -96,8 +96,8 @@ static void irc__permute_refs(irc_cache *c, uint32_t live)
         }
     for (i = 0; i < live; i++)
         refs[i].next = (refs[i].next & IRC__REF_HOME) ? IRC__NIL : i + 1u;
-    c->home->refs_used = live;
-    c->home->ref_free = IRC__NIL;
+    irc__st(c)->refs_used = live;
+    irc__st(c)->ref_free = IRC__NIL;
 }
 
 static void irc__swap_used(irc_cache *c, uint32_t a, uint32_t b)
@@ -120,7 +120,7 @@ static void irc__count_list(irc_cache *c, irc__node *n, void *ud)
     uint32_t r;
     (void)ud;
     for (r = n->head; r != IRC__NIL; r = refs[r].next)
-        if ((refs[r].id & ~IRC__REF_HOME) < c->home->count)
+        if ((refs[r].id & ~IRC__REF_HOME) < irc__st(c)->count)
             irc__ix(c)[refs[r].id & ~IRC__REF_HOME].refs++;
 }
 
@@ -157,7 +157,7 @@ static void irc__permute(irc_cache *c, uint32_t count, uint32_t live)
  * back: else there is no permutation of them. */
 static int irc__refs_whole(const irc_cache *c)
 {
-    const irc_cache *h = c->home;
+    const irc__state *h = irc__st(c);
     uint32_t r, n = 0;
     for (r = h->ref_free; r != IRC__NIL && n <= h->refs_used; r = irc__refs(c)[r].next)
         n++;
@@ -168,7 +168,7 @@ static int irc__refs_whole(const irc_cache *c)
  * else there is no permutation, and the index is left as it is. */
 static int irc__homes_numbered(irc_cache *c)
 {
-    const irc_cache *h = c->home;
+    const irc__state *h = irc__st(c);
     uint32_t r, k = 0;
     if (h->indexed != h->count || !irc__refs_whole(c))
         return 0;
@@ -183,7 +183,7 @@ static int irc__homes_numbered(irc_cache *c)
 
 void irc__index_compact(irc_cache *c)
 {
-    const uint32_t count = c->home->count, live = c->home->refs_live;
+    const uint32_t count = irc__st(c)->count, live = irc__st(c)->refs_live;
     uint32_t k = 0;
     if (count == 0)
         return;
@@ -195,7 +195,7 @@ void irc__index_compact(irc_cache *c)
     irc__walk_nodes(c, irc__number_list, &k);
     irc__permute_refs(c, live);
     irc__permute(c, count, live);
-    c->home->refs_taken = 0;
+    irc__st(c)->refs_taken = 0;
 }
 
 /* Filled freely, references are taken in the order records arrive, so a
@@ -212,7 +212,7 @@ void irc__index_compact(irc_cache *c)
  * stopped). */
 void irc__index_tidy(irc_cache *c)
 {
-    irc_cache *h = c->home;
+    irc__state *h = irc__st(c);
     uint32_t k = 0;
     if (h->refs_taken < 4096u || h->refs_taken < h->refs_live / 4u || !irc__refs_whole(c))
         return;
@@ -235,14 +235,14 @@ void irc__index_tidy(irc_cache *c)
 void irc__index_clear(irc_cache *c)
 {
     IRC_MEMSET(irc__ix(c), 0, (size_t)c->capacity * sizeof(irc__ixe));
-    IRC_MEMSET(irc__nodes(c), 0, (size_t)c->home->nodes_used * sizeof(irc__node));
-    IRC_MEMSET(irc__refs(c), 0, (size_t)c->home->refs_used * sizeof(irc__ref));
+    IRC_MEMSET(irc__nodes(c), 0, (size_t)irc__st(c)->nodes_used * sizeof(irc__node));
+    IRC_MEMSET(irc__refs(c), 0, (size_t)irc__st(c)->refs_used * sizeof(irc__ref));
     irc__index_reset(c);
 }
 
 void irc__index_rebuild(irc_cache *c)
 {
-    const uint32_t n = c->home->count;
+    const uint32_t n = irc__st(c)->count;
     uint64_t k;
     for (k = 0; k < n; k++)
         irc__index_insert(c, (uint32_t)(k * 2654435761u % n));
@@ -250,7 +250,7 @@ void irc__index_rebuild(irc_cache *c)
 
 void irc__forget_locked(irc_cache *c)
 {
-    c->home->hand = 0;
+    irc__st(c)->hand = 0;
     if (c->o_used)
         IRC_MEMSET(irc__used(c), 0, ((size_t)c->capacity + 63u) / 64u * sizeof(uint64_t));
     irc__index_clear(c);
@@ -258,7 +258,7 @@ void irc__forget_locked(irc_cache *c)
 
 void irc__clear_locked(irc_cache *c)
 {
-    c->home->count = 0;
+    irc__st(c)->count = 0;
     IRC_MEMSET(irc__rec_at(c, 0), 0, (size_t)c->capacity * c->rec_size);
     irc__forget_locked(c);
 }

@@ -61,14 +61,14 @@
 void irc__index_reset(irc_cache *c)
 {
     irc__node_empty(&irc__nodes(c)[0]);
-    c->home->nodes_used = 1;
-    c->home->refs_used = 0;
-    c->home->ref_free = IRC__NIL;
-    c->home->refs_live = 0;
-    c->home->indexed = 0;
-    c->home->refs_taken = 0;
-    c->home->root_set = 0;
-    c->home->depth = 0;
+    irc__st(c)->nodes_used = 1;
+    irc__st(c)->refs_used = 0;
+    irc__st(c)->ref_free = IRC__NIL;
+    irc__st(c)->refs_live = 0;
+    irc__st(c)->indexed = 0;
+    irc__st(c)->refs_taken = 0;
+    irc__st(c)->root_set = 0;
+    irc__st(c)->depth = 0;
 }
 
 /* The reaches on the path to the home of a record at cell point at, down
@@ -147,7 +147,7 @@ static void irc__split(irc_cache *c, const irc__cell *x, int d)
     uint32_t r, nr, keep = IRC__NIL, *tail = &keep, extra = 0, moving = 0, len = 0, b;
     irc__box bx;
     unsigned mask;
-    if (c->node_cap - c->home->nodes_used < 8u)
+    if (c->node_cap - irc__st(c)->nodes_used < 8u)
         return;
     for (r = n->head; r != IRC__NIL; r = refs[r].next, len++)
         if (irc__moves(c, refs[r].id & ~IRC__REF_HOME, x, d, &bx, &mask)) {
@@ -159,8 +159,8 @@ static void irc__split(irc_cache *c, const irc__cell *x, int d)
     if (2u * moving <= len || extra > irc__spare(c) || !(b = irc__block_alloc(c)))
         return;
     n->child = b;
-    if ((uint32_t)d + 1u > c->home->depth)
-        c->home->depth = (uint32_t)d + 1u;
+    if ((uint32_t)d + 1u > irc__st(c)->depth)
+        irc__st(c)->depth = (uint32_t)d + 1u;
     for (r = n->head; r != IRC__NIL; r = nr) {
         const uint32_t id = refs[r].id & ~IRC__REF_HOME;
         unsigned oct;
@@ -228,22 +228,22 @@ static void irc__root_fit(irc_cache *c, const double lo[3], const double hi[3])
     if (irc__max3(ext) > m) m = irc__max3(ext);
     if (m < 1e-30) m = 1e-30;
     IRC_FREXP(m, &e);
-    c->home->root_h = IRC_LDEXP(1.0, e);
+    irc__st(c)->root_h = IRC_LDEXP(1.0, e);
     for (i = 0; i < 3; i++)
-        c->home->root_c[i] = irc__cell_centre(mid[i], c->home->root_h);
+        irc__st(c)->root_c[i] = irc__cell_centre(mid[i], irc__st(c)->root_h);
     for (;;) {
         for (i = 0; i < 3; i++)
-            if (lo[i] < c->home->root_c[i] - c->home->root_h || hi[i] >= c->home->root_c[i] + c->home->root_h)
+            if (lo[i] < irc__st(c)->root_c[i] - irc__st(c)->root_h || hi[i] >= irc__st(c)->root_c[i] + irc__st(c)->root_h)
                 break;
         if (i == 3)
             break;
-        c->home->root_h *= 2.0;
+        irc__st(c)->root_h *= 2.0;
     }
-    if (c->home->root_h > IRC__ROOT_MAX) {
-        c->home->root_h = IRC__ROOT_MAX;
-        c->home->root_c[0] = c->home->root_c[1] = c->home->root_c[2] = 0.0;
+    if (irc__st(c)->root_h > IRC__ROOT_MAX) {
+        irc__st(c)->root_h = IRC__ROOT_MAX;
+        irc__st(c)->root_c[0] = irc__st(c)->root_c[1] = irc__st(c)->root_c[2] = 0.0;
     }
-    IRC_ASSERT(irc__index_root_sane(c->home)); /* what the walk relies on */
+    IRC_ASSERT(irc__index_root_sane(c)); /* what the walk relies on */
 }
 
 /* The root holds no point on its upper faces: a point on a face shared by
@@ -308,10 +308,10 @@ static int irc__grown_ok(const irc_cache *c, const float p[3])
     double at[3];
     int i;
     for (i = 0; i < 3; i++)
-        at[i] = c->home->root_c[i] +
-                ((double)p[i] >= c->home->root_c[i] + c->home->root_h ? c->home->root_h
-                                                                      : -c->home->root_h);
-    return irc__root_ok(at, 2.0 * c->home->root_h);
+        at[i] = irc__st(c)->root_c[i] +
+                ((double)p[i] >= irc__st(c)->root_c[i] + irc__st(c)->root_h ? irc__st(c)->root_h
+                                                                      : -irc__st(c)->root_h);
+    return irc__root_ok(at, 2.0 * irc__st(c)->root_h);
 }
 
 /* Doubles a root that has children toward p: the old root becomes the
@@ -324,7 +324,7 @@ static int irc__grow(irc_cache *c, const float p[3])
     uint32_t b, r, nr, keep = IRC__NIL, *tail = &keep, up = IRC__NIL;
     irc__node *was, *nodes;
     int i, oct = 0;
-    if (2.0 * c->home->root_h > IRC__ROOT_MAX || c->home->depth >= IRC__LEVELS ||
+    if (2.0 * irc__st(c)->root_h > IRC__ROOT_MAX || irc__st(c)->depth >= IRC__LEVELS ||
         !irc__grown_ok(c, p) || !(b = irc__block_alloc(c)))
         return 0;
     nodes = irc__nodes(c);
@@ -342,15 +342,15 @@ static int irc__grow(irc_cache *c, const float p[3])
     }
     *tail = IRC__NIL;
     nodes[0].head = keep;
-    c->home->depth++;
+    irc__st(c)->depth++;
     irc__root_cube(c, &old);
     for (i = 0; i < 3; i++) {
         /* up only where p lies past the upper face (irc__in_root) */
         int below = !((double)p[i] >= old.c[i] + old.h);
         oct |= below << i;
-        c->home->root_c[i] = old.c[i] + (below ? -old.h : old.h);
+        irc__st(c)->root_c[i] = old.c[i] + (below ? -old.h : old.h);
     }
-    c->home->root_h = 2.0 * old.h;
+    irc__st(c)->root_h = 2.0 * old.h;
     was = &nodes[b + (uint32_t)oct];
     *was = nodes[0];
     irc__node_empty(&nodes[0]);
@@ -364,7 +364,7 @@ static int irc__grow(irc_cache *c, const float p[3])
         refs[r].next = nodes[0].head;
         nodes[0].head = r;
     }
-    IRC_ASSERT(irc__index_root_sane(c->home));
+    IRC_ASSERT(irc__index_root_sane(c));
     return 1;
 }
 
@@ -373,17 +373,17 @@ static int irc__grow(irc_cache *c, const float p[3])
 static void irc__root_cover(irc_cache *c, const float p[3])
 {
     irc__cube q;
-    if (!c->home->root_set) {
+    if (!irc__st(c)->root_set) {
         double at[3];
         at[0] = (double)p[0]; at[1] = (double)p[1]; at[2] = (double)p[2];
         irc__root_fit(c, at, at);
-        c->home->root_set = 1;
+        irc__st(c)->root_set = 1;
     }
     irc__root_cube(c, &q);
     if (irc__in_root(&q, p))
         return;
     if (!irc__nodes(c)[0].child) {
-        if (c->home->root_h < IRC__ROOT_MAX) /* else p stays outside, in the list */
+        if (irc__st(c)->root_h < IRC__ROOT_MAX) /* else p stays outside, in the list */
             irc__root_refit(c, p);
         return;
     }
@@ -405,10 +405,10 @@ void irc__index_insert(irc_cache *c, uint32_t id)
     e->reach = irc__reach(c, irc__rec_at(c, id)->r);
     half = irc__half(p, (double)e->reach);
     irc__root_cover(c, p);
-    if (!irc__nodes(c)[0].child && c->home->root_h < IRC__ROOT_MAX &&
+    if (!irc__nodes(c)[0].child && irc__st(c)->root_h < IRC__ROOT_MAX &&
         irc__list_len(c, irc__nodes(c)[0].head, IRC__SPLIT) >= IRC__SPLIT)
         irc__root_refit(c, p);
-    if (half < c->home->root_h) {
+    if (half < irc__st(c)->root_h) {
         /* the box's corners too, rounded outward: a box the root cuts
          * (records on the face it was fitted to) would be placed in the
          * root's list */
@@ -453,7 +453,7 @@ void irc__index_insert(irc_cache *c, uint32_t id)
     }
     IRC_ASSERT(pl.count <= 8u); /* what lets the count above be skipped */
     e->refs = pl.count;
-    c->home->indexed++;
+    irc__st(c)->indexed++;
     /* A leaf is tried for a split when its list passes SPLIT and every
      * SPLIT references after: one that may not split (no nodes or
      * references to spare, or a list mostly of its own level) is not
@@ -509,7 +509,7 @@ void irc__index_remove(irc_cache *c, uint32_t id)
     irc__cover(c, &b, irc__level(c, half, IRC__LEVELS), 1, irc__unlink_at, &u);
     IRC_ASSERT(u.found == e->refs);
     if (e->refs)
-        c->home->indexed--;
+        irc__st(c)->indexed--;
     e->refs = 0;
     /* Reaches are left as they are: an upper bound stays exact. */
 }

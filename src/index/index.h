@@ -5,7 +5,7 @@
 #ifndef IRC_INDEX_H
 #define IRC_INDEX_H
 
-#include "../block/cache.h"
+#include "../block/form.h"
 #include "../util.h"
 #include "irrcache.h"
 /* Octree node.  Its cube is implied by the path from the root.  12 bytes. */
@@ -81,7 +81,7 @@ int irc__root_ok(const double c[3], double h); /* the same test of a centre and 
 void irc__index_range(const irc_cache *c, const float p[3], float range, irc__visit_fn fn,
                       void *ud);
 
-/* The index's parts of the block (cache.h's offsets). */
+/* The index's parts of the block (form.h's offsets). */
 static inline irc__ixe *irc__ix(const irc_cache *c)
 {
     return (irc__ixe *)(void *)irc__part(c, c->o_ix);

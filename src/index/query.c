@@ -131,10 +131,10 @@ static void irc__probe_set(const irc_cache *c, const float p[3], float range, fl
     uint64_t bits;
     int i, e;
     /* h = 2^e, -99 <= e <= 99 (irc__index_root_sane) */
-    IRC_MEMCPY(&bits, &c->home->root_h, sizeof bits);
+    IRC_MEMCPY(&bits, &irc__st(c)->root_h, sizeof bits);
     e = (int)(bits >> 52 & 0x7ffu) - 1023;
     for (i = 0; i < 3; i++)
-        pr->p[i] = irc__fixed(p[i], (float)c->home->root_c[i] - irc__pow2f(e), e);
+        pr->p[i] = irc__fixed(p[i], (float)irc__st(c)->root_c[i] - irc__pow2f(e), e);
     /* The factors in float: their roundings (relative 2^-23 at most) lie
      * well inside the margins 1e-5 and 4e-6 each carries. */
     inv_h = irc__pow2f(-e);
@@ -410,8 +410,9 @@ int irc__root_ok(const double c[3], double h)
     return 1;
 }
 
-int irc__index_root_sane(const irc_cache *h)
+int irc__index_root_sane(const irc_cache *c)
 {
+    const irc__state *h = irc__st(c);
     return irc__root_ok(h->root_c, h->root_h);
 }
 
@@ -450,7 +451,7 @@ static uint32_t irc__path(const irc_cache *c, const irc__probe *pr)
 uint32_t irc__index_query(const irc_cache *c, const float p[3], irc__visit_fn fn, void *ud)
 {
     irc__probe pr;
-    if (!c->home->root_set)
+    if (!irc__st(c)->root_set)
         return 0;
     irc__probe_set(c, p, -1.0f, 1.0f, fn, ud, &pr);
     return irc__path(c, &pr);
@@ -462,7 +463,7 @@ void irc__index_range(const irc_cache *c, const float p[3], float range, irc__vi
                       void *ud)
 {
     irc__probe pr;
-    if (!c->home->root_set)
+    if (!irc__st(c)->root_set)
         return;
     irc__probe_set(c, p, range >= 0.0f ? range : -1.0f, 1.0f / c->cfg.accuracy, fn, ud, &pr);
     (void)irc__descend(c, &pr);

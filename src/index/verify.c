@@ -58,10 +58,10 @@ int irc__rec_sane(const irc_cache *c, uint32_t id)
  * empty). */
 static int irc__node_sane(const irc_cache *c, const irc__node *n)
 {
-    const uint32_t used = c->home->nodes_used;
+    const uint32_t used = irc__st(c)->nodes_used;
     if (n->child && (n->child > used || used - n->child < 8u || (n->child - 1u) % 8u))
         return 0;
-    if (n->head != IRC__NIL && n->head >= c->home->refs_used)
+    if (n->head != IRC__NIL && n->head >= irc__st(c)->refs_used)
         return 0;
     return irc__finite(n->reach);
 }
@@ -95,11 +95,11 @@ static int irc__list_sane(const irc_cache *c, uint32_t r, irc__tally *t)
     uint32_t others = 0;
     for (; r != IRC__NIL; r = refs[r].next) {
         uint32_t id;
-        if (r >= c->home->refs_used)
+        if (r >= irc__st(c)->refs_used)
             return 0;
         id = refs[r].id & ~IRC__REF_HOME;
-        if (id >= c->home->count ||
-            ++t->entries > c->home->refs_live || (others && (refs[r].id & IRC__REF_HOME)))
+        if (id >= irc__st(c)->count ||
+            ++t->entries > irc__st(c)->refs_live || (others && (refs[r].id & IRC__REF_HOME)))
             return 0;
         others |= !(refs[r].id & IRC__REF_HOME);
         t->all += irc__id_hash(id);
@@ -118,7 +118,7 @@ static int irc__entries_sane(const irc_cache *c, const irc__tally *t)
     const irc__ixe *ix = irc__ix(c);
     uint64_t refs = 0, all = 0, homes = 0;
     uint32_t id, indexed = 0;
-    for (id = 0; id < c->home->count; id++) {
+    for (id = 0; id < irc__st(c)->count; id++) {
         if (!(ix[id].reach >= 0.0f) || !irc__finite(ix[id].reach))
             return 0;
         refs += ix[id].refs;
@@ -129,7 +129,7 @@ static int irc__entries_sane(const irc_cache *c, const irc__tally *t)
     for (; id < c->capacity; id++)
         if (ix[id].refs)
             return 0;
-    return refs == c->home->refs_live && indexed == c->home->indexed && all == t->all &&
+    return refs == irc__st(c)->refs_live && indexed == irc__st(c)->indexed && all == t->all &&
            homes == t->homes;
 }
 
@@ -138,10 +138,10 @@ static int irc__entries_sane(const irc_cache *c, const irc__tally *t)
 static int irc__free_sane(const irc_cache *c)
 {
     uint32_t r, n = 0;
-    for (r = c->home->ref_free; r != IRC__NIL; r = irc__refs(c)[r].next)
-        if (r >= c->home->refs_used || ++n > c->home->refs_used - c->home->refs_live)
+    for (r = irc__st(c)->ref_free; r != IRC__NIL; r = irc__refs(c)[r].next)
+        if (r >= irc__st(c)->refs_used || ++n > irc__st(c)->refs_used - irc__st(c)->refs_live)
             return 0;
-    return n == c->home->refs_used - c->home->refs_live;
+    return n == irc__st(c)->refs_used - irc__st(c)->refs_live;
 }
 
 /* The tree from the root, depth first with a stack of one frame a level:
@@ -167,19 +167,19 @@ static int irc__tree_sane(const irc_cache *c)
             continue;
         }
         k = n->child + next[top]++;
-        if (++visits > c->home->nodes_used || top + 1u > IRC__LEVELS ||
+        if (++visits > irc__st(c)->nodes_used || top + 1u > IRC__LEVELS ||
             !irc__node_sane(c, &nodes[k]) || !irc__list_sane(c, nodes[k].head, &t))
             return 0;
         stack[++top] = k;
         next[top] = 0;
     }
-    return t.entries == c->home->refs_live && irc__free_sane(c) && irc__entries_sane(c, &t);
+    return t.entries == irc__st(c)->refs_live && irc__free_sane(c) && irc__entries_sane(c, &t);
 }
 
 int irc__block_sane(const irc_cache *c)
 {
     uint32_t id;
-    for (id = 0; id < c->home->count; id++)
+    for (id = 0; id < irc__st(c)->count; id++)
         if (!irc__rec_sane(c, id))
             return 0;
     return irc__tree_sane(c);

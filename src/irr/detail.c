@@ -13,7 +13,7 @@
  * spreads per-pixel noise over every detail pixel (bench/README.md,
  * "Detail computed per pixel").
  */
-#include "../block/cache.h"
+#include "../block/form.h"
 #include "../block/check.h"
 #include "../store/lookup.h"
 #include "../store/stats.h"

@@ -9,7 +9,7 @@
  * (its inverse hit distance, shared by its two boundaries) and a few
  * multiply-adds.
  */
-#include "../block/cache.h"
+#include "../block/form.h"
 #include "../sample/grid.h"
 #include "../sample/sampler.h"
 #include "estimator.h"

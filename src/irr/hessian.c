@@ -11,7 +11,7 @@
  * over its edges of (n.c) I1/(2 pi) (Lambert's formula, c = r0 x r1), whose
  * second derivatives in x have the closed forms below.  No ray is cast.
  */
-#include "../block/cache.h"
+#include "../block/form.h"
 #include "../sample/sampler.h"
 #include "../sample/strata.h"
 #include "estimator.h"

@@ -3,7 +3,7 @@
  * mean distance, radius and leak guard from the stratified samples of one
  * hemisphere; the gradients come from gradient.c.
  */
-#include "../block/cache.h"
+#include "../block/form.h"
 #include "../block/octa.h"
 #include "../sample/sampler.h"
 #include "estimator.h"

@@ -4,7 +4,7 @@
  * Ward-Heckbert weight and gradient extrapolation as the store's table,
  * and the irradiance calls, thin wrappers over the store.
  */
-#include "../block/cache.h"
+#include "../block/form.h"
 #include "../block/check.h"
 #include "../block/octa.h"
 #include "../kind/weight.h"

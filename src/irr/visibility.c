@@ -28,7 +28,7 @@
  * triangles around one extra ray at the zenith); each segment is
  * integrated by the trapezoid rule.  Edges without a silhouette keep Krivanek's terms (gradient.c).
  */
-#include "../block/cache.h"
+#include "../block/form.h"
 #include "../block/check.h"
 #include "../sample/sampler.h"
 #include "../sample/strata.h"

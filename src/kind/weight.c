@@ -2,7 +2,7 @@
  * weight.c -- whether a record counts at a query, with what weight, and the
  * value it extrapolates there.
  */
-#include "../block/cache.h"
+#include "../block/form.h"
 #include "../block/octa.h"
 #include "../irr/estimator.h"
 #include "../sample/sampler.h"

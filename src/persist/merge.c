@@ -97,20 +97,20 @@ int irc_merge(irc_cache *c, uint64_t fingerprint, const void *data, size_t size)
         return IRC_ERR_NULL;
     if ((st = irc__write_lock_idle(c)) < 0)
         return st;
-    st = irc__snap_check(c, fingerprint, d, size, c->capacity - c->home->count, &count);
+    st = irc__snap_check(c, fingerprint, d, size, c->capacity - irc__st(c)->count, &count);
     if (st < 0) {
         irc__write_unlock(c);
         return st;
     }
-    n = c->home->count + count;
+    n = irc__st(c)->count + count;
     for (i = 0; i < count; i++)
         irc__convert(c, d + IRC__SNAP_HEAD + (size_t)i * c->rec_size,
-                     irc__bytes(c, c->home->count + i), 0);
+                     irc__bytes(c, irc__st(c)->count + i), 0);
     /* Counted in before the sort moves them among the others (repair.c). */
-    c->home->count = n;
+    irc__st(c)->count = n;
     irc__sort(c, 0, n);
     kept = irc__unique(c, 0, n);
-    c->home->count = kept;
+    irc__st(c)->count = kept;
     irc__zero_slots(c, kept, n - kept);
     /* The index and CLOCK start over from the canonical order. */
     irc__forget_locked(c);

@@ -92,7 +92,7 @@ static void irc__header(const irc_cache *c, uint64_t fingerprint, unsigned char 
     irc__le_put(h + 4, IRC_SNAPSHOT_VERSION, 2);
     irc__le_put(h + 6, c->kind_id, 2);
     irc__le_put(h + 8, c->cfg.features, 4);
-    irc__le_put(h + 12, c->home->count, 4);
+    irc__le_put(h + 12, irc__st(c)->count, 4);
     irc__le_put(h + 16, c->rec_size, 4);
     irc__le_put(h + 20, irc__cfg_word(c, 0), 2);
     irc__le_put(h + 22, irc__cfg_word(c, 1), 2);
@@ -118,7 +118,7 @@ int irc_snapshot_size(irc_cache *c, size_t *bytes)
         return IRC_ERR_NULL;
     if (irc__read_lock(c) < 0)
         return IRC_ERR_PORT;
-    n = irc__snap_bytes(c, c->home->count);
+    n = irc__snap_bytes(c, irc__st(c)->count);
     irc__read_unlock(c);
     if (n > (uint64_t)(size_t)-1)
         return IRC_ERR_NOMEM;
@@ -155,7 +155,7 @@ static int irc__write_locked(irc_cache *c, uint64_t fingerprint, unsigned char *
     irc__header(c, fingerprint, buf);
     if ((st = irc__emit(fn, ctx, out, &at, buf, IRC__SNAP_HEAD, &crc)) < 0)
         return st;
-    for (id = 0; id < c->home->count; id++)
+    for (id = 0; id < irc__st(c)->count; id++)
         for (from = 0; from < c->rec_size; from += n) {
             const unsigned char *r = (const unsigned char *)irc__rec_at(c, id) + from;
             n = irc__convert_part(c, r, buf, from, 64u, 1);
@@ -181,7 +181,7 @@ int irc_snapshot_write(irc_cache *c, uint64_t fingerprint, void *buffer, size_t 
         return IRC_ERR_NULL;
     if (irc__read_lock(c) < 0)
         return IRC_ERR_PORT;
-    if (!write && irc__snap_bytes(c, c->home->count) > (uint64_t)size)
+    if (!write && irc__snap_bytes(c, irc__st(c)->count) > (uint64_t)size)
         st = IRC_ERR_NOMEM;
     else
         st = irc__write_locked(c, fingerprint, (unsigned char *)buffer, write, context, written);
@@ -262,7 +262,7 @@ int irc_snapshot_read(irc_cache *c, uint64_t fingerprint, const void *data, size
     for (i = 0; i < count; i++) {
         irc__convert(c, d + IRC__SNAP_HEAD + (size_t)i * c->rec_size,
                      (unsigned char *)irc__rec_at(c, i), 0);
-        c->home->count = i + 1;
+        irc__st(c)->count = i + 1;
         irc__index_insert(c, i);
     }
     irc__write_unlock(c);

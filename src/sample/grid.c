@@ -3,10 +3,10 @@
  * the gradient estimators need depends on the configuration only (the
  * strata's boundaries and centres), so the sines, cosines and row weights
  * sit in a table made once at irc_init, one per grid level, in the block
- * (cache.h, irc__gtab).  The sampler takes its columns' boundary angles
+ * (form.h, irc__gtab).  The sampler takes its columns' boundary angles
  * from it, the gradients (irr/gradient.c) their weights.
  */
-#include "../block/cache.h"
+#include "../block/form.h"
 #include "grid.h"
 
 /* The table: four padded rows of floats, cos and sin of each column's

@@ -6,7 +6,7 @@
  * sin^2(theta) = (j + u1)/M and phi = 2 pi (k + u2)/N: every stratum carries
  * the same cosine-weighted measure pi/(MN).
  */
-#include "../block/cache.h"
+#include "../block/form.h"
 #include "../block/check.h"
 #include "../store/trace.h"
 #include "sampler.h"

@@ -5,7 +5,7 @@
 #ifndef IRC_SAMPLER_H
 #define IRC_SAMPLER_H
 
-#include "../block/cache.h"
+#include "../block/form.h"
 #include "grid.h"
 
 /* One stratum's sample: the estimator needs radiance and distance, nothing
@@ -15,7 +15,7 @@ typedef struct irc__sample {
     float d;         /* hit distance; +inf when escaped; NaN when failed */
 } irc__sample;
 
-/* A slot's parts (cache.h, IRC__S_*), where layout.c placed them; s is
+/* A slot's parts (kind.h, IRC__S_*), where layout.c placed them; s is
  * the start of the slot's working area, where its samples lie. */
 static inline unsigned char *irc__slot_part(const irc_cache *c, const void *s, int part)
 {

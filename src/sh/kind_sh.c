@@ -4,7 +4,7 @@
  * the extrapolation of Eq. 14-16 as the store's table, and the SH calls,
  * thin wrappers over the store.
  */
-#include "../block/cache.h"
+#include "../block/form.h"
 #include "../block/check.h"
 #include "../block/octa.h"
 #include "../kind/weight.h"

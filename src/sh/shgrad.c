@@ -4,7 +4,7 @@
  * (SH-gradient paper, Eq. 6-13), with the silhouette singularity of the
  * surface-integral form taken over the strata grid.
  */
-#include "../block/cache.h"
+#include "../block/form.h"
 #include "../sample/sampler.h"
 #include "../sample/strata.h"
 #include "shrec.h"

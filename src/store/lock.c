@@ -25,7 +25,7 @@
 
 void irc__repair_locked(irc_cache *c)
 {
-    irc_cache *h = c->home;
+    irc__state *h = irc__st(c);
     uint64_t t = c->port->load(&h->torn);
     uint32_t id, k;
     /* A torn slot's radius 0 fails every later check, so the slot stays
@@ -63,15 +63,15 @@ int irc__write_lock(irc_cache *c)
     int st = c->port->write_lock(irc__lock(c));
     if (st < 0)
         return IRC_ERR_PORT;
-    if (st > 0 || c->port->load(&c->home->writing))
+    if (st > 0 || c->port->load(&irc__st(c)->writing))
         irc__repair_locked(c);
-    irc__set(c, &c->home->writing, 1);
+    irc__set(c, &irc__st(c)->writing, 1);
     return IRC_OK;
 }
 
 void irc__write_unlock(irc_cache *c)
 {
-    c->port->store(&c->home->writing, 0);
+    c->port->store(&irc__st(c)->writing, 0);
     c->port->write_unlock(irc__lock(c));
 }
 
@@ -97,7 +97,7 @@ int irc__write_lock_idle(irc_cache *c)
 {
     if (irc__write_lock(c) < 0)
         return IRC_ERR_PORT;
-    if (!c->home->pass_open)
+    if (!irc__st(c)->pass_open)
         return IRC_OK;
     irc__write_unlock(c);
     return IRC_ERR_STATE;

@@ -7,7 +7,7 @@
  * callback runs with no lock held.  Counters are updated only once a call
  * has succeeded.
  */
-#include "../block/cache.h"
+#include "../block/form.h"
 #include "../block/check.h"
 #include "../block/slots.h"
 #include "lookup.h"

@@ -1,6 +1,6 @@
 /*
  * stats.c -- the counters, in stripes of one cache line so that threads on
- * other cores rarely write the same line (cache.h, IRC__STRIPES), and
+ * other cores rarely write the same line (stats.h, IRC__STRIPES), and
  * irc_cache_stats, which sums them and reports the block's bytes.
  */
 #include "../block/cache.h"
@@ -8,6 +8,11 @@
 #include "../index/index.h"
 #include "lock.h"
 #include "stats.h"
+
+static inline uint64_t *irc__stripe(const irc_cache *c, uint32_t s)
+{
+    return (uint64_t *)(void *)irc__part(c, c->o_ctr + (size_t)s * IRC__ALIGN);
+}
 
 /* The calling thread's stripe: its stack's address above 64 KiB
  * granules, hashed (threads' stacks lie megabytes apart; one thread's
@@ -44,9 +49,9 @@ int irc_cache_stats(irc_cache *c, irc_stats *out)
     if (irc__read_lock(c) < 0)
         return IRC_ERR_PORT;
     IRC_MEMSET(out, 0, sizeof *out);
-    out->records = c->home->count;
-    out->index_nodes = c->home->nodes_used;
-    out->index_refs = c->home->refs_live;
+    out->records = irc__st(c)->count;
+    out->index_nodes = irc__st(c)->nodes_used;
+    out->index_refs = irc__st(c)->refs_live;
     irc__read_unlock(c);
     out->capacity = c->capacity;
     out->inserts = irc__counter(c, IRC__C_INSERTS);

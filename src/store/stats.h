@@ -6,6 +6,19 @@
 
 #include "../kind/kind.h"
 
+enum {
+    IRC__C_INSERTS, IRC__C_EVICTIONS, IRC__C_LOOKUPS, IRC__C_HITS,
+    IRC__C_COMPUTES, IRC__C_RAYS, IRC__C_NOT_STORED, IRC__C_WAITS, IRC__C_COUNT
+}; /* IRC__C_COUNT * 8 bytes: one stripe, at most a cache line */
+
+
+/* The counters, in IRC__STRIPES stripes of one cache line each (a part of
+ * the block at o_ctr): a thread adds to the stripe its stack's address
+ * picks, so threads on other cores rarely write the same line, and
+ * irc_cache_stats sums the stripes.  Any thread may use any stripe; the
+ * adds stay atomic. */
+#define IRC__STRIPES 8u
+
 /* Adds v to counter which (IRC__C_*) in the caller's stripe. */
 void irc__count(irc_cache *c, int which, uint64_t v);
 

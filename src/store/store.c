@@ -22,9 +22,9 @@ static uint32_t irc__clock_victim(irc_cache *c)
 {
     uint64_t *used = irc__used(c);
     for (;;) {
-        uint32_t id = c->home->hand;
+        uint32_t id = irc__st(c)->hand;
         uint64_t *w = &used[id >> 6], bit = 1ull << (id & 63u);
-        c->home->hand = id + 1 == c->capacity ? 0 : id + 1;
+        irc__st(c)->hand = id + 1 == c->capacity ? 0 : id + 1;
         if (!(c->port->load(w) & bit))
             return id;
         c->port->store(w, c->port->load(w) & ~bit);
@@ -93,19 +93,19 @@ static void irc__pack_at(irc_cache *c, const void *rec, const float un[3], uint3
  * see): without a free slot the record is not stored. */
 static int irc__defer(irc_cache *c, const void *rec, const float un[3])
 {
-    const uint64_t room = (uint64_t)(c->capacity - c->home->pass_base);
-    uint64_t k = c->port->load(&c->home->pending);
+    const uint64_t room = (uint64_t)(c->capacity - irc__st(c)->pass_base);
+    uint64_t k = c->port->load(&irc__st(c)->pending);
     /* Reserved only when there is room: a refused record leaves the
      * block as it was. */
     for (;;) {
         if (k >= room)
             return IRC_ERR_FULL;
-        if (c->port->cas(&c->home->pending, k, k + 1))
+        if (c->port->cas(&irc__st(c)->pending, k, k + 1))
             break;
-        k = c->port->load(&c->home->pending);
+        k = c->port->load(&irc__st(c)->pending);
     }
-    irc__pack_at(c, rec, un, c->home->pass_base + (uint32_t)k);
-    c->port->fetch_add(&c->home->packed, 1);
+    irc__pack_at(c, rec, un, irc__st(c)->pass_base + (uint32_t)k);
+    c->port->fetch_add(&irc__st(c)->packed, 1);
     return IRC_OK;
 }
 
@@ -114,12 +114,12 @@ static int irc__defer(irc_cache *c, const void *rec, const float un[3])
 static int irc__store(irc_cache *c, const void *rec, const float un[3])
 {
     uint32_t id;
-    if (c->home->pass_open)
+    if (irc__st(c)->pass_open)
         return irc__defer(c, rec, un);
     if (irc__write_lock(c) < 0)
         return IRC_ERR_PORT;
-    if (c->home->count < c->capacity) {
-        id = c->home->count++;
+    if (irc__st(c)->count < c->capacity) {
+        id = irc__st(c)->count++;
     } else if (c->o_used) {
         id = irc__clock_victim(c);
         irc__index_remove(c, id);
@@ -164,7 +164,7 @@ int irc__record_get(irc_cache *c, const irc__kind *want, uint32_t id, void *out)
         return IRC_ERR_RANGE;
     if (irc__read_lock(c) < 0)
         return IRC_ERR_PORT;
-    st = id < c->home->count ? IRC_OK : IRC_MISS;
+    st = id < irc__st(c)->count ? IRC_OK : IRC_MISS;
     if (st == IRC_OK)
         c->kind->unpack(c, irc__rec_at(c, id), out);
     irc__read_unlock(c);

@@ -3,7 +3,7 @@
  * the library casts (records' hemispheres, visibility bisections, per-pixel
  * probes, confirming rays) goes through irc__cast.
  */
-#include "../block/cache.h"
+#include "../block/form.h"
 #include "trace.h"
 
 /* One call of the host's callback: every ray cast goes through here, so

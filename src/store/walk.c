@@ -105,7 +105,7 @@ static void irc__visit_take(void *ud, uint32_t id)
  * irc_pass_end, outside any lookup. */
 static int irc__walk_index(irc_cache *c, irc__walk *v)
 {
-    int lock = !c->home->pass_open;
+    int lock = !irc__st(c)->pass_open;
     if (lock && irc__read_lock(c) < 0)
         return IRC_ERR_PORT;
     irc__index_query(c, v->q->p,
@@ -153,7 +153,7 @@ int irc__collect(irc_cache *c, const irc__query *q, uint32_t *ids, uint32_t cap,
 int irc__positions(irc_cache *c, const uint32_t *ids, uint32_t n, float (*pos)[3],
                    uint32_t *nrm)
 {
-    int lock = !c->home->pass_open;
+    int lock = !irc__st(c)->pass_open;
     uint32_t i;
     if (lock && irc__read_lock(c) < 0)
         return IRC_ERR_PORT;
