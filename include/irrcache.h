@@ -26,27 +26,19 @@
  *     irc_port_none, one thread at a time.
  *   - Stability: while the major version is 0, a minor release may change
  *     the block's layout (irc_attach refuses an older block) but keeps the
- *     contracts of what this header declares, except five experimental
- *     calls, research tools whose contract may change in any release, which
- *     a host sees only if it defines IRC_EXPERIMENTAL before it includes
- *     this header: irc_occlusion_compute, irc_cache_lookup_gradient,
- *     irc_cache_neighbours, irc_join and irc_sh_radiance ("Experimental
- *     calls", at the end; the library always defines them).
+ *     contracts of what this header declares, but for the experimental
+ *     calls, which a host sees only if it defines IRC_EXPERIMENTAL before
+ *     it includes this header ("Experimental calls", at the end).
  *   - Determinism: for a trace callback that answers the same ray with the
  *     same hit, a record is a pure function of (p, n, config, seed, and the
- *     _px call's footprint): its random numbers are a hash of the query, so
- *     it is the same bit for bit in any thread at any time (a callback that
- *     samples with numbers of its own adds that noise).  Which records a
- *     multi-threaded fill stores depends on timing, unless it fills in
- *     passes ("Fill passes").
+ *     _px call's footprint), bit for bit in any thread at any time.  Which
+ *     records a multi-threaded fill stores depends on timing, unless it
+ *     fills in passes ("Fill passes").
  *   - Errors: every call returns an int: IRC_OK (0), a positive informational
- *     status (IRC_MISS, IRC_NOT_STORED), or a negative irc_status code.  A
- *     call that returns a negative code has left the block byte for byte as
- *     it was, but for the port's lock object (a lock-unlock pair need not
- *     restore its bytes).  A negative code from the trace callback is passed
- *     through unchanged: keep host codes below IRC_ERR_LAST.  A host that
- *     tests `st < 0` must still look for IRC_NOT_STORED (or at
- *     irc_stats.not_stored) to learn that its pool is full.
+ *     status (IRC_MISS, IRC_NOT_STORED: the pool is full), or a negative
+ *     irc_status code, after which the block is byte for byte as it was but
+ *     for the port's lock object.  A negative code from the trace callback
+ *     is passed through unchanged: keep host codes below IRC_ERR_LAST.
  *
  * Quick start (examples/minimal.c is a complete host): a config zeroed but
  * for trace and context (zero fields: the measured defaults), irc_footprint,
@@ -204,9 +196,8 @@ typedef struct irc_trace_args {
     irc_hit *hits;          /* count results to write, same order */
     uint32_t count;         /* 1 <= count <= cfg.max_batch */
     /* 1: confirming rays (cfg.check_visibility) from the query toward a
-     * record each, raised toward the plane of n (bench/README.md,
-     * "Confirming rays on curved surfaces"), so a ray may point a little
-     * below it.  Only status and dist are read: shading may be skipped. */
+     * record each, raised toward the plane of n (so a ray may point a
+     * little below it).  Only status and dist are read: skip shading. */
     uint32_t visibility_only;
 } irc_trace_args;
 
@@ -219,18 +210,13 @@ typedef struct irc_trace_args {
  * a negative code of the host's own to abort the record (the library
  * returns it unchanged and keeps nothing of the record).
  *
- * Several bounces (Radiance's -ab N) take one cache per level: level k's
- * callback shades each hit with level k+1's lookup (radiance = emission +
- * direct + albedo / pi * E_{k+1}), passing args->host on; the last level's
- * with direct light only.  Fill deeper levels outside passes (a pass would
- * hide their records from its other lookups).  Levels cannot deadlock
- * (docs/DESIGN.md, "Threads and memory"; settings: bench/README.md,
- * "Several bounces"; a host: examples/levels.c).  A call that would
- * compute a record in a cache whose callback is running on this thread,
- * directly or through a cycle of caches, returns IRC_ERR_NESTED where the
- * port tells threads apart (irc_port thread: posix and c11) or runs one
- * (none).  Across threads a cycle can deadlock, each thread holding the
- * last slot of one cache: give every cache of a cycle as many slots
+ * Several bounces take one cache per level: level k's callback shades its
+ * hits with level k+1's lookup, passing args->host on (examples/levels.c;
+ * docs/DESIGN.md, "Threads and memory"); fill deeper levels outside
+ * passes.  Levels cannot deadlock.  A call that would compute a record in
+ * a cache whose callback runs on this thread, directly or through a cycle
+ * of caches, returns IRC_ERR_NESTED (ports with thread, or none).  Across
+ * threads a cycle can deadlock: give each cache of a cycle as many slots
  * (cfg.threads) as host threads call into it, or set no_wait.
  */
 typedef int (*irc_trace_fn)(const irc_trace_args *args);
@@ -248,25 +234,22 @@ typedef int (*irc_trace_fn)(const irc_trace_args *args);
  *   - read_lock / write_lock: block until the lock is held shared /
  *     exclusive; 0, or negative if it cannot be taken (the call returns
  *     IRC_ERR_PORT and has changed nothing).  Or 1 when the write lock's
- *     holder is a process that died holding it: write_lock then holds the
- *     lock, and the library repairs the block before it goes on (drops the
- *     record being written, rebuilds the index from the records); read_lock
- *     returns 1 without the lock, and the library takes the write lock to
- *     repair.  A port that cannot tell returns 0 or negative only.  The
- *     library never takes a lock it already holds and never upgrades one.
+ *     holder died holding it: write_lock then holds the lock and the
+ *     library repairs the block first; read_lock returns 1 without the
+ *     lock, and the library takes the write lock to repair.  A port that
+ *     cannot tell never returns 1.  The library never takes a lock it
+ *     already holds and never upgrades one.
  *   - read_unlock / write_unlock: release a lock this thread holds; cannot
  *     fail.
  *   - yield: let other threads run while this one waits for a scratch slot;
  *     NULL if the port cannot wait (single-threaded).
  *   - owner / owner_alive (both or neither; NULL: none): a scratch slot
  *     records the token of the process that claimed it, and a call that
- *     finds every slot taken (at once with no_wait, else every 256 waits)
- *     takes over a slot whose process is gone: a process killed inside a
- *     record computation does not hang the others (irc_join).
+ *     finds every slot taken takes over a slot whose process is gone.
  *     irc_port_posix has them, and its lock counts out a dead reader and
  *     takes over from a dead writer (1 above); irc_port_c11 has neither and
- *     recovers nothing until irc_attach.  What each port recovers, and its
- *     limits: docs/DESIGN.md, "Reliability: how".
+ *     recovers nothing until irc_attach (docs/DESIGN.md, "Reliability:
+ *     how", says what each port recovers).
  * The atomics act on naturally aligned 64-bit words inside the block.
  */
 typedef struct irc_port {
@@ -380,26 +363,24 @@ typedef struct irc_config {
                                 wait through the port's yield) */
     uint32_t evict;          /* an irc_evict (default IRC_EVICT_NONE) */
     /* An irc_switch: neighbour clamping (Krivanek et al. 2006) at every
-     * insert: the new record's R <= R_j + |x - x_j| over the records j within
-     * it, which are clamped back to R + |x - x_j|.  On for irradiance records
-     * (why: bench/README.md, "On real geometry"), off for SH records. */
+     * insert: R <= R_j + |x - x_j| over the records j within it, which are
+     * clamped back to R + |x - x_j|.  On for irradiance records, off for SH
+     * records (why: bench/README.md, "On real geometry"). */
     uint32_t clamp_neighbours;
     /* An irc_switch: confirming rays (V-Ray's "check sample visibility"):
      * the lookup_or_compute calls cast a ray from the query toward each
      * record they would use (up to 32; visibility_only = 1) and leave out
-     * those whose ray hits something before 0.9 of the way; with none left
-     * they compute a record.  On for irradiance records (why:
-     * bench/README.md, "Confirming rays on curved surfaces"), off for SH
-     * records; refused in a build without them (IRC_NO_SIGHT). */
+     * those hit before 0.9 of the way; with none left they compute.  On for
+     * irradiance records, off for SH records (why: bench/README.md,
+     * "Confirming rays on curved surfaces"); IRC_NO_SIGHT builds refuse it. */
     uint32_t check_visibility;
     /* Fields of one record kind: a kind's own, zero for its defaults,
      * and all zero in a config of the other kind (else IRC_ERR_CONFIG). */
     struct irc_config_irr {  /* irradiance records */
         /* After the M x N rays, this many more, one a stratum, into the
          * strata whose four neighbours' samples spread most (Radiance's
-         * -as; unbiased: a stratum's own sample never chooses it), which
-         * then take the mean of their two samples and the nearer distance,
-         * gradients included.  0..M N (default 0); not with VISIBILITY. */
+         * -as), which take the mean of their two samples.  0..M N
+         * (default 0); not with VISIBILITY. */
         uint32_t supersamples;
         /* An irc_switch: records keep a leak guard (irc_record.leak_guard,
          * 8 bytes) against light through thin walls.  Off by default (why:
@@ -412,13 +393,11 @@ typedef struct irc_config {
          * min_pixels (a default max_pixels is at least min_pixels). */
         float min_pixels;
         float max_pixels;
-        /* A _px record whose R (within the pixel bounds) spans fewer than
-         * full_pixels pixels (R / footprint) is sampled on M/2 x N/2 strata,
-         * below full_pixels / 2 on M/4 x N/4 (levels that keep >= 64 strata,
-         * >= 2 rows, >= 8 columns), coarsest first, refined keeping its
-         * rays.  Not with VISIBILITY, HESSIAN or supersamples.  Finite; 0
-         * (default) or negative: off (why: bench/README.md, "Records that
-         * cost what they serve"). */
+        /* A _px record whose R spans fewer than full_pixels pixels (R /
+         * footprint) is sampled on M/2 x N/2 strata, below full_pixels / 2
+         * on M/4 x N/4 (docs/DESIGN.md, "Records that cost what they
+         * serve").  Not with VISIBILITY, HESSIAN or supersamples.  Finite;
+         * 0 (default) or negative: off. */
         float full_pixels;
         /* The _px call first casts up to 8 probe rays; a point with a hit
          * within detail_pixels x footprint is answered from its own M x N
@@ -459,11 +438,9 @@ typedef struct irc_config {
 /*
  * Compile-time bounds on irc_footprint(), for static blocks: never less
  * than it asks for the same numbers (make test checks a grid of configs).
- * features: the irradiance cache's IRC_FEATURE_* bits; records:
- * max_records; s: strata M * N (4096 for an irradiance config's default,
- * 1024 for an SH config's); t: cfg.threads; b: cfg.max_batch; for SH
- * caches, bands L and channels ch.  In size_t arithmetic: on a 32-bit
- * target a bound above 4 GiB wraps.
+ * features: IRC_FEATURE_* bits; records: max_records; s: strata M * N
+ * (default 4096, SH 1024); t: cfg.threads; b: cfg.max_batch; SH: bands L,
+ * channels ch.  In size_t: on a 32-bit target a bound over 4 GiB wraps.
  */
 #define IRC_FOOTPRINT_BOUND(features, records, s, t, b)                          \
     (8192u + (size_t)(s) * 40u +                                                 \
@@ -488,13 +465,10 @@ typedef struct irc_cache irc_cache; /* lives inside cfg.buffer; opaque */
  * Bytes of block a cache of max_records (1..IRC_MAX_RECORDS) records needs
  * with this config (buffer and buffer_size ignored).  Thread safe.  Returns
  * IRC_OK and writes *bytes, IRC_ERR_CONFIG when that would not fit a
- * size_t, or a negative error code.  A lookup-or-compute call stores at
- * most one record: a frame of one such call a pixel needs max_records =
- * pixels at most (bench/README.md, "The corpus").  In a full pool inserts
- * fail (IRC_ERR_FULL), lookup_or_compute returns IRC_NOT_STORED and
- * computes every later miss again, and which records a fill pass kept
- * depends on timing: size the pool so that irc_stats.not_stored stays 0,
- * or turn on IRC_EVICT_CLOCK.
+ * size_t, or a negative error code.  A lookup-or-compute stores at most one
+ * record: a frame of one a pixel needs max_records = pixels at most.  A
+ * full pool computes every later miss again (IRC_NOT_STORED): size it so
+ * that irc_stats.not_stored stays 0, or turn on IRC_EVICT_CLOCK.
  */
 IRC_API int irc_footprint(const irc_config *cfg, uint32_t max_records, size_t *bytes);
 
@@ -512,18 +486,14 @@ IRC_API int irc_init(const irc_config *cfg, uint32_t max_records, irc_cache **ca
  * Re-attach a block that holds a cache made by irc_init (and filled) at
  * another address: a copy, a file read back, another process's mapping.
  * cfg->buffer and cfg->buffer_size name the block (its first buffer_size
- * bytes, as copied); cfg->trace, cfg->context and cfg->port are taken anew;
- * the other fields are the block's own and ignored.  When the address
- * differs from the old one modulo 64, the contents move to the new 64-byte
- * boundary (so a block shared live should sit at addresses equal modulo
- * 64, as pages do).  The lock is made afresh: no other thread or process
- * may use the cache during the call.  Same build of the library, same ABI
- * (pointer and size_t widths, byte order); for anything else use
- * snapshots.  Nothing in the block is trusted: its header, records and
- * index are checked in time linear in the block (docs/DESIGN.md, "Threads
- * and memory"), the strata's table and scratch slots made anew, and a
- * block whose writer died inside the write lock is repaired first
- * (irc_port, write_lock).  Returns IRC_OK and writes *cache;
+ * bytes, as copied); cfg->trace, cfg->context and cfg->port are taken anew,
+ * the other fields are the block's own.  At another address modulo 64 the
+ * contents move to the new 64-byte boundary.  The lock is made afresh: no
+ * other thread or process may use the cache during the call.  Same build,
+ * same ABI (pointer and size_t widths, byte order); else use snapshots.
+ * Nothing in the block is trusted: it is checked in time linear in the
+ * block, and one whose writer died in the write lock is repaired first
+ * (docs/DESIGN.md, "Reliability: how").  Returns IRC_OK and writes *cache;
  * IRC_ERR_CONFIG when the block holds no cache or one of another ABI or
  * layout version; IRC_ERR_CORRUPT when it fails a check; IRC_ERR_NOMEM
  * when buffer_size is smaller than the cache; or a negative error code
@@ -538,24 +508,21 @@ IRC_API int irc_fini(irc_cache *cache);
 /* ------------------------------------------------------------------------ */
 /* Irradiance records.                                                       */
 
-/* A record as the host sees it.  The cache stores a packed form: position,
- * radius and irradiance exactly; the normal to about 5e-5 rad; each
- * gradient channel to 2^-14 of its own largest component.  Read back
- * (irc_cache_record), a record has mean_dist NaN, rays and rays_used 0,
- * features = the cache's, and the gradients it does not carry zero. */
+/* A record as the host sees it, stored packed: position, radius and
+ * irradiance exactly; the normal to about 5e-5 rad; each gradient channel
+ * to 2^-14 of its largest component.  Read back (irc_cache_record):
+ * mean_dist NaN, rays and rays_used 0, features the cache's, the gradients
+ * it does not carry zero. */
 typedef struct irc_record {
     float p[3];          /* position */
     float n[3];          /* unit normal */
     float e[3];          /* RGB irradiance (see the units above) */
     /* R_i, the reach along axis (the major radius): the harmonic mean
-     * distance of the rays that hit, at most E/|grad E| per channel
-     * (TRANSLATION).  With HESSIAN, sqrt(2 E/|k|) along each eigen-axis of
-     * the tangent Hessian (curvature k), the major at most IRC_ANISOTROPY x
-     * the minor, bounded by the farthest hit instead of E/|grad E| and the
-     * split sphere with TRANSLATION, by the split sphere without.  Then
-     * clamped to [min_pixels, max_pixels] x footprint / a (the _px call) and
-     * [min_radius, max_radius]; with no hit, max_pixels x footprint / a,
-     * else max_radius, else the smallest float. */
+     * hit distance, at most E/|grad E| per channel (TRANSLATION); with
+     * HESSIAN sqrt(2 E/|k|) along each eigen-axis (docs/DESIGN.md, "Error
+     * control").  Then clamped to [min_pixels, max_pixels] x footprint / a
+     * (the _px call) and [min_radius, max_radius]; with no hit, max_pixels
+     * x footprint / a, else max_radius, else the smallest float. */
     float radius;
     float minor_radius;  /* the reach across axis, in (0, radius]; 0 in a
                             host's record means radius (a disk).  Only
@@ -564,9 +531,8 @@ typedef struct irc_record {
                             minor_radius < radius, else zero (a host's is
                             projected on the tangent plane) */
     float mean_dist;     /* that harmonic mean before the other bounds */
-    /* grad_t[c] = dE_c/dp: irradiance per unit of length along the surface
-     * (zero unless TRANSLATION), stored scaled down where needed so that
-     * |grad_t[c]| radius <= e[c], whatever set the radius. */
+    /* grad_t[c] = dE_c/dp per unit of length along the surface (zero
+     * unless TRANSLATION), scaled down where |grad_t[c]| radius > e[c]. */
     float grad_t[3][3];
     float grad_r[3][3];  /* grad_r[c]: E_c(n') ~ e[c] + (n x n').grad_r[c],
                             per radian of normal rotation (zero unless
@@ -575,17 +541,10 @@ typedef struct irc_record {
                             xz yy yz zz, meaningful along the surface (zero
                             unless HESSIAN; not stored: zero read back) */
     /* What the record saw near it, so that a lookup from behind that
-     * geometry (a wall between two rooms) does not use it: 16 sectors of
-     * 22.5 degrees counter-clockwise about n from t1 = (1 - s n_x^2/(s +
-     * n_z), -s n_x n_y/(s + n_z), -s n_x), s = +1 if n_z >= 0 else -1 (Duff
-     * et al. 2017's frame), 4 bits each, sector k in bits 4k..4k+3.  Nibble
-     * v: 0 = nothing seen within reach; else the nearest hit at a grazing
-     * angle (more than 45 degrees from n) in the sector lies (15 - v)/15 of
-     * the reach away (rounded down).  A lookup at t of the reach between
-     * two sector centres is rejected when t times the inverse distance,
-     * interpolated linearly in angle between them, exceeds 1 (v = 15 counts
-     * as 1/30).  Set by compute; a host's record may carry 0 (no guard).
-     * Stored when cfg.irr.leak_guard is IRC_ON. */
+     * geometry (a wall between two rooms) does not use it: the nearest
+     * grazing hit in each of 16 sectors about n, 4 bits each (the encoding
+     * and the test: docs/DESIGN.md, "Leak guard").  Set by compute; 0 in a
+     * host's record: no guard.  Stored when cfg.irr.leak_guard is IRC_ON. */
     uint64_t leak_guard;
     uint32_t features;   /* which gradients are valid */
     uint32_t rays;       /* rays cast, and how many were usable: */
@@ -606,30 +565,28 @@ IRC_API int irc_cache_insert(irc_cache *cache, const irc_record *rec);
 
 /*
  * Interpolate irradiance at (p, n): every record with Ward-Heckbert weight
- * w_i = 1 / (|p - p_i|/R_i + sqrt(1 - n.n_i)) > 1/a that is not in front of p
- * ((p - p_i).(n + n_i)/2 >= -0.05 R_i) and that its leak guard does not
- * reject is extrapolated with its gradients, E_i + (p - p_i).grad_t +
- * (n_i x n).grad_r, clamped at 0 per channel, and averaged with weights w_i
- * (capped at 1e6).  For an ellipse, |p - p_i|/R_i reads sqrt(d_u^2 +
- * |d - d_u u|^2/q^2)/R_i, d = p - p_i, u the major axis, d_u = d.u, q =
- * minor/major.  Records facing away (n.n_i <= 0) never count.  rgb gets
- * the average and *weight (optional) the summed weight.  Returns IRC_OK,
- * IRC_MISS (rgb = 0, weight = 0) when no record counts, IRC_ERR_NONFINITE
- * when the extrapolation overflows float, or a negative error code.
+ * w_i = 1 / (|p - p_i|/R_i + sqrt(1 - n.n_i)) > 1/a, not in front of p
+ * ((p - p_i).(n + n_i)/2 >= -0.05 R_i) nor rejected by its leak guard, is
+ * extrapolated, E_i + (p - p_i).grad_t + (n_i x n).grad_r, clamped at 0 a
+ * channel, and averaged with weights w_i (capped at 1e6).  An ellipse's
+ * |p - p_i|/R_i is docs/DESIGN.md's ("Error control").  Records facing
+ * away (n.n_i <= 0) never count.  rgb gets the average and *weight
+ * (optional) the summed weight.  Returns IRC_OK, IRC_MISS (rgb = 0, weight
+ * = 0) when no record counts, IRC_ERR_NONFINITE when the extrapolation
+ * overflows float, or a negative error code.
  */
 IRC_API int irc_cache_lookup(irc_cache *cache, const float p[3], const float n[3],
                              float rgb[3], float *weight);
 
 /*
  * Lookup; on a miss, compute a record at (p, n) (the callback gets host),
- * insert it, and return its irradiance with *weight = 0, which tells a
- * fresh record from an interpolated value (its id is not reported:
- * irc_cache_neighbours finds it).  With cfg.check_visibility the lookup
- * first confirms its records (a callback failure there returns as a
- * record's would, nothing changed).  A miss that waited for a scratch slot
- * looks up again first.  Returns IRC_OK, IRC_NOT_STORED (value valid, pool
- * full, eviction off), or a negative error code (IRC_ERR_NESTED from
- * inside this cache's own callback: see irc_trace_fn).
+ * insert it, and return its irradiance with *weight = 0 (a fresh record).
+ * With cfg.check_visibility the lookup first confirms its records (a
+ * callback failure there returns as a record's would, nothing changed).
+ * A miss that waited for a scratch slot looks up again first.  Returns
+ * IRC_OK, IRC_NOT_STORED (value valid, pool full, eviction off), or a
+ * negative error code (IRC_ERR_NESTED from inside this cache's own
+ * callback: see irc_trace_fn).
  */
 IRC_API int irc_cache_lookup_or_compute(irc_cache *cache, const float p[3],
                                         const float n[3], float rgb[3], float *weight,
@@ -642,13 +599,10 @@ IRC_API int irc_cache_lookup_or_compute(irc_cache *cache, const float p[3],
  * dp/dy|) from ray differentials; irc_pixel_footprint for a pinhole
  * camera); 0 is the plain call.  A record computed here gets a reach a R
  * in [cfg.irr.min_pixels, cfg.irr.max_pixels] x footprint (by default none
- * to 15 pixels) before [min_radius, max_radius]: an open scene needs no
- * max_radius, and a frame's records are bounded by its pixels.  Points
- * near finer geometry get their own estimate first (cfg.irr.detail_pixels).
- * A host that computes and inserts itself bounds radius and minor_radius
- * the same way.  Returns as irc_cache_lookup_or_compute; IRC_ERR_RANGE
- * (nothing done) for a negative footprint, IRC_ERR_NONFINITE for one not
- * finite.
+ * to 15 pixels) before [min_radius, max_radius], and points near finer
+ * geometry get their own estimate first (cfg.irr.detail_pixels).  Returns
+ * as irc_cache_lookup_or_compute; IRC_ERR_RANGE (nothing done) for a
+ * negative footprint, IRC_ERR_NONFINITE for one not finite.
  */
 IRC_API int irc_cache_lookup_or_compute_px(irc_cache *cache, const float p[3],
                                            const float n[3], float footprint, float rgb[3],
@@ -656,15 +610,13 @@ IRC_API int irc_cache_lookup_or_compute_px(irc_cache *cache, const float p[3],
 
 /*
  * The footprint the _px call wants, for a pinhole camera: the width of one
- * pixel on the surface at p (normal n, either side) seen from eye.
- * forward: the camera's viewing axis (any length); pixel_angle: a pixel's
- * width on the image plane at distance 1 along it (2 tan(fov_y / 2) /
- * height in pixels).  footprint = pixel_angle |p - eye| (d.f)^(3/2) /
- * sqrt(max(|d.n|, 0.05)), d the unit direction from eye to p, f forward's
- * (a grazing pixel's stretch held at 1/sqrt(0.05)).  Returns IRC_OK,
- * IRC_ERR_NULL, IRC_ERR_NONFINITE, IRC_ERR_NORMAL (n zero or not finite),
- * or IRC_ERR_RANGE (pixel_angle <= 0, forward zero, p at eye or behind
- * it); *footprint is written only on IRC_OK.  Thread safe; needs no cache.
+ * pixel on the surface at p (normal n, either side) seen from eye, along
+ * forward (any length), a pixel pixel_angle wide at distance 1 (2
+ * tan(fov_y / 2) / height): pixel_angle |p - eye| (d.f)^(3/2) /
+ * sqrt(max(|d.n|, 0.05)), d and f unit.  Returns IRC_OK, IRC_ERR_NULL,
+ * IRC_ERR_NONFINITE, IRC_ERR_NORMAL (n zero or not finite), or
+ * IRC_ERR_RANGE (pixel_angle <= 0, forward zero, p at eye or behind it);
+ * *footprint is written only on IRC_OK.  Thread safe; needs no cache.
  */
 IRC_API int irc_pixel_footprint(const float eye[3], const float forward[3], float pixel_angle,
                                 const float p[3], const float n[3], float *footprint);
@@ -711,29 +663,25 @@ IRC_API int irc_snapshot_write(irc_cache *cache, uint64_t fingerprint, void *buf
 
 /*
  * Replaces the cache's records with a snapshot's, after checking everything:
- * IRC_ERR_TRUNCATED, IRC_ERR_CORRUPT (bad magic, either checksum, trailing
- * bytes, a record value no cache makes), IRC_ERR_VERSION,
- * IRC_ERR_FINGERPRINT (not the fingerprint given), IRC_ERR_MISMATCH (kind,
- * features, record size, SH bands or channels, accuracy or strata differ
- * from the cache's), IRC_ERR_FULL (more records than the cache holds); on
- * any of them the cache is as it was.  Lookups then answer as the written
- * cache did, bit for bit.  Not concurrent with other calls on the cache.
- * Returns IRC_OK or a negative error code.
+ * IRC_ERR_TRUNCATED, IRC_ERR_CORRUPT, IRC_ERR_VERSION, IRC_ERR_FINGERPRINT
+ * (not the fingerprint given), IRC_ERR_MISMATCH (another kind, features,
+ * record size, SH bands or channels, accuracy or strata), IRC_ERR_FULL
+ * (more records than the cache holds); on any of them the cache is as it
+ * was.  Lookups then answer as the written cache did, bit for bit.  Not
+ * concurrent with other calls.  Returns IRC_OK or a negative error code.
  */
 IRC_API int irc_snapshot_read(irc_cache *cache, uint64_t fingerprint, const void *data,
                               size_t size);
 
 /*
  * Adds a snapshot's records to the cache's, checked as irc_snapshot_read
- * checks (the same statuses, the cache unchanged on any of them;
- * IRC_ERR_FULL when the cache's records and the snapshot's, duplicates
- * counted, exceed its capacity).  The records are put in one canonical
+ * checks (IRC_ERR_FULL when both, duplicates counted, exceed the capacity;
+ * the cache unchanged on any error).  The records are put in one canonical
  * order (docs/DESIGN.md, "Snapshots and merges"), records equal in every
- * byte kept once, and renumbered as at irc_pass_end: merging snapshots
- * into an empty cache in any order gives byte-identical snapshots, and
- * merging one twice adds nothing.  Record ids change; neighbour clamping
- * is not applied.  Not concurrent with other calls.  Returns IRC_OK or a
- * negative error code.
+ * byte kept once, and renumbered as at irc_pass_end: merges into an empty
+ * cache in any order give byte-identical snapshots, and merging one twice
+ * adds nothing.  No neighbour clamping.  Not concurrent with other calls.
+ * Returns IRC_OK or a negative error code.
  */
 IRC_API int irc_merge(irc_cache *cache, uint64_t fingerprint, const void *data, size_t size);
 
@@ -749,10 +697,9 @@ IRC_API int irc_merge(irc_cache *cache, uint64_t fingerprint, const void *data, 
  * A pass never evicts: once the free slots are taken, its further records
  * are not stored (IRC_NOT_STORED, IRC_ERR_FULL from insert; counted in
  * irc_stats.not_stored) and which were kept depends on timing.  Two misses
- * of a pass within a record's reach both compute a record: the demo and
- * the examples shade pixels P apart in P^2 passes, coarse to fine, P the
- * power of two nearest the image width / 24 in [8, 32] (docs/DESIGN.md,
- * "Fill passes").  Not concurrent with other calls.
+ * of a pass within a record's reach both compute a record: shade sparse
+ * pixels first, in several passes (docs/DESIGN.md, "Fill passes").  Not
+ * concurrent with other calls.
  * Returns IRC_OK, IRC_ERR_STATE when a pass is open, or a negative code.
  */
 IRC_API int irc_pass_begin(irc_cache *cache);
@@ -760,11 +707,10 @@ IRC_API int irc_pass_begin(irc_cache *cache);
 /*
  * Closes the open pass: its records, in merge's canonical order with exact
  * duplicates kept once, are inserted (and clamped, when on) in that order;
- * then every record is renumbered in the order lookups visit the index:
- * lookups answer bit for bit as before, faster (bench/README.md, "Speed
- * and memory"), record ids change, and every record moves (all a pass with
- * no records does).  *added (optional) gets how many were added.  Not
- * concurrent with other calls: every thread of the pass must be done.
+ * then every record is renumbered in the order lookups visit the index
+ * (lookups answer bit for bit as before, faster; record ids change), even
+ * by a pass with no records.  *added (optional) gets how many were added.
+ * Not concurrent with other calls: every thread of the pass must be done.
  * Returns IRC_OK, IRC_ERR_STATE when no pass is open, or a negative error
  * code.  While a pass is open, irc_cache_clear, irc_snapshot_read and
  * irc_merge return IRC_ERR_STATE and change nothing.
@@ -777,17 +723,12 @@ IRC_API int irc_pass_end(irc_cache *cache, uint32_t *added);
  * An SH cache stores, per record and channel, the real spherical-harmonic
  * coefficients c_i = integral of y_i(w) L(w) dw of the incident radiance,
  * bands 0..L-1 (index l*l + l + m, Condon-Shortley phase), and with
- * IRC_FEATURE_SH_GRADIENT their translational gradients: c_i(p + d) ~ c_i
- * + grad c_i . d (SH-gradient paper, Eq. 14).  Surface records (n given)
- * sample the hemisphere around n (radiance below it counts as 0) and serve
- * lookups with n, weighted as irc_cache_lookup's; free-point records (n
- * NULL) sample the whole sphere (twice the rays), as at an object's centre,
- * and serve lookups with n NULL: those with |p - p_j| < accuracy * R_j,
- * weighted (R_j/|p - p_j|)^b, b = cfg.sh.power (Eq. 16 made scale-free;
- * capped at 1e6).  Strata have equal solid angle, 2 pi/(M N) sr each.  R_j:
- * the harmonic mean hit distance, clamped by |c_0|/|grad c_0| per channel
- * (with gradients) and [min_radius, max_radius].  Bytes per record: 32 + 4
- * L^2 channels, + 12 L^2 channels with gradients (L = 3, RGB: 140, 464).
+ * IRC_FEATURE_SH_GRADIENT their translational gradients (c_i(p + d) ~ c_i
+ * + grad c_i . d).  Surface records (n given) sample the hemisphere around
+ * n and serve lookups with n, weighted as irc_cache_lookup's; free-point
+ * records (n NULL) sample the whole sphere and serve lookups with n NULL,
+ * weighted (R_j/|p - p_j|)^b, b = cfg.sh.power (docs/DESIGN.md, "SH
+ * records", has the weights, radii and bytes a record).
  */
 typedef struct irc_sh {
     float p[3];            /* position (a lookup: the query's) */
@@ -852,10 +793,9 @@ IRC_API int irc_sh_record(irc_cache *cache, uint32_t id, irc_sh *out);
 /*
  * Irradiance about the unit-ish normal n from sh's coefficients: the
  * clamped-cosine convolution (Ramamoorthi-Hanrahan 2001), sum over l, m of
- * A_l c_lm y_lm(n) with A_0 = pi, A_1 = 2 pi/3, A_2 = pi/4, A_3 = 0,
- * A_4 = -pi/24.  Exact for radiance of band < L (the band limit's error
- * at L = 3: docs/DESIGN.md, "Accuracy against closed forms").  rgb gets
- * sh->channels values (one channel is copied to all three).  Returns
+ * A_l c_lm y_lm(n), A_0..4 = pi, 2 pi/3, pi/4, 0, -pi/24; exact for
+ * radiance of band < L.  rgb gets sh->channels values (one channel is
+ * copied to all three).  Returns
  * IRC_OK, IRC_ERR_NULL, IRC_ERR_NORMAL, or IRC_ERR_RANGE (bands or
  * channels out of range).
  */
@@ -863,11 +803,9 @@ IRC_API int irc_sh_irradiance(const irc_sh *sh, const float n[3], float rgb[3]);
 
 /*
  * A Phong-like lobe: integral of L(w) max(0, w.r)^s dw about the unit-ish
- * axis r (a mirror direction), as the zonal convolution sum A_l(s) c_lm
- * y_lm(r), A_l(s) = 2 pi integral_0^1 z^s P_l(z) dz.  s = 1 is the
- * irradiance; multiply by your BRDF's normalisation, e.g. (s + 2)/(2 pi)
- * for normalised Phong.  L bands resolve lobes up to s of about L^2; sharper
- * lobes come out blurred.  0 <= s <= 1e4.  Returns as irc_sh_irradiance
+ * axis r, as sum A_l(s) c_lm y_lm(r), A_l(s) = 2 pi integral_0^1 z^s P_l(z)
+ * dz; times the BRDF's normalisation ((s + 2)/(2 pi) for normalised Phong).
+ * L bands resolve s up to about L^2.  0 <= s <= 1e4.  Returns as irc_sh_irradiance
  * (IRC_ERR_RANGE also for s out of range).
  */
 IRC_API int irc_sh_glossy(const irc_sh *sh, const float r[3], float s, float rgb[3]);
@@ -951,16 +889,13 @@ typedef struct irc_gradient {
 } irc_gradient;
 
 /*
- * irc_cache_lookup, and the gradient of what it interpolates: the same
- * records with the same weights w_i, each record's extrapolation
- * differentiated, dp = grad_t and dn = grad_r x n_i (a channel clamped at
- * 0 contributes zeros), averaged with the weights; the weights' own
- * derivatives are left out (why: docs/DESIGN.md, "What a record is").  A
- * cache without translational (rotational) gradients answers dp (dn) = 0.
- * rgb and grad must not be NULL (IRC_ERR_NULL); an SH cache answers
- * IRC_ERR_UNSUPPORTED.  rgb, *weight, the status and the lookup counters
- * are irc_cache_lookup's; on IRC_MISS grad is zero too, and
- * IRC_ERR_NONFINITE also covers a gradient that overflows float.
+ * irc_cache_lookup, and the gradient of what it interpolates: each
+ * record's extrapolation differentiated (dp = grad_t, dn = grad_r x n_i; 0
+ * for a clamped channel or a gradient the cache lacks), averaged with the
+ * same weights, whose own derivatives are left out (docs/DESIGN.md, "What
+ * a record is").  rgb and grad not NULL (IRC_ERR_NULL); an SH cache:
+ * IRC_ERR_UNSUPPORTED.  Otherwise as irc_cache_lookup, grad zero on
+ * IRC_MISS, IRC_ERR_NONFINITE also for a gradient that overflows float.
  */
 IRC_API int irc_cache_lookup_gradient(irc_cache *cache, const float p[3], const float n[3],
                                       float rgb[3], irc_gradient *grad, float *weight);
@@ -978,20 +913,16 @@ IRC_API int irc_cache_neighbours(irc_cache *cache, const float p[3], const float
                                  uint32_t *ids, uint32_t cap, uint32_t *count);
 
 /*
- * Share a block live between processes of one machine: one makes the
- * cache (irc_init) in memory every process maps (a file or shm object
- * mapped MAP_SHARED); each other joins it with irc_join, which builds that
- * process's view in view (view_size >= IRC_VIEW_BYTES, aligned for a
- * double, process-local, kept until irc_fini of the view).  The view holds
- * this process's cfg->trace, cfg->context and cfg->port, so its misses call
- * its own host; records, index, counters, passes and the lock are the
- * block's, shared.  cfg->buffer is this process's mapping, at any address
- * at the creator's offset from a 64-byte boundary (any mmap is); the port
- * must be the creator's (posix's lock is process-shared; none shares
- * nothing safely).  irc_fini of a view releases the view only; the
- * creator's, after every view's, destroys the lock.  What a process's
- * death leaves: irc_port.  The block is checked as irc_attach checks it
- * (records and index under the read lock) and never written.  Returns
+ * Share a block live between processes of one machine (docs/DESIGN.md,
+ * "Sharing a cache between processes"): one makes the cache in memory
+ * every process maps; each other joins it, building its view in view
+ * (view_size >= IRC_VIEW_BYTES, aligned for a double, kept until irc_fini
+ * of the view), which holds its own cfg->trace, cfg->context and
+ * cfg->port; the rest is the block's, shared.  cfg->buffer is this
+ * process's mapping, at the creator's offset from a 64-byte boundary (any
+ * mmap is); the port must be the creator's.  irc_fini of a view releases
+ * the view; the creator's, after every view's, destroys the lock.  The
+ * block is checked as irc_attach checks it and never written.  Returns
  * IRC_OK and writes *cache; IRC_ERR_CONFIG when the block holds no cache
  * of this build, sits at another offset, or the port differs;
  * IRC_ERR_CORRUPT when it fails a check; IRC_ERR_NOMEM when view_size is
