@@ -45,12 +45,12 @@ SRC = src/status.c src/version.c \
       src/block/check.c src/block/octa.c src/block/slots.c src/block/torn.c \
       src/index/cells.c src/index/index.c src/index/query.c src/index/compact.c src/index/verify.c \
       src/store/lock.c src/store/stats.c src/store/trace.c src/store/store.c src/store/walk.c \
-      src/store/sight.c src/store/lookup.c \
+      src/store/confirm.c src/store/lookup.c \
       src/kind/weight.c src/sample/grid.c src/sample/sampler.c src/sample/strata.c \
       src/irr/kind_irr.c src/irr/irradiance.c src/irr/gradient.c src/irr/visibility.c \
       src/irr/hessian.c src/irr/detail.c \
       src/sh/kind_sh.c src/sh/sh.c src/sh/shgrad.c \
-      src/api/kinds.c src/api/config.c src/api/layout.c src/api/api_irr.c src/api/api_sh.c \
+      src/api/kinds.c src/api/config.c src/api/life.c src/api/api_irr.c src/api/api_sh.c \
       src/api/occlusion.c src/api/pixel.c src/api/pass.c \
       src/persist/snapshot.c src/persist/merge.c
 # make LEAVE_OUT="SH VISIBILITY HESSIAN SIGHT SUPERSAMPLE GUARD" (any of them): those parts are
@@ -60,7 +60,7 @@ LEAVE_OUT ?=
 LEFT_SH = src/sh/kind_sh.c src/api/api_sh.c src/sh/sh.c src/sh/shgrad.c
 LEFT_VISIBILITY = src/irr/visibility.c src/api/occlusion.c
 LEFT_HESSIAN = src/irr/hessian.c
-LEFT_SIGHT = src/store/sight.c
+LEFT_SIGHT = src/store/confirm.c
 LEFT_SUPERSAMPLE =
 LEFT_GUARD =
 SRC := $(filter-out $(foreach x,$(LEAVE_OUT),$(LEFT_$(x))),$(SRC) src/api/absent.c)

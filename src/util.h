@@ -13,7 +13,7 @@
  *   IRC_NO_SH          SH records (kind_sh.c, sh.c, shgrad.c)
  *   IRC_NO_VISIBILITY  visibility gradients (visibility.c, occlusion.c)
  *   IRC_NO_HESSIAN     the Hessian and its ellipses (hessian.c)
- *   IRC_NO_SIGHT       confirming rays, cfg.check_visibility (sight.c;
+ *   IRC_NO_SIGHT       confirming rays, cfg.check_visibility (confirm.c;
  *                      the default is then off)
  *   IRC_NO_SUPERSAMPLE cfg.irr.supersamples (sampler.c's part)
  *   IRC_NO_GUARD       the leak guard, cfg.irr.leak_guard (irradiance.c's

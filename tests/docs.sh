@@ -23,7 +23,7 @@ for f in $(grep -o 'IRC_API [^(]*(' include/irrcache.h | grep -o 'irc_[a-z0-9_]*
 done
 layout=$(section docs/DESIGN.md "## Source layout")
 for f in src/*.c src/*.h src/*/*.c src/*/*.h port/*/*.c port/*.c; do
-    name=${f#src/} # a library file by its path in src/: block/layout.c
+    name=${f#src/} # a library file by its path in src/: api/life.c
     name=${name#port/} # a port by its folder: posix/irc_port.c
     case $layout in *"$name"*) ;; *) echo "docs/DESIGN.md, Source layout: $f missing"; missing=1 ;; esac
 done

@@ -38,7 +38,7 @@
  * centre's largest coordinate, splits stop at depth IRC__DEPTH and growth
  * at IRC__LEVELS.
  *
- * References come from a pool of the block's (layout.c; cells.c takes
+ * References come from a pool of the block's (life.c; cells.c takes
  * and gives them) that always keeps one for each record not yet indexed:
  * when it runs short a record is placed a level up, in fewer and larger
  * nodes, and leaves stop splitting.  Slower then, never wrong.

@@ -74,7 +74,7 @@ void irc__clear_locked(irc_cache *c);
 /* query.c.  Returns the references it scanned (the work; tests check it). */
 uint32_t irc__index_query(const irc_cache *c, const float p[3], irc__visit_fn fn,
                           void *ud);
-/* 1 if a block's root cube is one the index could have made (layout.c's
+/* 1 if a block's root cube is one the index could have made (life.c's
  * header check of a set root), else 0. */
 int irc__index_root_sane(const irc_cache *c);
 int irc__root_ok(const double c[3], double h); /* the same test of a centre and half edge */

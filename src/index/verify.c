@@ -1,7 +1,7 @@
 /*
  * Verification before trust: what irc_attach and irc_join check in a
  * block's records and index before any call reads them (the header is
- * layout.c's irc__header_sane).  A block mapped from a file may be torn or
+ * life.c's irc__header_sane).  A block mapped from a file may be torn or
  * damaged; every link a lookup or an insert follows must stay in bounds
  * and every walk must end.  Linear in the block: each node and each list
  * entry is visited at most once, or the block is refused.

@@ -61,12 +61,12 @@ typedef struct irc__call {
     irc__query q;
     uint32_t rays;
     float footprint;  /* a pixel's width at the query, 0 = none */
-    uint32_t sight;   /* 1 while casting confirming rays (sight.c) */
+    uint32_t confirming; /* 1 while casting confirming rays (confirm.c) */
 } irc__call;
 
 /* A record's parts after its 32-byte head, each numbered by its kind (0 ..
  * IRC__PARTS - 1), which lists those a config asks for in order
- * (irc__kind.parts); layout.c places them one after another and the
+ * (irc__kind.parts); life.c places them one after another and the
  * block's header keeps their byte offsets (irc_cache.off[id], 0 =
  * absent).  A part's fields are `lead` bytes of width w1, then the rest of
  * width w2: the snapshot's byte order and the merge order walk them field
@@ -84,7 +84,7 @@ typedef struct irc__recpart {
  * The sampler's are numbered here: one batch of rays and of hits, and
  * each sample's direction and hit normal (for kinds that keep them).  A
  * kind numbers up to four parts of its own from IRC__S_KIND (the
- * irradiance kind's: estimator.h).  layout.c places the rays first, then
+ * irradiance kind's: estimator.h).  life.c places the rays first, then
  * the kind's parts in its numbering, then the directions and normals (a
  * part of 0 bytes takes no room), so a kind's first parts follow the rays
  * directly (the Hessian's rows run over the rays' bytes into its own);

@@ -15,7 +15,7 @@ typedef struct irc__sample {
     float d;         /* hit distance; +inf when escaped; NaN when failed */
 } irc__sample;
 
-/* A slot's parts (kind.h, IRC__S_*), where layout.c placed them; s is
+/* A slot's parts (kind.h, IRC__S_*), where life.c placed them; s is
  * the start of the slot's working area, where its samples lie. */
 static inline unsigned char *irc__slot_part(const irc_cache *c, const void *s, int part)
 {

@@ -2,7 +2,7 @@
  * lookup.c -- the calls every kind's public calls drive: a lookup (the
  * kind's find over the index walk, walk.c), a computation in a claimed
  * scratch slot (slots.c), and lookup-or-compute, which looks up (with
- * confirming rays when the config asks, sight.c) and on a miss computes
+ * confirming rays when the config asks, confirm.c) and on a miss computes
  * the record in its slot and offers it to the pool (store.c).  The host's
  * callback runs with no lock held.  Counters are updated only once a call
  * has succeeded.
@@ -11,7 +11,7 @@
 #include "../block/check.h"
 #include "../block/slots.h"
 #include "lookup.h"
-#include "sight.h"
+#include "confirm.h"
 #include "stats.h"
 #include "store.h"
 #include "walk.h"
@@ -52,22 +52,22 @@ static int irc__open(const irc_cache *c, const irc__kind *want, const void *out,
 }
 
 /* Runs fn with slot t, which stays claimed. */
-static int irc__run_in(irc_cache *c, irc__call *k, uint32_t t, void *host,
-                       int (*fn)(irc__call *k, void *out), void *out)
+static int irc__compute_in_slot(irc_cache *c, irc__call *k, uint32_t t, void *host,
+                                int (*fn)(irc__call *k, void *out), void *out)
 {
     k->c = c;
     k->slot = irc__slot(c, t);
     k->host = host;
     k->rays = 0;
-    k->sight = 0;
+    k->confirming = 0;
     return fn(k, out);
 }
 
 /* Runs fn with slot t, then gives the slot back. */
-static int irc__run(irc_cache *c, irc__call *k, uint32_t t, void *host,
-                    int (*fn)(irc__call *k, void *out), void *out)
+static int irc__compute_and_release(irc_cache *c, irc__call *k, uint32_t t, void *host,
+                                    int (*fn)(irc__call *k, void *out), void *out)
 {
-    int st = irc__run_in(c, k, t, host, fn, out);
+    int st = irc__compute_in_slot(c, k, t, host, fn, out);
     irc__slot_release(c, t);
     return st;
 }
@@ -95,7 +95,7 @@ int irc__compute_quiet(irc_cache *c, const irc__kind *want, const float p[3], co
     *rays = 0;
     if ((st = irc__open(c, want, out, p, n, &k.q)) < 0 ||
         (st = irc__slot_claim(c, &t, waited)) < 0 ||
-        (st = irc__run(c, &k, t, host, fn, out)) < 0)
+        (st = irc__compute_and_release(c, &k, t, host, fn, out)) < 0)
         return st;
     *rays = k.rays;
     return IRC_OK;
@@ -143,7 +143,7 @@ int irc__lookup(irc_cache *c, const irc__kind *want, const irc__acc *ops, const 
 
 /* The end of a miss: the computed record offered to the pool.  A full
  * pool is IRC_NOT_STORED, counted, not an error. */
-static int irc__keep(irc_cache *c, const void *rec, void *out, float *weight)
+static int irc__offer_computed(irc_cache *c, const void *rec, void *out, float *weight)
 {
     int st = irc__insert_checked(c, rec);
     if (st < 0 && st != IRC_ERR_FULL)
@@ -157,9 +157,9 @@ static int irc__keep(irc_cache *c, const void *rec, void *out, float *weight)
     return st == IRC_ERR_FULL ? IRC_NOT_STORED : IRC_OK;
 }
 
-/* Confirming rays (cfg.check_visibility, sight.c): the records a lookup
+/* Confirming rays (cfg.check_visibility, confirm.c): the records a lookup
  * would use, up to IRC__SIGHT_CAP, their positions read IRC__SIGHT_BATCH
- * at a time and handed to sight.c, which hides those out of the query's
+ * at a time and handed to confirm.c, which hides those out of the query's
  * sight; the kind's find then leaves the hidden ones out. */
 #ifndef IRC_NO_SIGHT
 static int irc__find_confirmed(irc__call *k, void *out, float *weight)
@@ -176,11 +176,11 @@ static int irc__find_confirmed(irc__call *k, void *out, float *weight)
     for (i = 0; i < found && st >= 0; i += batch) {
         n = found - i < batch ? found - i : batch;
         if ((st = irc__positions(c, ids + i, n, pos, nrm)) >= 0)
-            st = irc__sight_batch(k, ids, i, n, (const float(*)[3])pos, nrm);
+            st = irc__confirm_batch(k, ids, i, n, (const float(*)[3])pos, nrm);
     }
     if (st < 0)
         return st;
-    irc__sight_hide(k, ids);
+    irc__confirm_hide(k, ids);
     st = c->kind->lookup->find(c, &k->q, out, weight);
     k->q.hidden = NULL;
     k->q.n_hidden = 0;
@@ -228,8 +228,8 @@ static int irc__miss(irc_cache *c, irc__call *k, void *out, float *weight, void 
      * given back; its rays are counted with it, the lookups' by the
      * caller. */
     rec = irc__slot_record(c, t);
-    if ((st = irc__run_in(c, k, t, host, c->kind->compute, rec)) >= 0 &&
-        (st = irc__keep(c, rec, out, weight)) >= 0)
+    if ((st = irc__compute_in_slot(c, k, t, host, c->kind->compute, rec)) >= 0 &&
+        (st = irc__offer_computed(c, rec, out, weight)) >= 0)
         irc__count_compute(c, k, 1, waited);
     irc__slot_release(c, t);
     return st;
@@ -255,7 +255,7 @@ int irc__lookup_or_compute(irc_cache *c, const irc__kind *want, float footprint,
     k.c = c;
     k.host = host;
     k.rays = 0;
-    k.sight = 0;
+    k.confirming = 0;
     st = irc__lookup_first(&k, out, weight, &rays);
     st = st == IRC_MISS ? irc__miss(c, &k, out, weight, host, &rays) : irc__count_lookup(c, st);
     /* Nothing of a failed call stays in the block: not its use bits, nor

@@ -91,7 +91,7 @@ static void irc__pack_at(irc_cache *c, const void *rec, const float un[3], uint3
  * no lock is taken and lookups, which see only indexed records, are not
  * disturbed.  A pass never evicts (that would change what its lookups
  * see): without a free slot the record is not stored. */
-static int irc__defer(irc_cache *c, const void *rec, const float un[3])
+static int irc__store_in_pass(irc_cache *c, const void *rec, const float un[3])
 {
     const uint64_t room = (uint64_t)(c->capacity - irc__st(c)->pass_base);
     uint64_t k = c->port->load(&irc__st(c)->pending);
@@ -115,7 +115,7 @@ static int irc__store(irc_cache *c, const void *rec, const float un[3])
 {
     uint32_t id;
     if (irc__st(c)->pass_open)
-        return irc__defer(c, rec, un);
+        return irc__store_in_pass(c, rec, un);
     if (irc__write_lock(c) < 0)
         return IRC_ERR_PORT;
     if (irc__st(c)->count < c->capacity) {

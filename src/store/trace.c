@@ -25,7 +25,7 @@ int irc__cast(irc__call *k, irc_ray *rays, irc_hit *hits, uint32_t count)
     args.rays = rays;
     args.hits = hits;
     args.count = count;
-    args.visibility_only = k->sight;
+    args.visibility_only = k->confirming;
     for (i = 0; i < count; i++)
         hits[i].status = -1;
     st = c->cfg.trace(&args);

@@ -1,9 +1,9 @@
 /*
- * Confirming rays (cfg.check_visibility): before a lookup-or-compute
- * averages its records, one ray from the query toward each of them; a
- * record out of the query's sight is left out, so the light of a wall's
- * open side does not reach a crevice, a soffit or the foot of a column
- * through a record placed outside it.  This is V-Ray's "check sample
+ * confirm.c -- confirming rays (cfg.check_visibility): before a
+ * lookup-or-compute averages its records, one ray from the query toward
+ * each of them; a record out of the query's sight is left out, so the
+ * light of a wall's open side does not reach a crevice, a soffit or the
+ * foot of a column through a record placed outside it.  This is V-Ray's "check sample
  * visibility"; Ward's weight and the leak guard look at the record's own
  * hemisphere only, and a record's reach can span geometry smaller than
  * itself (Krivanek and Gautron 2009, Sec. 2.3.3).  The lookup collects
@@ -12,7 +12,7 @@
  */
 #include "../block/octa.h"
 #include "trace.h"
-#include "sight.h"
+#include "confirm.h"
 
 #ifndef IRC_NO_SIGHT
 
@@ -34,7 +34,7 @@
  * tessellated surface a chord from a face's edge dips by the whole angle
  * between the faces.  A dip the normals do not explain (a record past a
  * ledge's edge, below the query, the normals alike) keeps its ray. */
-static void irc__sight_dir(const float n[3], uint32_t code, const float d[3], float l,
+static void irc__confirm_dir(const float n[3], uint32_t code, const float d[3], float l,
                            float dir[3])
 {
     float ni[3], dip = -(d[0] * n[0] + d[1] * n[1] + d[2] * n[2]) / l, turn, m;
@@ -70,7 +70,7 @@ static void irc__sort_ids(uint32_t *ids, uint32_t n)
  * (at pos, coded normals nrm) and moves the ids of the hidden ones to the
  * front of ids, in place (k->q.n_hidden counts them; none is written past
  * the one being read).  Only status and dist of the hits are read. */
-int irc__sight_batch(irc__call *k, uint32_t *ids, uint32_t first, uint32_t n,
+int irc__confirm_batch(irc__call *k, uint32_t *ids, uint32_t first, uint32_t n,
                      const float (*pos)[3], const uint32_t *nrm)
 {
     irc_ray rays[IRC__SIGHT_BATCH];
@@ -86,15 +86,15 @@ int irc__sight_batch(irc__call *k, uint32_t *ids, uint32_t first, uint32_t n,
         if (!(l > 0.0f && l <= FLT_MAX))
             continue; /* at the query's own point, or beyond float */
         IRC_MEMCPY(rays[m].org, k->q.p, sizeof rays[m].org);
-        irc__sight_dir(k->q.n, nrm[i], d, l, rays[m].dir);
+        irc__confirm_dir(k->q.n, nrm[i], d, l, rays[m].dir);
         len[m] = l;
         at[m++] = first + i;
     }
     if (m == 0)
         return IRC_OK;
-    k->sight = 1;
+    k->confirming = 1;
     st = irc__cast(k, rays, hits, m);
-    k->sight = 0;
+    k->confirming = 0;
     if (st < 0)
         return st;
     for (i = 0; i < m; i++) {
@@ -109,7 +109,7 @@ int irc__sight_batch(irc__call *k, uint32_t *ids, uint32_t first, uint32_t n,
     return IRC_OK;
 }
 
-void irc__sight_hide(irc__call *k, uint32_t *ids)
+void irc__confirm_hide(irc__call *k, uint32_t *ids)
 {
     irc__sort_ids(ids, k->q.n_hidden);
     k->q.hidden = ids;
@@ -117,6 +117,6 @@ void irc__sight_hide(irc__call *k, uint32_t *ids)
 
 #else /* IRC_NO_SIGHT: lookup.c asks for no confirming rays */
 
-typedef int irc__sight_absent; /* ISO C wants something in a file */
+typedef int irc__confirm_absent; /* ISO C wants something in a file */
 
 #endif

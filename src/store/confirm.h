@@ -1,9 +1,9 @@
 /*
- * sight.h -- confirming rays (sight.c, cfg.check_visibility): which of a
+ * confirm.h -- confirming rays (confirm.c, cfg.check_visibility): which of a
  * lookup's records are out of the query's sight.
  */
-#ifndef IRC_SIGHT_H
-#define IRC_SIGHT_H
+#ifndef IRC_CONFIRM_H
+#define IRC_CONFIRM_H
 
 #include "../kind/kind.h"
 
@@ -13,10 +13,10 @@
 /* Rays from k->q.p toward records ids[first .. first + n - 1], at pos
  * with coded normals nrm (n <= IRC__SIGHT_BATCH); the hidden ones' ids
  * move to the front of ids, k->q.n_hidden counting them. */
-int irc__sight_batch(irc__call *k, uint32_t *ids, uint32_t first, uint32_t n,
+int irc__confirm_batch(irc__call *k, uint32_t *ids, uint32_t first, uint32_t n,
                      const float (*pos)[3], const uint32_t *nrm);
 /* After the batches: the hidden ids sorted and handed to the query
  * (k->q.hidden), for the find to leave out. */
-void irc__sight_hide(irc__call *k, uint32_t *ids);
+void irc__confirm_hide(irc__call *k, uint32_t *ids);
 
 #endif

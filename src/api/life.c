@@ -1,6 +1,6 @@
 /*
- * layout.c -- the caller's block: its parts, their sizes, init, re-attach
- * and fini.
+ * life.c -- a cache's life in the caller's block: its parts and their
+ * sizes, init, attach, join and fini.
  *
  * Byte 0 of the block holds the distance (1..64) from the block's start to
  * the cache, which sits on the first 64-byte boundary after byte 0; from
