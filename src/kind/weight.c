@@ -8,6 +8,22 @@
 #include "../sample/sampler.h"
 #include "weight.h"
 
+/* A square root rounded to float.  Where float is evaluated wider
+ * (FLT_EVAL_METHOD 2: x87) sqrtf may hand back its wide result (glibc's
+ * i386 sqrtf does), which the compiler takes for a float and rounds only
+ * where it happens to spill it: the plain and the fused weigh paths would
+ * then differ in the weight's last bit.  The volatile store rounds it at
+ * one place; elsewhere it compiles to the plain call. */
+static inline float irc__sqrtf(float x)
+{
+#if FLT_EVAL_METHOD != 0
+    volatile float r = IRC_SQRTF(x);
+    return r;
+#else
+    return IRC_SQRTF(x);
+#endif
+}
+
 /* A record in front of the query's surface by more than this fraction of
  * its radius is rejected: relative to R_i so the test does not change with
  * the scene's units. */
@@ -76,7 +92,7 @@ IRC__PER_RECORD int irc__faces(const float d[3], const float n[3], const float n
 IRC__PER_RECORD float irc__normal_term(const float n[3], const float ni[3])
 {
     const float ex = n[0] - ni[0], ey = n[1] - ni[1], ez = n[2] - ni[2];
-    return IRC_SQRTF(0.5f * (ex * ex + ey * ey + ez * ez));
+    return irc__sqrtf(0.5f * (ex * ex + ey * ey + ez * ez));
 }
 
 /* Ward-Heckbert weight w = 1 / (|p - p_i|/R_i + sqrt(1 - n.n_i)), accepted
@@ -90,7 +106,7 @@ int irc__weigh(const irc_cache *c, const irc__rec *r, const float p[3],
     float d2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2], e;
     if (!(d2 < a * a * rad * rad || d2 == 0.0f) || r->n == IRC__FREE)
         return 0; /* its own point always (irc__within_reach) */
-    irc__oct_decode(r->n, ni);
+    irc__oct_decode_inline(r->n, ni);
     if (!irc__faces(d, n, ni, rad))
         return 0;
     if (shaped && c->off[IRC__P_ELLIPSE]) {
@@ -109,7 +125,7 @@ int irc__weigh(const irc_cache *c, const irc__rec *r, const float p[3],
                 return 0;
         }
     }
-    e = IRC_SQRTF(d2) / rad;
+    e = irc__sqrtf(d2) / rad;
 #ifndef IRC_NO_GUARD
     if (shaped && c->off[IRC__P_GUARD] &&
         irc__guarded(r, c->off[IRC__P_GUARD], ni, d[0], d[1], d[2], e / a))
@@ -199,7 +215,10 @@ float irc__weigh_extrapolate(const irc_cache *c, const irc__rec *r, const float 
     irc__oct_decode_inline(r->n, ni);
     if (!irc__faces(d, n, ni, rad))
         return 0.0f;
-    e = IRC_SQRTF(d2) / rad + irc__normal_term(n, ni);
+    /* two statements, as irc__weigh's: where float is evaluated wider the
+     * assignment rounds the distance term, and one expression would not */
+    e = irc__sqrtf(d2) / rad;
+    e += irc__normal_term(n, ni);
     if (!(e < a))
         return 0.0f;
     irc__extrapolate_at(c, r, ni, d, n, out);
