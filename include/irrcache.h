@@ -25,15 +25,12 @@
  *     write lock; the trace callback runs with no lock held.  With
  *     irc_port_none, one thread at a time.
  *   - Stability: while the major version is 0, a minor release may change
- *     the block's layout (irc_attach refuses an older block) but keeps the
- *     contracts of what this header declares, but for the experimental
- *     calls, which a host sees only if it defines IRC_EXPERIMENTAL before
- *     it includes this header ("Experimental calls", at the end).
- *   - Determinism: for a trace callback that answers the same ray with the
- *     same hit, a record is a pure function of (p, n, config, seed, and the
- *     _px call's footprint), bit for bit in any thread at any time.  Which
- *     records a multi-threaded fill stores depends on timing, unless it
- *     fills in passes ("Fill passes").
+ *     the block's layout (irc_attach refuses an older block) but keeps these
+ *     contracts, but for the calls behind IRC_EXPERIMENTAL (at the end).
+ *   - Determinism: for a callback that answers a ray the same way, a record
+ *     is a pure function of (p, n, config, seed, the _px call's footprint),
+ *     bit for bit on any thread; which records a multi-threaded fill stores
+ *     depends on timing, unless it fills in passes ("Fill passes").
  *   - Errors: every call returns an int: IRC_OK (0), a positive informational
  *     status (IRC_MISS, IRC_NOT_STORED: the pool is full), or a negative
  *     irc_status code, after which the block is byte for byte as it was but
@@ -45,10 +42,9 @@
  * irc_init in a block of that size, irc_cache_lookup_or_compute_px at each
  * camera ray's hit with the pixel's footprint there, irc_fini.
  *
- * All vectors are float[3] in the host's world space, lengths in the host's
- * units (nothing depends on the scene's scale).  Irradiance E is radiance
- * times steradians (the integral of L cos over the hemisphere: E = pi L
- * under a uniform sky of radiance L), in the host's units per channel.
+ * Vectors are float[3] in the host's world space and units (nothing depends
+ * on the scene's scale).  Irradiance E is the integral of L cos over the
+ * hemisphere (E = pi L under a uniform sky of radiance L), per channel.
  */
 #ifndef IRRCACHE_H
 #define IRRCACHE_H
@@ -61,8 +57,7 @@ extern "C" {
 #endif
 
 /* The one place the version is defined (the Makefile reads it).  Another
- * major version, or another minor one while the major is 0, is another ABI
- * where meanings may have changed under unchanged code (CHANGES.md,
+ * major, or another minor while the major is 0, is another ABI (CHANGES.md,
  * "Upgrading"); a host written for 0.3 may #error on another minor. */
 #define IRC_VERSION_MAJOR 0
 #define IRC_VERSION_MINOR 3
@@ -141,15 +136,12 @@ typedef enum irc_status {
     IRC_ERR_LAST = -19        /* the most negative code the library returns */
 } irc_status;
 
-/* A one-line English description of any status code (never NULL); thread
- * safe. */
+/* A one-line English description of any status code (never NULL). */
 IRC_API const char *irc_strerror(int status);
 
-/* The version of the library the program runs with, as IRC_VERSION_NUMBER
- * and IRC_VERSION_STRING were when it was built, to check the header
- * against the library loaded (while the major is 0, major and minor:
- * irc_version_number() / 100 == IRC_VERSION_NUMBER / 100).  Any time, any
- * thread; no cache needed. */
+/* The library's version as IRC_VERSION_NUMBER and _STRING were when it was
+ * built, to check the header against the library loaded (while the major is
+ * 0: irc_version_number() / 100 == IRC_VERSION_NUMBER / 100).  Any thread. */
 IRC_API unsigned irc_version_number(void);
 IRC_API const char *irc_version_string(void);
 
@@ -195,10 +187,9 @@ typedef struct irc_trace_args {
     const irc_ray *rays;    /* count rays to cast (read only) */
     irc_hit *hits;          /* count results to write, same order */
     uint32_t count;         /* 1 <= count <= cfg.max_batch */
-    /* 1: confirming rays (cfg.check_visibility) from the query toward a
-     * record each, raised toward the plane of n (so a ray may point a
-     * little below it).  Only status and dist are read: skip shading. */
-    uint32_t visibility_only;
+    uint32_t visibility_only; /* 1: confirming rays (check_visibility), from
+                                 the query toward a record each (maybe a
+                                 little below n); only status and dist read */
 } irc_trace_args;
 
 /*
@@ -239,17 +230,15 @@ typedef int (*irc_trace_fn)(const irc_trace_args *args);
  *     lock, and the library takes the write lock to repair.  A port that
  *     cannot tell never returns 1.  The library never takes a lock it
  *     already holds and never upgrades one.
- *   - read_unlock / write_unlock: release a lock this thread holds; cannot
- *     fail.
- *   - yield: let other threads run while this one waits for a scratch slot;
- *     NULL if the port cannot wait (single-threaded).
+ *   - read_unlock / write_unlock: release a lock this thread holds.
+ *   - yield: let other threads run while this one waits for a scratch slot
+ *     (NULL: the port cannot wait).
  *   - owner / owner_alive (both or neither; NULL: none): a scratch slot
  *     records the token of the process that claimed it, and a call that
  *     finds every slot taken takes over a slot whose process is gone.
  *     irc_port_posix has them, and its lock counts out a dead reader and
- *     takes over from a dead writer (1 above); irc_port_c11 has neither and
- *     recovers nothing until irc_attach (docs/DESIGN.md, "Reliability:
- *     how", says what each port recovers).
+ *     takes over from a dead writer; irc_port_c11 recovers nothing until
+ *     irc_attach (docs/DESIGN.md, "Reliability: how").
  * The atomics act on naturally aligned 64-bit words inside the block.
  */
 typedef struct irc_port {
@@ -273,10 +262,9 @@ typedef struct irc_port {
     int (*owner_alive)(uint64_t token);   /* optional: 0 if the process
                                              whose owner() gave token is
                                              gone, else 1 */
-    /* Optional: a nonzero token of the calling thread, unique among its
-     * process's live threads; with it a call nested in its own cache's
-     * callback returns IRC_ERR_NESTED instead of waiting for itself. */
-    uint64_t (*thread)(void);
+    uint64_t (*thread)(void);             /* optional: a nonzero token of
+                                             the calling thread, unique among
+                                             live ones (for IRC_ERR_NESTED) */
 } irc_port;
 
 /* The ports, all defined in every build.  A build compiles the one chosen
@@ -299,20 +287,17 @@ enum irc_feature {
                                           al. 2005 stratified form) */
     IRC_FEATURE_ROTATION = 1u << 1,    /* rotational gradient (Ward-Heckbert 1992) */
     /* TRANSLATION's gradient from exact visibility gradients at silhouettes
-     * (first-order paper, Sec. 6-7): implies TRANSLATION; extra rays (14 per
-     * silhouette crossing of the strata grid, + 1), ~300 scratch bytes a
-     * stratum. */
+     * (first-order paper, Sec. 6-7; implies TRANSLATION): 14 extra rays a
+     * silhouette crossing of the strata grid, ~300 scratch bytes a stratum. */
     IRC_FEATURE_VISIBILITY = 1u << 2,
     IRC_FEATURE_SH = 1u << 3,          /* SH records ("SH records" below);
                                           not with the three flags above */
     /* SH records with the coefficients' translational gradients, from the
      * same rays (SH-gradient paper, Eq. 6-12): implies SH. */
     IRC_FEATURE_SH_GRADIENT = 1u << 4,
-    /* Irradiance records: the occlusion-aware Hessian of E from the rays
-     * already cast (Schwarzhaupt et al. 2012), in irc_record.hessian, and
-     * the ellipse it implies (irc_record.radius; why: docs/DESIGN.md,
-     * "Error control").  No extra rays, 24 scratch bytes a stratum, 8
-     * record bytes. */
+    /* The occlusion-aware Hessian of E from the rays already cast
+     * (Schwarzhaupt et al. 2012) and the ellipse it implies (docs/DESIGN.md,
+     * "Error control"): no extra rays, 24 scratch bytes a stratum, 8 a record. */
     IRC_FEATURE_HESSIAN = 1u << 5,
     IRC_FEATURE_NONE = 1u << 6         /* no gradients: Ward's split-sphere
                                           radius; only alone (features = 0
@@ -344,35 +329,31 @@ typedef struct irc_config {
                                 (default 0.2) */
     float min_radius;        /* R_i >= min_radius; finite, in
                                 [0, IRC_RADIUS_CAP) (default 0) */
-    /* R_i <= max_radius; finite, in (min_radius, IRC_RADIUS_CAP] (default 0:
-     * the cap, no limit); also the radius of a record whose rays all escaped
-     * (by default the smallest float: set max_radius for open scenes, or use
-     * the _px call). */
+    /* R_i <= max_radius, in (min_radius, IRC_RADIUS_CAP] (default 0: the
+     * cap); also the radius of a record whose rays all escaped (by default
+     * the smallest float: set it for open scenes, or use the _px call). */
     float max_radius;
     uint32_t strata_theta;   /* M rows in theta, 1..1024 (default 32; SH 16) */
     uint32_t strata_phi;     /* N columns in phi, 1..4096 (default 128; SH
                                 64); M * N <= IRC_MAX_STRATA (why:
                                 bench/README.md, "The corpus") */
-    /* Scratch slots: how many record computations may run at once, 1..64
-     * (default 1), each irc_stats.bytes_scratch / threads bytes.  A compute
-     * that finds every slot taken waits for one (see no_wait): any number of
-     * host threads may share a cache; as many slots as workers never wait. */
+    /* Scratch slots: record computations at once, 1..64 (default 1), each
+     * bytes_scratch / threads bytes.  A compute that finds every slot taken
+     * waits for one (see no_wait); any number of host threads may share it. */
     uint32_t threads;
     uint32_t no_wait;        /* 1: a compute that finds every slot taken
                                 returns IRC_ERR_BUSY at once (default 0:
                                 wait through the port's yield) */
     uint32_t evict;          /* an irc_evict (default IRC_EVICT_NONE) */
     /* An irc_switch: neighbour clamping (Krivanek et al. 2006) at every
-     * insert: R <= R_j + |x - x_j| over the records j within it, which are
-     * clamped back to R + |x - x_j|.  On for irradiance records, off for SH
-     * records (why: bench/README.md, "On real geometry"). */
+     * insert, R <= R_j + |x - x_j| both ways.  On for irradiance records, off
+     * for SH records (why: bench/README.md, "On real geometry"). */
     uint32_t clamp_neighbours;
     /* An irc_switch: confirming rays (V-Ray's "check sample visibility"):
-     * the lookup_or_compute calls cast a ray from the query toward each
-     * record they would use (up to 32; visibility_only = 1) and leave out
-     * those hit before 0.9 of the way; with none left they compute.  On for
-     * irradiance records, off for SH records (why: bench/README.md,
-     * "Confirming rays on curved surfaces"); IRC_NO_SIGHT builds refuse it. */
+     * the lookup_or_compute calls cast a ray toward each record they would
+     * use (up to 32) and leave out those hit before 0.9 of the way.  On for
+     * irradiance records, off for SH (why: bench/README.md, "Confirming rays
+     * on curved surfaces"); IRC_NO_SIGHT builds refuse it. */
     uint32_t check_visibility;
     /* Fields of one record kind: a kind's own, zero for its defaults,
      * and all zero in a config of the other kind (else IRC_ERR_CONFIG). */
@@ -386,26 +367,22 @@ typedef struct irc_config {
          * 8 bytes) against light through thin walls.  Off by default (why:
          * bench/README.md, "On real geometry"). */
         uint32_t leak_guard;
-        /* Bounds in pixels on the reach a R of a record made by the _px
-         * call (pbrt-v2's pixel spacings; irc_record.radius).  Finite; 0:
-         * the defaults, no lower bound and 15 (why none: bench/README.md,
-         * "The corpus"); negative: that side unbounded; max_pixels >=
-         * min_pixels (a default max_pixels is at least min_pixels). */
+        /* Bounds in pixels on the reach a R of a _px call's record
+         * (pbrt-v2's pixel spacings).  Finite; 0: the defaults, none and 15
+         * (why: bench/README.md, "The corpus"); negative: unbounded;
+         * max_pixels >= min_pixels (a default one is at least min_pixels). */
         float min_pixels;
         float max_pixels;
-        /* A _px record whose R spans fewer than full_pixels pixels (R /
-         * footprint) is sampled on M/2 x N/2 strata, below full_pixels / 2
-         * on M/4 x N/4 (docs/DESIGN.md, "Records that cost what they
-         * serve").  Not with VISIBILITY, HESSIAN or supersamples.  Finite;
-         * 0 (default) or negative: off. */
+        /* A _px record whose R spans fewer than full_pixels pixels is
+         * sampled on M/2 x N/2 strata, below full_pixels / 2 on M/4 x N/4
+         * (docs/DESIGN.md, "Records that cost what they serve").  Not with
+         * VISIBILITY, HESSIAN or supersamples.  Finite; 0 or negative: off. */
         float full_pixels;
         /* The _px call first casts up to 8 probe rays; a point with a hit
-         * within detail_pixels x footprint is answered from its own M x N
-         * strata (E alone), stored nowhere, weight 0, counted a lookup but
-         * not a hit (as without detail when every slot is taken with
-         * no_wait, or inside the cache's own callback).  Finite; 0: 0.5;
-         * negative: off (why: bench/README.md, "Detail computed per
-         * pixel"). */
+         * within detail_pixels x footprint gets its own M x N estimate (E
+         * alone, stored nowhere, weight 0; not so when no slot is free with
+         * no_wait, or in the cache's own callback).  Finite; 0: 0.5;
+         * negative: off (why: bench/README.md, "Detail computed per pixel"). */
         float detail_pixels;
     } irr;
     struct irc_config_sh {   /* SH records (IRC_FEATURE_SH) */
@@ -465,10 +442,9 @@ typedef struct irc_cache irc_cache; /* lives inside cfg.buffer; opaque */
  * Bytes of block a cache of max_records (1..IRC_MAX_RECORDS) records needs
  * with this config (buffer and buffer_size ignored).  Thread safe.  Returns
  * IRC_OK and writes *bytes, IRC_ERR_CONFIG when that would not fit a
- * size_t, or a negative error code.  A lookup-or-compute stores at most one
- * record: a frame of one a pixel needs max_records = pixels at most.  A
- * full pool computes every later miss again (IRC_NOT_STORED): size it so
- * that irc_stats.not_stored stays 0, or turn on IRC_EVICT_CLOCK.
+ * size_t, or a negative error code.  A frame of one lookup a pixel needs
+ * max_records = pixels at most; a full pool computes every later miss
+ * again (IRC_NOT_STORED): keep irc_stats.not_stored 0, or IRC_EVICT_CLOCK.
  */
 IRC_API int irc_footprint(const irc_config *cfg, uint32_t max_records, size_t *bytes);
 
@@ -491,18 +467,16 @@ IRC_API int irc_init(const irc_config *cfg, uint32_t max_records, irc_cache **ca
  * contents move to the new 64-byte boundary.  The lock is made afresh: no
  * other thread or process may use the cache during the call.  Same build,
  * same ABI (pointer and size_t widths, byte order); else use snapshots.
- * Nothing in the block is trusted: it is checked in time linear in the
- * block, and one whose writer died in the write lock is repaired first
- * (docs/DESIGN.md, "Reliability: how").  Returns IRC_OK and writes *cache;
- * IRC_ERR_CONFIG when the block holds no cache or one of another ABI or
- * layout version; IRC_ERR_CORRUPT when it fails a check; IRC_ERR_NOMEM
- * when buffer_size is smaller than the cache; or a negative error code
- * (the block unchanged).
+ * Nothing in the block is trusted: it is checked in linear time, and one
+ * whose writer died in the write lock is repaired first (docs/DESIGN.md,
+ * "Reliability: how").  Returns IRC_OK and writes *cache; IRC_ERR_CONFIG
+ * (no cache, or another ABI or layout version), IRC_ERR_CORRUPT (a check
+ * failed), IRC_ERR_NOMEM (buffer_size short), or a negative code.
  */
 IRC_API int irc_attach(const irc_config *cfg, irc_cache **cache);
 
-/* Release what the port holds (the lock).  The block is the caller's again
- * afterwards.  Returns IRC_OK, or a negative error code on failure. */
+/* Release the port's lock; the block is the caller's again.  Returns
+ * IRC_OK, or a negative error code. */
 IRC_API int irc_fini(irc_cache *cache);
 
 /* ------------------------------------------------------------------------ */
@@ -517,12 +491,11 @@ typedef struct irc_record {
     float p[3];          /* position */
     float n[3];          /* unit normal */
     float e[3];          /* RGB irradiance (see the units above) */
-    /* R_i, the reach along axis (the major radius): the harmonic mean
-     * hit distance, at most E/|grad E| per channel (TRANSLATION); with
-     * HESSIAN sqrt(2 E/|k|) along each eigen-axis (docs/DESIGN.md, "Error
-     * control").  Then clamped to [min_pixels, max_pixels] x footprint / a
+    /* R_i, the reach along axis: the harmonic mean hit distance, at most
+     * E/|grad E| a channel (TRANSLATION), or the Hessian's (docs/DESIGN.md,
+     * "Error control"); clamped to [min_pixels, max_pixels] footprint / a
      * (the _px call) and [min_radius, max_radius]; with no hit, max_pixels
-     * x footprint / a, else max_radius, else the smallest float. */
+     * footprint / a, else max_radius, else the smallest float. */
     float radius;
     float minor_radius;  /* the reach across axis, in (0, radius]; 0 in a
                             host's record means radius (a disk).  Only
@@ -540,27 +513,25 @@ typedef struct irc_record {
     float hessian[3][6]; /* hessian[c]: d2E_c/dp2, world space, packed xx xy
                             xz yy yz zz, meaningful along the surface (zero
                             unless HESSIAN; not stored: zero read back) */
-    /* What the record saw near it, so that a lookup from behind that
-     * geometry (a wall between two rooms) does not use it: the nearest
-     * grazing hit in each of 16 sectors about n, 4 bits each (the encoding
-     * and the test: docs/DESIGN.md, "Leak guard").  Set by compute; 0 in a
-     * host's record: no guard.  Stored when cfg.irr.leak_guard is IRC_ON. */
+    /* The nearest grazing hit in each of 16 sectors about n, 4 bits each,
+     * so that a lookup from behind a wall does not use the record
+     * (docs/DESIGN.md, "Leak guard"); 0 in a host's record: no guard.
+     * Stored when cfg.irr.leak_guard is IRC_ON. */
     uint64_t leak_guard;
     uint32_t features;   /* which gradients are valid */
     uint32_t rays;       /* rays cast, and how many were usable: */
     uint32_t rays_used;
 } irc_record;
 
-/* Sample the hemisphere around (p, n) (n of any length > 0) through the
- * callback (args->host = host) and build a record; nothing is stored.
- * Waits for a scratch slot when all are taken (cfg.threads).  Returns
- * IRC_OK, or a negative error code (the host's own if trace returned one). */
+/* Sample the hemisphere around (p, n) (n any length > 0; args->host = host)
+ * and build a record; nothing is stored.  Waits for a free scratch slot.
+ * Returns IRC_OK, or a negative code (the host's own if trace gave one). */
 IRC_API int irc_record_compute(irc_cache *cache, const float p[3], const float n[3],
                                irc_record *out, void *host);
 
-/* Store a record (a copy, packed): rec->radius > 0 and rec->e >= 0 (else
+/* Store a record (a copy, packed): rec->radius > 0, rec->e >= 0 (else
  * IRC_ERR_RANGE), every field finite.  Returns IRC_OK, IRC_ERR_FULL (pool
- * full, eviction off; lookups go on), or a negative error code. */
+ * full, eviction off), or a negative error code. */
 IRC_API int irc_cache_insert(irc_cache *cache, const irc_record *rec);
 
 /*
@@ -580,13 +551,12 @@ IRC_API int irc_cache_lookup(irc_cache *cache, const float p[3], const float n[3
 
 /*
  * Lookup; on a miss, compute a record at (p, n) (the callback gets host),
- * insert it, and return its irradiance with *weight = 0 (a fresh record).
- * With cfg.check_visibility the lookup first confirms its records (a
- * callback failure there returns as a record's would, nothing changed).
- * A miss that waited for a scratch slot looks up again first.  Returns
- * IRC_OK, IRC_NOT_STORED (value valid, pool full, eviction off), or a
- * negative error code (IRC_ERR_NESTED from inside this cache's own
- * callback: see irc_trace_fn).
+ * insert it, and return its irradiance with *weight = 0.  With
+ * cfg.check_visibility the lookup first confirms its records (a callback
+ * failure there returns as a record's would, nothing changed).  A miss that
+ * waited for a slot looks up again first.  Returns IRC_OK, IRC_NOT_STORED
+ * (value valid, pool full, eviction off), or a negative error code
+ * (IRC_ERR_NESTED inside this cache's own callback: see irc_trace_fn).
  */
 IRC_API int irc_cache_lookup_or_compute(irc_cache *cache, const float p[3],
                                         const float n[3], float rgb[3], float *weight,
@@ -621,13 +591,12 @@ IRC_API int irc_cache_lookup_or_compute_px(irc_cache *cache, const float p[3],
 IRC_API int irc_pixel_footprint(const float eye[3], const float forward[3], float pixel_angle,
                                 const float p[3], const float n[3], float *footprint);
 
-/* Read the record in slot id (0 <= id < capacity).  Returns IRC_OK,
- * IRC_MISS when the slot is empty, IRC_ERR_RANGE past the capacity, or a
- * negative error code. */
+/* Read the record in slot id.  Returns IRC_OK, IRC_MISS (an empty slot),
+ * IRC_ERR_RANGE (id >= capacity), or a negative error code. */
 IRC_API int irc_cache_record(irc_cache *cache, uint32_t id, irc_record *out);
 
-/* Remove every record, of either kind (irc_stats' counters are kept).  Not
- * concurrent with other calls.  Returns IRC_OK, or a negative error code. */
+/* Remove every record (irc_stats' counters are kept); not concurrent with
+ * other calls.  Returns IRC_OK, or a negative error code. */
 IRC_API int irc_cache_clear(irc_cache *cache);
 
 /* ------------------------------------------------------------------------ */
@@ -653,9 +622,8 @@ IRC_API int irc_snapshot_size(irc_cache *cache, size_t *bytes);
  * Writes every stored record, with a header carrying the host's 64-bit
  * scene fingerprint, into buffer (write NULL; size at least
  * irc_snapshot_size, else IRC_ERR_NOMEM and nothing written) or through
- * write(context, ...) in pieces (buffer ignored).  *written (optional)
- * gets the bytes produced.  The cache is not changed.  Returns IRC_OK or a
- * negative error code.
+ * write(context, ...) in pieces.  *written (optional) gets the bytes
+ * produced; the cache is unchanged.  Returns IRC_OK or a negative code.
  */
 IRC_API int irc_snapshot_write(irc_cache *cache, uint64_t fingerprint, void *buffer,
                                size_t size, irc_write_fn write, void *context,
@@ -689,30 +657,28 @@ IRC_API int irc_merge(irc_cache *cache, uint64_t fingerprint, const void *data, 
 /* Fill passes: the same records whatever the threads and their timing.    */
 
 /*
- * Opens a fill pass.  Until irc_pass_end, every lookup (of any call, on any
- * thread, taking no lock) sees the cache as it was here: records computed
- * by misses and given to insert wait in free slots, not indexed (a miss
- * still returns its record's value, weight 0), so the pass's answers and
- * records depend only on the cache it began with and the set of queries.
- * A pass never evicts: once the free slots are taken, its further records
- * are not stored (IRC_NOT_STORED, IRC_ERR_FULL from insert; counted in
- * irc_stats.not_stored) and which were kept depends on timing.  Two misses
- * of a pass within a record's reach both compute a record: shade sparse
- * pixels first, in several passes (docs/DESIGN.md, "Fill passes").  Not
- * concurrent with other calls.
- * Returns IRC_OK, IRC_ERR_STATE when a pass is open, or a negative code.
+ * Opens a fill pass.  Until irc_pass_end, every lookup (any call, any
+ * thread, no lock taken) sees the cache as it was here: records computed
+ * by misses and inserted wait in free slots, not indexed (a miss still
+ * returns its record's value, weight 0), so the pass's answers and records
+ * depend only on the cache it began with and the set of queries.  A pass
+ * never evicts: once the free slots are taken, its further records are not
+ * stored (IRC_NOT_STORED; IRC_ERR_FULL from insert) and which were kept
+ * depends on timing.  Two misses within a record's reach both compute:
+ * shade sparse pixels first, in several passes (docs/DESIGN.md, "Fill
+ * passes").  Not concurrent with other calls.  Returns IRC_OK,
+ * IRC_ERR_STATE when a pass is open, or a negative code.
  */
 IRC_API int irc_pass_begin(irc_cache *cache);
 
 /*
  * Closes the open pass: its records, in merge's canonical order with exact
- * duplicates kept once, are inserted (and clamped, when on) in that order;
- * then every record is renumbered in the order lookups visit the index
- * (lookups answer bit for bit as before, faster; record ids change), even
- * by a pass with no records.  *added (optional) gets how many were added.
- * Not concurrent with other calls: every thread of the pass must be done.
- * Returns IRC_OK, IRC_ERR_STATE when no pass is open, or a negative error
- * code.  While a pass is open, irc_cache_clear, irc_snapshot_read and
+ * duplicates kept once, are inserted (and clamped, when on); then every
+ * record is renumbered in the order lookups visit the index (answers bit
+ * for bit as before, faster; ids change).  *added (optional) gets how many
+ * were added.  Not concurrent with other calls: every thread of the pass
+ * must be done.  Returns IRC_OK, IRC_ERR_STATE when no pass is open, or a
+ * negative code.  In a pass, irc_cache_clear, irc_snapshot_read and
  * irc_merge return IRC_ERR_STATE and change nothing.
  */
 IRC_API int irc_pass_end(irc_cache *cache, uint32_t *added);
@@ -776,37 +742,32 @@ IRC_API int irc_sh_insert(irc_cache *cache, const irc_sh *rec);
 IRC_API int irc_sh_lookup(irc_cache *cache, const float p[3], const float n[3],
                   irc_sh *out, float *weight);
 
-/* Lookup; on a miss, compute, insert and return the new record (*weight =
- * 0).  Returns IRC_OK, IRC_NOT_STORED (pool full, eviction off), or a
- * negative error code. */
+/* Lookup; on a miss, compute, insert and return the new record (*weight
+ * 0).  Returns IRC_OK, IRC_NOT_STORED (pool full), or a negative code. */
 IRC_API int irc_sh_lookup_or_compute(irc_cache *cache, const float p[3],
                                      const float n[3], irc_sh *out, float *weight,
                                      void *host);
 
-/* Read the SH record in slot id.  Coefficients, gradients, position,
- * radius and e come back exactly; n to about 5e-5 rad (0, 0, 0 for a free
- * point); bands, channels and features are the cache's; rays and
- * rays_used are 0 (not stored).  Returns IRC_OK, IRC_MISS (empty slot),
- * IRC_ERR_RANGE, or a negative error code. */
+/* Read the SH record in slot id: all exactly but n (to about 5e-5 rad);
+ * bands, channels and features the cache's; rays and rays_used 0.  Returns
+ * IRC_OK, IRC_MISS (empty slot), IRC_ERR_RANGE, or a negative code. */
 IRC_API int irc_sh_record(irc_cache *cache, uint32_t id, irc_sh *out);
 
 /*
  * Irradiance about the unit-ish normal n from sh's coefficients: the
  * clamped-cosine convolution (Ramamoorthi-Hanrahan 2001), sum over l, m of
  * A_l c_lm y_lm(n), A_0..4 = pi, 2 pi/3, pi/4, 0, -pi/24; exact for
- * radiance of band < L.  rgb gets sh->channels values (one channel is
- * copied to all three).  Returns
- * IRC_OK, IRC_ERR_NULL, IRC_ERR_NORMAL, or IRC_ERR_RANGE (bands or
- * channels out of range).
+ * radiance of band < L.  rgb gets sh->channels values (one is copied to
+ * all three).  Returns IRC_OK, IRC_ERR_NULL, IRC_ERR_NORMAL, or
+ * IRC_ERR_RANGE (bands or channels out of range).
  */
 IRC_API int irc_sh_irradiance(const irc_sh *sh, const float n[3], float rgb[3]);
 
 /*
  * A Phong-like lobe: integral of L(w) max(0, w.r)^s dw about the unit-ish
- * axis r, as sum A_l(s) c_lm y_lm(r), A_l(s) = 2 pi integral_0^1 z^s P_l(z)
- * dz; times the BRDF's normalisation ((s + 2)/(2 pi) for normalised Phong).
- * L bands resolve s up to about L^2.  0 <= s <= 1e4.  Returns as irc_sh_irradiance
- * (IRC_ERR_RANGE also for s out of range).
+ * axis r, sum A_l(s) c_lm y_lm(r), A_l(s) = 2 pi integral_0^1 z^s P_l(z) dz
+ * (times (s + 2)/(2 pi) for normalised Phong); L bands resolve s up to
+ * about L^2.  Returns as irc_sh_irradiance (IRC_ERR_RANGE: s not in [0, 1e4]).
  */
 IRC_API int irc_sh_glossy(const irc_sh *sh, const float r[3], float s, float rgb[3]);
 
@@ -841,8 +802,8 @@ typedef struct irc_stats {
     size_t bytes_total;      /* all block bytes the cache uses */
 } irc_stats;
 
-/* Thread safe; the counters are read one by one, so a concurrent call may
- * be half counted.  Returns IRC_OK, or a negative error code. */
+/* Thread safe (a concurrent call may be half counted).  Returns IRC_OK, or
+ * a negative error code. */
 IRC_API int irc_cache_stats(irc_cache *cache, irc_stats *out);
 
 #ifdef __cplusplus
@@ -872,11 +833,9 @@ typedef struct irc_occlusion {
     uint32_t rays;   /* rays cast */
 } irc_occlusion;
 
-/* Sample the hemisphere around (p, n) and return its net visibility and
- * that visibility's exact gradient from the silhouettes.  Needs
- * IRC_FEATURE_VISIBILITY (else IRC_ERR_UNSUPPORTED).  Nothing is stored;
- * the rays count in irc_stats.rays.  Returns IRC_OK, or a negative error
- * code. */
+/* The net visibility about (p, n) and its exact gradient from the
+ * silhouettes; needs IRC_FEATURE_VISIBILITY (else IRC_ERR_UNSUPPORTED).
+ * Nothing is stored.  Returns IRC_OK, or a negative error code. */
 IRC_API int irc_occlusion_compute(irc_cache *cache, const float p[3], const float n[3],
                                   irc_occlusion *out, void *host);
 
@@ -902,12 +861,10 @@ IRC_API int irc_cache_lookup_gradient(irc_cache *cache, const float p[3], const 
 
 /*
  * The ids (slot numbers) of the records a lookup at (p, n) would use, in no
- * particular order: up to cap of them in ids, and how many there are in
- * *count (which may exceed cap).  Either kind of cache (n NULL in an SH
- * cache: free points).  For debugging and visualisation.  An id stays a
- * record's until irc_pass_end, irc_merge or irc_cache_clear (which
- * renumber or remove records) or its eviction.  Returns IRC_OK, or a
- * negative error code.
+ * order: up to cap in ids, how many there are in *count (maybe > cap).
+ * Either kind (n NULL in an SH cache: free points); for debugging.  An id
+ * is a record's until irc_pass_end, irc_merge, irc_cache_clear or its
+ * eviction.  Returns IRC_OK, or a negative error code.
  */
 IRC_API int irc_cache_neighbours(irc_cache *cache, const float p[3], const float n[3],
                                  uint32_t *ids, uint32_t cap, uint32_t *count);
@@ -923,10 +880,9 @@ IRC_API int irc_cache_neighbours(irc_cache *cache, const float p[3], const float
  * mmap is); the port must be the creator's.  irc_fini of a view releases
  * the view; the creator's, after every view's, destroys the lock.  The
  * block is checked as irc_attach checks it and never written.  Returns
- * IRC_OK and writes *cache; IRC_ERR_CONFIG when the block holds no cache
- * of this build, sits at another offset, or the port differs;
- * IRC_ERR_CORRUPT when it fails a check; IRC_ERR_NOMEM when view_size is
- * too small or buffer_size smaller than the cache; or a negative code.
+ * IRC_OK and writes *cache; IRC_ERR_CONFIG (no cache of this build, another
+ * offset or port), IRC_ERR_CORRUPT (a check failed), IRC_ERR_NOMEM
+ * (view_size or buffer_size short), or a negative code.
  */
 #define IRC_VIEW_BYTES 1024u
 IRC_API int irc_join(const irc_config *cfg, void *view, size_t view_size, irc_cache **cache);
