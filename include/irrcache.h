@@ -136,7 +136,7 @@ typedef enum irc_status {
     IRC_ERR_LAST = -19        /* the most negative code the library returns */
 } irc_status;
 
-/* A one-line English description of any status code (never NULL). */
+/* A one-line English description of any status code (never NULL); any thread. */
 IRC_API const char *irc_strerror(int status);
 
 /* The library's version as IRC_VERSION_NUMBER and _STRING were when it was
@@ -380,9 +380,10 @@ typedef struct irc_config {
         float full_pixels;
         /* The _px call first casts up to 8 probe rays; a point with a hit
          * within detail_pixels x footprint gets its own M x N estimate (E
-         * alone, stored nowhere, weight 0; not so when no slot is free with
-         * no_wait, or in the cache's own callback).  Finite; 0: 0.5;
-         * negative: off (why: bench/README.md, "Detail computed per pixel"). */
+         * alone, stored nowhere, weight 0, a lookup but not a hit; not so
+         * when no slot is free with no_wait, or in the cache's own
+         * callback).  Finite; 0: 0.5; negative: off (why: bench/README.md,
+         * "Detail computed per pixel"). */
         float detail_pixels;
     } irr;
     struct irc_config_sh {   /* SH records (IRC_FEATURE_SH) */
