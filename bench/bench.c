@@ -303,20 +303,62 @@ static int reference(ctx *c, const bscene *b)
     return 0;
 }
 
+/* Record noise (bench/README.md, "Noise and bias"): two renders that
+ * differ only in the cache's seed differ by the records' noise alone, so
+ * noise^2 = sum (T1 - T2)^2 / 2 over the lattice, relative to the
+ * reference's sum of squares.  Its share of the run's squared error is
+ * what averaging records could remove; the rest is bias (interpolation,
+ * leaks). */
+static int record_noise(ctx *c, const render_opts *o, const float *img, run *r)
+{
+    render_opts o2 = *o;
+    render_stats st;
+    run d;
+    float *two = malloc(sizeof(float) * 3 * (size_t)c->w * c->h);
+    r->noise = -1.0;
+    if (!two)
+        return -1;
+    o2.seed = o->seed + 1;
+    if (render(c, &o2, two, &st) < 0) {
+        free(two);
+        return -1;
+    }
+    measure(c, img, two, &d); /* sqrt(sum (T1 - T2)^2 / sum T2^2) */
+    {
+        const int n = c->w * c->h;
+        double s2 = 0.0, sr = 0.0;
+        int i, k;
+        for (i = 0; i < n; i++)
+            if (on_lattice(c, i))
+                for (k = 0; k < 3; k++) {
+                    s2 += two[3 * i + k] * (double)two[3 * i + k];
+                    sr += c->ref[3 * i + k] * (double)c->ref[3 * i + k];
+                }
+        r->noise = sr > 0.0 ? d.rmse * sqrt(s2 / sr / 2.0) : 0.0;
+    }
+    free(two);
+    return 0;
+}
+
 int add_run(ctx *c, const char *method, double param, const render_opts *o, const bscene *b,
             FILE *csv)
 {
     run *r = &c->runs[c->nruns];
+    const char *nz = getenv("BENCH_NOISE");
     r->m = o->mode == MODE_CACHE ? o->strata_m : 0;
     r->n = o->mode == MODE_CACHE ? o->strata_n : 0;
+    r->noise = -1.0;
     float *img = malloc(sizeof(float) * 3 * (size_t)c->w * c->h);
     if (!img || c->nruns == MAX_RUNS || render(c, o, img, &r->st) < 0)
+        return -1;
+    if (o->mode == MODE_CACHE && !(nz && !strcmp(nz, "0")) && record_noise(c, o, img, r) < 0)
         return -1;
     if (o->stride > 1) { /* a lattice stands for the image */
         const int s = o->stride, off = o->stride_offset;
         const double f = (double)c->w * c->h /
                          (double)(((c->w - off + s - 1) / s) * ((c->h - off + s - 1) / s));
         r->st.wall *= f;
+        r->st.cpu *= f;
         r->st.trace_s *= f;
         r->st.rays = (uint64_t)((double)r->st.rays * f);
     }
@@ -328,18 +370,24 @@ int add_run(ctx *c, const char *method, double param, const render_opts *o, cons
     free(img);
     c->nruns++;
     fprintf(csv, "%s,%s,%g,%ux%u,%.4f,%.4f,%.4f,%llu,%llu,%zu,%zu,%.5f,%.5f,%.5f,%.5f,%.5f,%d,"
-                 "%.4f,%d,%.5f\n",
+                 "%.4f,%d,%.5f,%.4f,%.5f\n",
             b->name, method, param, r->m, r->n, r->st.wall, r->st.trace_s, r->st.cache_s,
             (unsigned long long)r->st.rays, (unsigned long long)r->st.records,
             (size_t)r->st.records * r->st.record_bytes, r->st.cache_bytes, r->rmse, r->p99,
-            c->ref_noise, r->p999, r->maxe, r->over10, r->worst1, r->leaks, r->bias);
+            c->ref_noise, r->p999, r->maxe, r->over10, r->worst1, r->leaks, r->bias, r->st.cpu,
+            r->noise);
     fflush(csv);
-    printf("  %-10s %5g %4ux%-4u %7.2f s, rel RMSE %.4f, p99 %.4f, p99.9 %.4f, max %.4f, "
+    printf("  %-10s %5g %4ux%-4u %7.2f CPU s, rel RMSE %.4f", method, param, r->m, r->n,
+           r->st.cpu, r->rmse);
+    if (r->noise >= 0.0)
+        printf(" (record noise %.4f: %.0f%% of the squared error)", r->noise,
+               r->rmse > 0.0 ? 100.0 * r->noise * r->noise / (r->rmse * r->rmse) : 0.0);
+    printf(", p99 %.4f, p99.9 %.4f, max %.4f, "
            "%d px > 10%%, worst 1%% %.0f%%, leaks %d, bias %+.2f%%, records %llu, "
            "cache %.1f%% of thread time\n",
-           method, param, r->m, r->n, r->st.wall, r->rmse, r->p99, r->p999, r->maxe, r->over10,
+           r->p99, r->p999, r->maxe, r->over10,
            100.0 * r->worst1, r->leaks, 100.0 * r->bias, (unsigned long long)r->st.records,
-           100.0 * r->st.cache_s / (c->threads * r->st.wall));
+           100.0 * r->st.cache_s / r->st.cpu);
     if (r->st.evictions || r->st.not_stored)
         printf("  %-10s the pool of %d records (one a pixel) filled: %llu evicted, %llu not "
                "stored\n", method, c->w * c->h, (unsigned long long)r->st.evictions,
@@ -527,7 +575,9 @@ int main(int argc, char **argv)
     memset(&c, 0, sizeof c);
     setvbuf(stdout, NULL, _IOLBF, 0);
     c.quick = argc > 1 && !strcmp(argv[1], "quick");
-    c.threads = (int)sysconf(_SC_NPROCESSORS_ONLN);
+    c.threads = getenv("BENCH_THREADS") ? atoi(getenv("BENCH_THREADS")) : 0;
+    if (c.threads < 1)
+        c.threads = (int)sysconf(_SC_NPROCESSORS_ONLN);
     clock_gettime(CLOCK_MONOTONIC, &t0);
     mkdir("build", 0777);
     mkdir(OUT, 0777);
@@ -552,14 +602,14 @@ int main(int argc, char **argv)
     }
     fprintf(csv, "scene,method,param,strata,wall_s,trace_thread_s,cache_thread_s,rays,records,"
                  "record_bytes_used,block_bytes,rel_rmse,p99_rel_err,ref_noise,p999_rel_err,max_rel_err,"
-                 "pixels_over_10pct,worst1_share,leaks,bias\n");
+                 "pixels_over_10pct,worst1_share,leaks,bias,cpu_s,record_noise\n");
     fprintf(md, "`make bench%s` on %s (%d threads), %s. Indirect light kd/pi E (one bounce but in bounce scenes) "
                 "only. Speedups are brute force's time to the same error over the method's: brute "
                 "force's from a power law fitted over its runs (its exponent in each scene's "
                 "title; \"ext\": extrapolated, at most 2x in error beyond its runs), the "
                 "method's interpolated along its curve (log-log); plots in `" OUT "/SCENE.png`.\n",
             c.quick ? " BENCH_QUICK=1" : "", host, c.threads, date);
-    fprintf(gp, "set terminal pngcairo size 900,600\nset logscale xy\nset xlabel 'wall "
+    fprintf(gp, "set terminal pngcairo size 900,600\nset logscale xy\nset xlabel 'CPU "
                 "seconds'\nset ylabel 'relative RMSE'\nset key top right\n");
     for (k = 0; k < sizeof scenes / sizeof scenes[0]; k++) {
         const bscene *b = &scenes[k];
@@ -578,6 +628,10 @@ int main(int argc, char **argv)
         }
         c.w = c.quick ? b->qw : b->w;
         c.h = c.quick ? b->qh : b->h;
+        if (getenv("BENCH_SIZE") && sscanf(getenv("BENCH_SIZE"), "%dx%d", &c.w, &c.h) != 2) {
+            fprintf(stderr, "bench: BENCH_SIZE=WxH\n");
+            return 1;
+        }
         c.s.cam.width = c.w;
         c.s.cam.height = c.h;
         c.nruns = 0;

@@ -49,6 +49,10 @@ typedef struct run {
     int leaks;                    /* pixels above the reference by more
                                      than 25% of its mean */
     double bias;                  /* mean over the reference's, - 1 */
+    double noise;                 /* cache runs: the record noise's relative
+                                     RMSE, from a second run with another
+                                     seed (sqrt(sum (T1 - T2)^2 / 2 / sum
+                                     R^2)); -1: not measured (BENCH_NOISE=0) */
 } run;
 
 typedef struct ctx {

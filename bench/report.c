@@ -38,7 +38,7 @@ static double time_by(const ctx *c, const char *method, double target, int by, i
         if (!strcmp(c->runs[i].method, method))
             idx[n++] = i;
     for (i = 1; i < n; i++)
-        for (j = i; j > 0 && c->runs[idx[j]].st.wall < c->runs[idx[j - 1]].st.wall; j--) {
+        for (j = i; j > 0 && c->runs[idx[j]].st.cpu < c->runs[idx[j - 1]].st.cpu; j--) {
             int t = idx[j];
             idx[j] = idx[j - 1];
             idx[j - 1] = t;
@@ -51,13 +51,13 @@ static double time_by(const ctx *c, const char *method, double target, int by, i
         return -1.0;
     if (err_of(&c->runs[idx[0]], by) <= target) {
         *bound = 1;
-        return c->runs[idx[0]].st.wall;
+        return c->runs[idx[0]].st.cpu;
     }
     for (i = 1; i < k; i++) {
         const run *a = &c->runs[idx[i - 1]], *b = &c->runs[idx[i]];
         if (err_of(b, by) <= target) {
             double u = (log(target) - log(err_of(a, by))) / (log(err_of(b, by)) - log(err_of(a, by)));
-            return exp(log(a->st.wall) + u * (log(b->st.wall) - log(a->st.wall)));
+            return exp(log(a->st.cpu) + u * (log(b->st.cpu) - log(a->st.cpu)));
         }
     }
     return -1.0;
@@ -83,10 +83,10 @@ static int brute_law(const ctx *c, int by, double *a, double *b, double *lo, dou
     for (i = 0; i < c->nruns; i++) {
         const run *r = &c->runs[i];
         double x, y;
-        if (strcmp(r->method, "brute") || !(err_of(r, by) > 0.0) || !(r->st.wall > 0.0))
+        if (strcmp(r->method, "brute") || !(err_of(r, by) > 0.0) || !(r->st.cpu > 0.0))
             continue;
         x = log(err_of(r, by));
-        y = log(r->st.wall);
+        y = log(r->st.cpu);
         sx += x;
         sy += y;
         sxx += x * x;
@@ -259,7 +259,7 @@ void table(ctx *c, const bscene *b, FILE *md)
         if (mid)
             fprintf(md, " %llu (%.2f MB) | %.1f%% |\n", (unsigned long long)mid->st.records,
                     (double)mid->st.records * mid->st.record_bytes / 1048576.0,
-                    100.0 * mid->st.cache_s / (c->threads * mid->st.wall));
+                    100.0 * mid->st.cache_s / (mid->st.cpu));
         else
             fprintf(md, " | |\n");
     }
@@ -290,8 +290,9 @@ void defaults_table(ctx *c, const bscene *b, FILE *md)
                 "from its power-law fit at the same error, ext: extrapolated; leaks: pixels above the reference by more than "
                 "25%% of its mean)\n\n"
                 "| method | rel. RMSE | speedup at equal RMSE | p99 | speedup at equal p99 | "
-                "worst 1%% of pixels: share of squared error | leaks (brute force at equal RMSE) | "
-                "bias | records |\n|---|---|---|---|---|---|---|---|---|\n",
+                "worst 1%% of pixels: share of squared error | record noise: rel. RMSE, share "
+                "of squared error | leaks (brute force at equal RMSE) | "
+                "bias | records |\n|---|---|---|---|---|---|---|---|---|---|\n",
             b->name);
     for (m = 1; m < NMETHODS; m++)
         for (i = 0; i < c->nruns; i++) {
@@ -304,19 +305,24 @@ void defaults_table(ctx *c, const bscene *b, FILE *md)
             bl = brute_leaks_at(c, r->rmse);
             fprintf(md, "| %s | %.4f |", method_names[m], r->rmse);
             if (tr > 0.0)
-                fprintf(md, " %.1fx%s |", tr / r->st.wall, bt ? " ext" : "");
+                fprintf(md, " %.1fx%s |", tr / r->st.cpu, bt ? " ext" : "");
             else
                 fprintf(md, " beyond brute force's runs |");
             if (tr > 0.0 && !strcmp(r->method, "trans+rot")) {
-                c->gm_log += log(tr / r->st.wall);
+                c->gm_log += log(tr / r->st.cpu);
                 c->gm_n++;
             }
             fprintf(md, " %.3f |", r->p99);
             if (tp > 0.0)
-                fprintf(md, " %.1fx%s |", tp / r->st.wall, bp ? " ext" : "");
+                fprintf(md, " %.1fx%s |", tp / r->st.cpu, bp ? " ext" : "");
             else
                 fprintf(md, " beyond brute force's runs |");
-            fprintf(md, " %.0f%% | %d (", 100.0 * r->worst1, r->leaks);
+            fprintf(md, " %.0f%% |", 100.0 * r->worst1);
+            if (r->noise >= 0.0 && r->rmse > 0.0)
+                fprintf(md, " %.4f, %.0f%% |", r->noise, 100.0 * r->noise * r->noise / (r->rmse * r->rmse));
+            else
+                fprintf(md, " - |");
+            fprintf(md, " %d (", r->leaks);
             if (bl >= 0.0)
                 fprintf(md, "%.0f) |", bl);
             else
@@ -346,7 +352,7 @@ void data_files(const ctx *c, const bscene *b, FILE *gp)
                 if (i > 0 && !strcmp(c->runs[i - 1].method, methods[m]) &&
                     c->runs[i - 1].m != c->runs[i].m)
                     fprintf(f, "\n");
-                fprintf(f, "%g %g\n", c->runs[i].st.wall, c->runs[i].rmse);
+                fprintf(f, "%g %g\n", c->runs[i].st.cpu, c->runs[i].rmse);
             }
         if (f) {
             fclose(f);

@@ -45,7 +45,7 @@ int wanted_family(const char *name)
 /* BENCH_SET="name=value,...": settings laid over every cache run, for
  * experiments (minpx, maxpx: the pixel bounds, -1 none; guard: 0 or 1;
  * maxr: max_radius, -1 the demo's view rule, 0 the library's; clamp: 0 or
- * 1; free: 1 free fill; sm, sn: strata; ss:
+ * 1; free: 1 free fill; blend: cfg.irr.blend; seed: the cache's seed; sm, sn: strata; ss:
  * super-samples; vis: 1 a lookup answered by a record out of sight makes a
  * record instead; fullpx, detail: cfg.irr.full_pixels, detail_pixels). */
 void experiment_opts(render_opts *o)
@@ -67,6 +67,9 @@ void experiment_opts(render_opts *o)
         else if (!strcmp(name, "ss")) o->supersamples = (uint32_t)v;
         else if (!strcmp(name, "fullpx")) o->full_pixels = (float)v;
         else if (!strcmp(name, "detail")) o->detail_pixels = (float)v;
+        else if (!strcmp(name, "blend")) o->blend = (float)v;
+        else if (!strcmp(name, "seed")) o->seed = (uint64_t)v;
+        else if (!strcmp(name, "final")) o->final_sweep = v != 0.0;
         else if (!strcmp(name, "vis")) o->check_visibility = v != 0.0 ? IRC_ON : IRC_OFF;
         else if (!strcmp(name, "sm")) o->strata_m = (uint32_t)v;
         else if (!strcmp(name, "sn")) o->strata_n = (uint32_t)v;

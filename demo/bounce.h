@@ -19,6 +19,9 @@ typedef struct tstate {
     uint64_t rays, dropped;
     double mark;              /* when the thread entered region */
     int region;               /* CLOCK_* */
+    int final;                /* render.c: the final sweep's lookups */
+    int detail;               /* render.c: the last _px call answered per
+                                 pixel (a detail estimate) */
 } tstate;
 
 enum { CLOCK_HOST, CLOCK_TRACE, CLOCK_CACHE };

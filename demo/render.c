@@ -25,6 +25,13 @@ double render_clock(void)
     return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
+double render_cpu_clock(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
 /* The default maximum radius: 0.1 x the diagonal of what the camera sees
  * (the box around the first hits of a 32 x 32 grid of camera rays), as
  * Radiance bounds radii by the scene's size; open scenes otherwise get
@@ -107,6 +114,7 @@ int renderer_init(renderer *r, const scene *s, const render_opts *o, char *err, 
         cfg.irr.supersamples = o->supersamples;
         cfg.irr.full_pixels = o->full_pixels;
         cfg.irr.detail_pixels = o->detail_pixels;
+        cfg.irr.blend = (o->features & IRC_FEATURE_SH) ? 0.0f : o->blend;
         cfg.min_radius = o->min_radius;
         cfg.irr.min_pixels = o->min_pixels;
         cfg.irr.max_pixels = o->max_pixels;
@@ -219,12 +227,21 @@ static int irradiance(renderer *r, const float p[3], const float n[3], float fp,
                 memcpy(e, rec.e, sizeof rec.e);
                 ts->dropped++;
             }
+        } else if (ts->final) {
+            st = irc_cache_lookup(r->cache, p, n, e, NULL);
         } else {
+            irc_stats s0, s1;
+            if (r->o.final_sweep)
+                irc_cache_stats(r->cache, &s0);
             st = irc_cache_lookup_or_compute_px(r->cache, p, n, r->o.no_footprint ? 0.0f : fp,
                                                 e, NULL, ts);
+            if (r->o.final_sweep) {
+                irc_cache_stats(r->cache, &s1);
+                ts->detail = s1.computes == s0.computes && s1.hits == s0.hits;
+            }
         }
         clock_enter(ts, was);
-        return st < 0 ? st : 0;
+        return st < 0 ? st : ts->final && st == IRC_MISS ? IRC_MISS : 0;
     }
     reference_e(r, p, n, key, e, ts);
     return 0;
@@ -295,7 +312,7 @@ static int shade_pixel(renderer *r, const cam_frame *cf, int x, int y, float out
     surface_at(r->s, cf->eye, d, &bh, &sf);
     cache_point(&sf, p);
     if ((st = irradiance(r, p, sf.nsm, camera_footprint(cf, c, d, bh.t, sf.ng), key, e, &sh,
-                         ts)) < 0)
+                         ts)) != 0)
         return st;
     for (i = 0; i < 3; i++)
         out[i] = sf.m->kd[i] / (float)PI * e[i];
@@ -322,6 +339,7 @@ typedef struct job {
     int open;               /* a pass of the cache is open */
     pthread_barrier_t wall;
     double start, shown;
+    unsigned char *detail;  /* final_sweep: pixels answered per pixel */
     tstate ts[64];
 } job;
 
@@ -382,9 +400,21 @@ static int shade_pass(job *j, tstate *ts, int id)
                 return 0;
             if ((x - off) % step || (y - off) % step || x < off || y < off || y < y0 || y >= y1)
                 continue;
-            st = shade_pixel(j->r, &j->cf, x, y, &j->rgb[((size_t)y * c->width + x) * 3], ts);
-            if (st < 0)
-                return st;
+            {
+                const size_t at = (size_t)y * c->width + x;
+                float v[3];
+                if (ts->final && j->detail[at])
+                    continue;
+                ts->detail = 0;
+                st = shade_pixel(j->r, &j->cf, x, y, v, ts);
+                if (st < 0)
+                    return st;
+                if (st == IRC_MISS && ts->final)
+                    continue; /* no record reaches: the fill's value stays */
+                memcpy(&j->rgb[at * 3], v, sizeof v);
+                if (j->detail)
+                    j->detail[at] = (unsigned char)ts->detail;
+            }
         }
         done = __atomic_add_fetch(&j->done, 8, __ATOMIC_RELAXED);
         if (id == 0)
@@ -415,17 +445,28 @@ static void *worker(void *arg)
             j->next = 0;
             j->level = level + 1;
         }
+
         pthread_barrier_wait(&j->wall);
+    }
+    if (j->detail) { /* the final sweep: every pixel once more, all records in */
+        j->ts[id].final = 1;
+        if (id == 0)
+            j->bits = 0;
+        pthread_barrier_wait(&j->wall);
+        if ((st = shade_pass(j, &j->ts[id], id)) < 0)
+            __atomic_store_n(&j->error, st, __ATOMIC_RELAXED);
     }
     return NULL;
 }
 
-static void collect(renderer *r, const tstate *ts, int n, double wall, render_stats *st)
+static void collect(renderer *r, const tstate *ts, int n, double wall, double cpu,
+                    render_stats *st)
 {
     irc_stats cs;
     int i;
     memset(st, 0, sizeof *st);
     st->wall = wall;
+    st->cpu = cpu;
     for (i = 0; i < n; i++) {
         st->trace_s += ts[i].trace_s;
         st->cache_s += ts[i].cache_s;
@@ -454,11 +495,18 @@ int render_image(renderer *r, float *rgb, render_stats *st)
     warg args[64];
     int n = r->o.threads < 1 ? 1 : r->o.threads > 64 ? 64 : r->o.threads, e = 0, t;
     const int passes = r->cache && !r->o.free_fill && !r->o.frozen;
+    double cpu0;
     if (!j)
         return -1;
     j->r = r;
     j->rgb = rgb;
+    if (passes && r->o.final_sweep &&
+        !(j->detail = calloc((size_t)r->s->cam.width * r->s->cam.height, 1))) {
+        free(j);
+        return -1;
+    }
     j->start = render_clock();
+    cpu0 = render_cpu_clock();
     /* Passes of pixels P apart, coarse to fine, P^2 of them: the first
      * passes place records far apart, later ones find most pixels served.
      * Two misses of one pass both make records where one might have
@@ -494,8 +542,9 @@ int render_image(renderer *r, float *rgb, render_stats *st)
     for (t = 1; t < n; t++)
         pthread_join(th[t], NULL);
     pthread_barrier_destroy(&j->wall);
-    collect(r, j->ts, n, render_clock() - j->start, st);
+    collect(r, j->ts, n, render_clock() - j->start, render_cpu_clock() - cpu0, st);
     e = j->error;
+    free(j->detail);
     free(j);
     return e;
 }
@@ -503,7 +552,7 @@ int render_image(renderer *r, float *rgb, render_stats *st)
 int render_points(renderer *r, const float *pn, int n, float *rgb, render_stats *st)
 {
     tstate ts;
-    double t0 = render_clock();
+    double t0 = render_clock(), c0 = render_cpu_clock();
     int i, e;
     memset(&ts, 0, sizeof ts);
     for (i = 0; i < n; i++) {
@@ -513,7 +562,7 @@ int render_points(renderer *r, const float *pn, int n, float *rgb, render_stats 
         if ((e = irradiance(r, p, nn, 0.0f, key, &rgb[3 * i], &sh, &ts)) < 0)
             return e;
     }
-    collect(r, &ts, 1, render_clock() - t0, st);
+    collect(r, &ts, 1, render_clock() - t0, render_cpu_clock() - c0, st);
     return 0;
 }
 

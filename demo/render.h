@@ -33,6 +33,13 @@ typedef struct render_opts {
     uint32_t supersamples; /* cache: irc_config.irr.supersamples */
     float full_pixels;     /* cache: irc_config.irr.full_pixels */
     float detail_pixels;   /* cache: irc_config.irr.detail_pixels */
+    float blend;           /* cache: irc_config.irr.blend */
+    int final_sweep;       /* cache with passes: after the fill, every
+                              pixel again with a plain lookup, so that it
+                              blends every record near it (a pixel whose
+                              _px call was a detail estimate keeps it);
+                              one thread only (detail is told by the
+                              cache's counters) */
     uint32_t max_records;
     float min_radius, max_radius; /* max < 0: 0.1 x the diagonal of what
                                      the camera sees; 0: the library's */
@@ -89,6 +96,8 @@ typedef struct render_opts {
 
 typedef struct render_stats {
     double wall;          /* seconds */
+    double cpu;           /* the process's CPU seconds over every thread
+                             (render_image): what the bench compares */
     double trace_s;       /* thread-seconds in the host's ray casting + shading
                              of secondary hits (inside the trace callback and
                              for the reference's rays) */
@@ -135,6 +144,8 @@ int render_image(renderer *r, float *rgb, render_stats *st);
 /* Seconds on a monotonic clock: what every render and experiment times
  * with. */
 double render_clock(void);
+/* The process's CPU seconds, every thread's summed. */
+double render_cpu_clock(void);
 
 /* Irradiance E at n points (p, n: 6 floats a point) into rgb (3 a point). */
 int render_points(renderer *r, const float *pn, int n, float *rgb, render_stats *st);

@@ -187,15 +187,25 @@ typedef struct irc_trace_args {
     const irc_ray *rays;    /* count rays to cast (read only) */
     irc_hit *hits;          /* count results to write, same order */
     uint32_t count;         /* 1 <= count <= cfg.max_batch */
-    uint32_t visibility_only; /* 1: confirming rays (check_visibility), from
-                                 the query toward a record each (maybe a
-                                 little below n); only status and dist read */
+    uint32_t visibility_only; /* nonzero: only status and dist are read
+                                 (the nearest hit's distance); normal and
+                                 radiance need not be written, nor the
+                                 hits shaded: an irc_visibility */
 } irc_trace_args;
+
+/* What rays with irc_trace_args.visibility_only set are for. */
+enum irc_visibility {
+    IRC_VISIBILITY_CONFIRM = 1, /* confirming rays (check_visibility): from
+                                   the query toward a record each (maybe a
+                                   little below n) */
+    IRC_VISIBILITY_PROBE = 2    /* the _px call's detail probes
+                                   (cfg.irr.detail_pixels) from the query */
+};
 
 /*
  * Cast args->count rays and fill args->hits.  The callback may touch only
  * args->hits[0 .. count-1] and its own state, and may call into other
- * caches (below); for confirming rays (visibility_only) it calls no cache.
+ * caches (below); for rays with visibility_only set it calls no cache.
  * It runs on the thread that called into the library, with no lock of the
  * cache held, possibly on several threads at once.  Return 0 on success or
  * a negative code of the host's own to abort the record (the library
@@ -385,6 +395,15 @@ typedef struct irc_config {
          * callback).  Finite; 0: 0.5; negative: off (why: bench/README.md,
          * "Detail computed per pixel"). */
         float detail_pixels;
+        /* Lookups average the records within blend x the reach a R that
+         * decides a miss (V-Ray's "interpolation samples"): a point is
+         * computed only where no record lies within a R, but answered
+         * from every record within blend a R, weighted (1 - t^2)^2 at t =
+         * the Ward distance over blend a, so each record's noise is
+         * shared by more pixels.  1 (the default; 0 takes it): Ward's
+         * weight 1/e within a R, as before.  Finite, 1..4 (why:
+         * bench/README.md, "Noise and bias"). */
+        float blend;
     } irr;
     struct irc_config_sh {   /* SH records (IRC_FEATURE_SH) */
         uint32_t bands;      /* L: bands 0..L-1, L*L coefficients per

@@ -4,7 +4,7 @@
 #define TESTS(X)                                                     \
     X(test_uniform_sky) X(test_sphere_over_plane) X(test_supersample) X(test_flat_blocker) X(test_box_closed_form)                    \
     X(test_rotational_gradient_sky) X(test_radius_rules) X(test_strata_directions) \
-    X(test_pack_roundtrip) X(test_weighted_mean) X(test_behind_relative)  \
+    X(test_pack_roundtrip) X(test_weighted_mean) X(test_blend_mean) X(test_behind_relative)  \
     X(test_extrapolation) X(test_lookup_gradient_one) X(test_lookup_gradient_sphere) X(test_lookup_gradient_status) X(test_lookup_or_compute) X(test_open_sky_own_point) X(test_full_no_evict) \
     X(test_evict_clock) X(test_index_exact) X(test_weigh_fused) X(test_index_scales) X(test_index_grow_faces)          \
     X(test_config_checks) X(test_version) X(test_footprints) X(test_defaults) X(test_init_block) \
@@ -27,7 +27,7 @@
     X(test_safe_defaults) X(test_index_clamped) X(test_index_compact) X(test_index_bulk_spread) X(test_index_far_scales) X(test_index_far_from_origin) X(test_index_root_refused) \
     X(test_kind_occ_records) X(test_kind_occ_lookups) X(test_kind_occ_snapshot_attach) X(test_kind_occ_config) \
     X(test_levels_closed_form) X(test_levels_nested_refused) X(test_levels_cycle_refused) X(test_levels_threads) X(test_levels_cycle_threads) \
-    X(test_detail_refined_strata) X(test_detail_full_grid_paths) X(test_detail_coarse_records) X(test_detail_config) X(test_detail_pixels_wall) X(test_detail_pixels_calls) X(test_detail_pixels_nested) X(test_pixel_footprint)
+    X(test_detail_refined_strata) X(test_detail_full_grid_paths) X(test_detail_coarse_records) X(test_detail_config) X(test_detail_pixels_wall) X(test_detail_pixels_calls) X(test_detail_pixels_nested) X(test_detail_probes_flagged) X(test_pixel_footprint)
 
 TESTS(TEST_DECL)
 

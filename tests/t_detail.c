@@ -482,6 +482,62 @@ TEST(test_detail_pixels_calls)
     block_free(&cfg);
 }
 
+/* The probes reach the callback flagged (visibility_only =
+ * IRC_VISIBILITY_PROBE: only status and dist read), so a host need not
+ * shade them: one that writes NaN normals and radiances for them gets
+ * the same detail answer, and the estimate's own rays come unflagged. */
+static struct {
+    uint32_t probe_calls, probe_rays, other_flag, plain_rays;
+} probe_seen;
+
+static int probe_trace(const irc_trace_args *a)
+{
+    uint32_t i;
+    const int st = scene_trace(a);
+    if (a->visibility_only == IRC_VISIBILITY_PROBE) {
+        probe_seen.probe_calls++;
+        probe_seen.probe_rays += a->count;
+        for (i = 0; i < a->count; i++) {
+            a->hits[i].normal[0] = a->hits[i].normal[1] = a->hits[i].normal[2] = NAN;
+            a->hits[i].radiance[0] = a->hits[i].radiance[1] = a->hits[i].radiance[2] = NAN;
+        }
+    } else if (a->visibility_only) {
+        probe_seen.other_flag++;
+    } else {
+        probe_seen.plain_rays += a->count;
+    }
+    return st;
+}
+
+TEST(test_detail_probes_flagged)
+{
+    tscene s;
+    irc_config cfg;
+    const float near[3] = {-0.001f, 0.0f, 0.0f}, off[3] = {-0.01f, 0.0f, 0.0f}, n[3] = {0, 0, 1};
+    float rgb[3], w = -1.0f;
+    irc_cache *c = wall_cache(&s, &cfg, 0.0f, 8, probe_trace);
+    memset(&probe_seen, 0, sizeof probe_seen);
+    CHECK(c != NULL, "init");
+    if (!c)
+        return;
+    /* near the wall: 8 probes in one flagged call, then 16 x 64 plain rays */
+    CHECK(irc_cache_lookup_or_compute_px(c, near, n, 0.01f, rgb, &w, NULL) == IRC_OK &&
+              w == 0.0f && rgb[0] > 0.0f && rgb[0] < 4.0f,
+          "near: weight %g, E %g", w, rgb[0]);
+    CHECK(probe_seen.probe_calls == 1 && probe_seen.probe_rays == 8 &&
+              probe_seen.plain_rays == 1024 && probe_seen.other_flag == 0,
+          "near: %u flagged calls of %u rays, %u plain rays, %u other flags",
+          probe_seen.probe_calls, probe_seen.probe_rays, probe_seen.plain_rays,
+          probe_seen.other_flag);
+    /* a pixel off: the probes alone, flagged, then the record answers */
+    memset(&probe_seen, 0, sizeof probe_seen);
+    CHECK(irc_cache_lookup_or_compute_px(c, off, n, 0.01f, rgb, &w, NULL) == IRC_OK && w > 0.0f,
+          "off: weight %g", w);
+    CHECK(probe_seen.probe_rays == 8 && probe_seen.plain_rays == 0,
+          "off: %u flagged rays, %u plain", probe_seen.probe_rays, probe_seen.plain_rays);
+    block_free(&cfg);
+}
+
 /* A _px call from inside the cache's own callback, at a point its record
  * covers: the probes cannot take a slot (IRC_ERR_NESTED), so the record
  * answers, as it would without detail. */

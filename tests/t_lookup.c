@@ -53,6 +53,86 @@ TEST(test_weighted_mean)
     block_free(&cfg);
 }
 
+/* Lookups that blend past the placement reach (cfg.irr.blend = 2, a =
+ * 0.2): every record within 2 a R counts, weighted (1 - t^2)^2 at t = e /
+ * (2 a), written out here by hand; a lookup-or-compute computes where no
+ * record lies within a R and answers its record (weight 1) blended with
+ * those it found, reporting weight 0; with blend 1 the same point misses.
+ * Values outside 1..4 are refused. */
+TEST(test_blend_mean)
+{
+    tscene s;
+    irc_config cfg;
+    irc_cache *c;
+    irc_record a = flat_record(0, 0, 0, 1.0f, 1.0f), b = flat_record(0.3f, 0, 0, 3.0f, 1.0f), r;
+    const float n[3] = {0, 0, 1}, p[3] = {0.1f, 0, 0}, q[3] = {0, 0.25f, 0};
+    float rgb[3], w;
+    irc_stats st;
+    double wa, wb, want, tb;
+    static const float bad[] = {0.5f, -1.0f, 4.5f, NAN, INFINITY};
+    size_t i;
+    scene_sphere_plane(&s);
+    cfg = scene_config(&s, 0, 4, 4);
+    cfg.accuracy = 0.2f;
+    cfg.irr.blend = 2.0f;
+    cfg.check_visibility = IRC_OFF;
+    c = block_cache(&cfg, 8, 0);
+    CHECK(c != NULL, "init");
+    if (!c)
+        return;
+    CHECK(irc_cache_insert(c, &a) == IRC_OK && irc_cache_insert(c, &b) == IRC_OK, "insert");
+    /* e_a = 0.1, e_b = 0.2: t = 0.25 and 0.5 of the reach 0.4 */
+    wa = (1.0 - 0.0625) * (1.0 - 0.0625);
+    wb = 0.75 * 0.75;
+    want = (wa * 1.0 + wb * 3.0) / (wa + wb);
+    /* (the tolerances of test_weighted_mean: the stored normal's coding
+     * moves e by ~1e-5) */
+    CHECK(irc_cache_lookup(c, p, n, rgb, &w) == IRC_OK && fabs(rgb[0] - want) < 1e-4 * want &&
+              fabs(w - (wa + wb)) < 1e-3 * (wa + wb),
+          "blended lookup: %g (want %g), weight %g (want %g)", rgb[0], want, w, wa + wb);
+    CHECK(irc_cache_lookup_or_compute(c, p, n, rgb, &w, NULL) == IRC_OK &&
+              fabs(rgb[0] - want) < 1e-4 * want && irc_cache_stats(c, &st) == IRC_OK &&
+              st.computes == 0,
+          "a record within a R: a hit (%g, computes %llu)", rgb[0],
+          (unsigned long long)st.computes);
+    /* e_a = 0.25, e_b = sqrt(0.3^2 + 0.25^2): both past a R, within 2 a R */
+    tb = sqrt(0.09 + 0.0625) / 0.4;
+    wa = (1.0 - 0.625 * 0.625) * (1.0 - 0.625 * 0.625);
+    wb = (1.0 - tb * tb) * (1.0 - tb * tb);
+    CHECK(irc_cache_lookup_or_compute(c, q, n, rgb, &w, NULL) == IRC_OK && w == 0.0f &&
+              irc_cache_stats(c, &st) == IRC_OK && st.computes == 1 && st.records == 3 &&
+              irc_cache_record(c, 2, &r) == IRC_OK,
+          "no record within a R: computed (weight %g, computes %llu)", w,
+          (unsigned long long)st.computes);
+    want = (wa * 1.0 + wb * 3.0 + 1.0 * r.e[0]) / (wa + wb + 1.0);
+    CHECK(r.e[0] > 1.0f && fabs(rgb[0] - want) < 1e-4 * want,
+          "the computed record blended: %g (want %g, its own E %g)", rgb[0], want, r.e[0]);
+    block_free(&cfg);
+
+    cfg = scene_config(&s, 0, 4, 4);
+    cfg.accuracy = 0.2f;
+    cfg.check_visibility = IRC_OFF;
+    c = block_cache(&cfg, 8, 0);
+    CHECK(c != NULL && irc_cache_insert(c, &a) == IRC_OK && irc_cache_insert(c, &b) == IRC_OK,
+          "init, blend 1");
+    if (!c)
+        return;
+    CHECK(irc_cache_lookup(c, q, n, rgb, &w) == IRC_MISS, "blend 1: beyond a R misses");
+    block_free(&cfg);
+    for (i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        size_t bytes;
+        cfg = scene_config(&s, 0, 4, 4);
+        cfg.irr.blend = bad[i];
+        CHECK(irc_footprint(&cfg, 8, &bytes) == IRC_ERR_CONFIG, "blend %g accepted", bad[i]);
+    }
+    cfg = scene_config(&s, IRC_FEATURE_SH, 4, 4);
+    cfg.irr.blend = 2.0f;
+    {
+        size_t bytes;
+        CHECK(irc_footprint(&cfg, 8, &bytes) == IRC_ERR_CONFIG, "blend in an SH cache accepted");
+    }
+}
+
 /* The "behind" test: a record in front of the query's surface by more than
  * 0.05 R_i is rejected, at every scale. */
 TEST(test_behind_relative)

@@ -16,7 +16,7 @@
 #include "../block/check.h"
 #include "../index/index.h"
 #include "../index/verify.h"
-#include "../irr/estimator.h"
+#include "../kind/weight.h"
 #include "../sample/sampler.h"
 #include "../store/lock.h"
 #include "../store/stats.h"
@@ -222,6 +222,13 @@ static void irc__set_parts(irc_cache *c, const irc__layout *l)
     c->o_ctr = (size_t)l->ctr;
     c->o_used = c->cfg.evict == IRC_EVICT_CLOCK ? (size_t)l->used : 0;
     c->o_gtab = (size_t)l->gtab;
+    /* lookups reach blend a R when they blend wider (weight.c) */
+    c->reach_a = c->cfg.accuracy;
+    c->w_inner = 0.0f;
+    if (c->cfg.irr.blend > 1.0f) {
+        c->reach_a = c->cfg.accuracy * c->cfg.irr.blend;
+        c->w_inner = irc__blend_weight(1.0f / c->cfg.irr.blend);
+    }
 }
 
 int irc_init(const irc_config *cfg, uint32_t max_records, irc_cache **out)
@@ -327,7 +334,7 @@ static int irc__parts_same(const irc_cache *a, const irc_cache *b)
            a->total_bytes == b->total_bytes && a->o_state == b->o_state && a->o_lock == b->o_lock &&
            a->o_scratch == b->o_scratch && a->o_records == b->o_records && a->o_ix == b->o_ix &&
            a->o_nodes == b->o_nodes && a->o_refs == b->o_refs && a->o_ctr == b->o_ctr && a->o_used == b->o_used &&
-           a->o_gtab == b->o_gtab;
+           a->o_gtab == b->o_gtab && a->reach_a == b->reach_a && a->w_inner == b->w_inner;
 }
 
 /* The state's fields in range, for the cache c. */

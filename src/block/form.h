@@ -20,7 +20,7 @@
 
 /* What a block must agree on to be re-attached (irc_attach): the layout's
  * version, pointer and size_t widths, byte order. */
-#define IRC__LAYOUT_VERSION 19u
+#define IRC__LAYOUT_VERSION 20u
 #define IRC__ABI                                                           \
     (IRC__LAYOUT_VERSION | (uint32_t)sizeof(void *) << 8 |                 \
      (uint32_t)sizeof(size_t) << 16 | (uint32_t)sizeof(double) << 24)
@@ -54,6 +54,12 @@ struct irc_cache {
     irc__recpart parts[IRC__PARTS]; /* the record's parts, in order */
     uint32_t n_parts;
     uint32_t strata;         /* M * N */
+    float reach_a;           /* a lookup's reach over R: a, or a x
+                                cfg.irr.blend */
+    float w_inner;           /* the weight of a record at the edge of a R
+                                when lookups reach past it (blend > 1):
+                                a lookup-or-compute whose records all weigh
+                                at most this computes one; 0 otherwise */
     uint32_t slot_samples;   /* samples a scratch slot holds (the kind's) */
     uint32_t keep_geom;      /* the sampler keeps directions and hit normals */
     uint32_t node_cap;       /* nodes in the pool (1 + 8 k) */
@@ -107,12 +113,13 @@ static inline irc__rec *irc__rec_at(const irc_cache *c, uint32_t id)
     return (irc__rec *)(void *)irc__part(c, c->o_records + (size_t)id * c->rec_size);
 }
 
-/* A record's reach a R (Ward's accuracy times its radius), written once so
- * that the index's bounds, the weights' first test and the estimators
- * agree on it to the bit. */
+/* A record's reach a R (Ward's accuracy times its radius; blend a R when
+ * lookups blend wider, cfg.irr.blend), written once so that the index's
+ * bounds, the weights' first test and the estimators agree on it to the
+ * bit. */
 static inline float irc__reach(const irc_cache *c, float radius)
 {
-    return c->cfg.accuracy * radius;
+    return c->reach_a * radius;
 }
 
 /* The first test of every weight (weight.c), inlined where records are scanned: most

@@ -465,6 +465,6 @@ void irc__index_range(const irc_cache *c, const float p[3], float range, irc__vi
     irc__probe pr;
     if (!irc__st(c)->root_set)
         return;
-    irc__probe_set(c, p, range >= 0.0f ? range : -1.0f, 1.0f / c->cfg.accuracy, fn, ud, &pr);
+    irc__probe_set(c, p, range >= 0.0f ? range : -1.0f, 1.0f / c->reach_a, fn, ud, &pr);
     (void)irc__descend(c, &pr);
 }

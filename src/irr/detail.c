@@ -61,13 +61,17 @@ static int irc__detail_probe(irc__call *k, irc__detail *dt)
             IRC_MEMCPY(rays[j].org, k->q.p, sizeof rays[j].org);
             irc__detail_dir(k, t1, t2, i + j, rays[j].dir);
         }
-        if ((st = irc__cast(k, rays, hits, cnt)) < 0)
+        /* only their distances are read: flagged so the host need not
+         * shade them */
+        k->visibility_only = IRC_VISIBILITY_PROBE;
+        st = irc__cast(k, rays, hits, cnt);
+        k->visibility_only = 0;
+        if (st < 0)
             return st;
         for (j = 0; j < cnt; j++) {
-            irc__sample s;
-            if ((st = irc__accept_hit(&hits[j], &s)) < 0)
+            if ((st = irc__sight_hit(&hits[j])) < 0)
                 return st;
-            if (st == 1 && hits[j].status == IRC_RAY_HIT && s.d <= dt->reach)
+            if (st && hits[j].dist <= dt->reach)
                 dt->near = 1;
         }
         i += cnt;

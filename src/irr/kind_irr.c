@@ -278,6 +278,19 @@ static void irc__irr_answer(const irc_cache *c, const void *rec, void *out)
     rgb[2] = r->e[2];
 }
 
+/* The computed record at t = 0 of the blended weight (weight 1) and the
+ * neighbours' mean in out, of weight w. */
+static void irc__irr_blend(const irc_cache *c, const void *rec, void *out, float w)
+{
+    const irc_record *r = (const irc_record *)rec;
+    float *rgb = (float *)out;
+    const float f = 1.0f / (1.0f + w);
+    int ch;
+    (void)c;
+    for (ch = 0; ch < 3; ch++)
+        rgb[ch] += f * (r->e[ch] - rgb[ch]);
+}
+
 static const irc__acc irc__irr_lookup;
 
 /* irc__irr_accumulate's weight and value taken at once (weight.c) */
@@ -400,6 +413,11 @@ static int irc__irr_features(irc_config *cfg)
  * "Detail computed per pixel"). */
 #define IRC__DEF_DETAIL_PIXELS 0.5f
 
+/* cfg.irr.blend by default, and its bound: a reach four times the
+ * placement's already averages some 16 times the records. */
+#define IRC__DEF_BLEND 1.0f
+#define IRC__BLEND_MAX 4.0f
+
 /* A record's reach a R in pixels at its point, from the _px call's
  * footprint (pbrt-v2's maximum pixel spacing; its 2.5-pixel minimum cost
  * 2.5-3.7x the error on four of six corpus views: none). */
@@ -441,6 +459,10 @@ static int irc__irr_resolve(irc_config *cfg)
         irc__pixels_resolve(&cfg->irr.max_pixels, cfg->irr.min_pixels > IRC__DEF_MAX_PIXELS
                                                       ? cfg->irr.min_pixels
                                                       : IRC__DEF_MAX_PIXELS) < 0)
+        return IRC_ERR_CONFIG;
+    if (cfg->irr.blend == 0.0f)
+        cfg->irr.blend = IRC__DEF_BLEND;
+    if (!(cfg->irr.blend >= 1.0f && cfg->irr.blend <= IRC__BLEND_MAX))
         return IRC_ERR_CONFIG;
     /* a default maximum never falls below the host's minimum */
     if (cfg->irr.max_pixels > 0.0f && cfg->irr.max_pixels < cfg->irr.min_pixels)
@@ -533,4 +555,5 @@ const irc__kind irc__kind_irr = {
     .pack = irc__irr_pack,
     .unpack = irc__irr_unpack,
     .answer = irc__irr_answer,
+    .blend = irc__irr_blend,
     .lookup = &irc__irr_lookup};

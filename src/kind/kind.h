@@ -50,6 +50,9 @@ typedef struct irc__query {
                                check_visibility): n_hidden ids, ascending */
     uint32_t n_hidden;
     irc__marks *marks;      /* NULL: a lookup that cannot fail after it reads */
+    int place;              /* a lookup-or-compute's, in a cache whose
+                               lookups reach past a R: a miss unless a
+                               record lies within a R (form.h, w_inner) */
 } irc__query;
 
 /* One record computation in progress: the cache, its claimed scratch
@@ -61,7 +64,8 @@ typedef struct irc__call {
     irc__query q;
     uint32_t rays;
     float footprint;  /* a pixel's width at the query, 0 = none */
-    uint32_t confirming; /* 1 while casting confirming rays (confirm.c) */
+    uint32_t visibility_only; /* args->visibility_only while casting: an
+                                 irc_visibility (confirm.c, detail.c), or 0 */
 } irc__call;
 
 /* A record's parts after its 32-byte head, each numbered by its kind (0 ..
@@ -159,6 +163,10 @@ typedef struct irc__kind {
     void (*pack)(const irc_cache *c, const void *rec, const float un[3], void *dst);
     void (*unpack)(const irc_cache *c, const void *src, void *rec);
     void (*answer)(const irc_cache *c, const void *rec, void *out);
+    /* answer's value blended with the neighbours' weighted mean that out
+     * already holds, of total weight w > 0 (lookups that reach past a R:
+     * cfg.irr.blend); NULL for a kind whose lookups never do */
+    void (*blend)(const irc_cache *c, const void *rec, void *out, float w);
     const irc__acc *lookup; /* its plain lookup's accumulator */
 } irc__kind;
 

@@ -95,13 +95,34 @@ IRC__PER_RECORD float irc__normal_term(const float n[3], const float ni[3])
     return irc__sqrtf(0.5f * (ex * ex + ey * ey + ez * ez));
 }
 
+float irc__blend_weight(float t)
+{
+    const float u = 1.0f - t * t;
+    return u * u;
+}
+
+/* The weight of a record at Ward distance e (< reach_a).  Ward-Heckbert's
+ * 1/e, capped; or, when lookups blend wider than they place
+ * (cfg.irr.blend > 1), the biweight (1 - t^2)^2 of t = e / (blend a):
+ * bounded where 1/e is not, so a point next to one record still averages
+ * its neighbours' (Ward's weight hands the nearest record nearly all of
+ * it), and zero at the reach's edge, so no pixel jumps where a record
+ * starts to count. */
+static inline float irc__weight_of(const irc_cache *c, float e)
+{
+    if (c->w_inner > 0.0f)
+        return irc__blend_weight(e / c->reach_a);
+    return e > 1.0f / IRC__W_MAX ? 1.0f / e : IRC__W_MAX;
+}
+
 /* Ward-Heckbert weight w = 1 / (|p - p_i|/R_i + sqrt(1 - n.n_i)), accepted
- * when w > 1/a.  n must be unit length.  Returns 1 and sets *w and the
- * record's decoded normal ni when the record counts, else 0. */
+ * when w > 1/a (a: the lookup's reach over R, reach_a; blended lookups
+ * weigh with irc__weight_of).  n must be unit length.  Returns 1 and sets
+ * *w and the record's decoded normal ni when the record counts, else 0. */
 int irc__weigh(const irc_cache *c, const irc__rec *r, const float p[3],
                const float n[3], int shaped, float *w, float ni[3])
 {
-    const float a = c->cfg.accuracy, rad = r->r;
+    const float a = c->reach_a, rad = r->r;
     const float d[3] = {p[0] - r->p[0], p[1] - r->p[1], p[2] - r->p[2]};
     float d2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2], e;
     if (!(d2 < a * a * rad * rad || d2 == 0.0f) || r->n == IRC__FREE)
@@ -134,7 +155,7 @@ int irc__weigh(const irc_cache *c, const irc__rec *r, const float p[3],
     e += irc__normal_term(n, ni);
     if (!(e < a))
         return 0;
-    *w = e > 1.0f / IRC__W_MAX ? 1.0f / e : IRC__W_MAX;
+    *w = irc__weight_of(c, e);
     return 1;
 }
 
@@ -206,7 +227,7 @@ void irc__extrapolate(const irc_cache *c, const irc__rec *r, const float ni[3],
 float irc__weigh_extrapolate(const irc_cache *c, const irc__rec *r, const float p[3],
                              const float n[3], float out[3])
 {
-    const float a = c->cfg.accuracy, rad = r->r, ra = irc__reach(c, rad);
+    const float a = c->reach_a, rad = r->r, ra = irc__reach(c, rad);
     const float d[3] = {p[0] - r->p[0], p[1] - r->p[1], p[2] - r->p[2]};
     const float d2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
     float ni[3], e;
@@ -222,7 +243,7 @@ float irc__weigh_extrapolate(const irc_cache *c, const irc__rec *r, const float 
     if (!(e < a))
         return 0.0f;
     irc__extrapolate_at(c, r, ni, d, n, out);
-    return e > 1.0f / IRC__W_MAX ? 1.0f / e : IRC__W_MAX;
+    return irc__weight_of(c, e);
 }
 
 /* The record's derivatives of its extrapolated value val (irc__extrapolate's)

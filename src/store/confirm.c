@@ -92,18 +92,15 @@ int irc__confirm_batch(irc__call *k, uint32_t *ids, uint32_t first, uint32_t n,
     }
     if (m == 0)
         return IRC_OK;
-    k->confirming = 1;
+    k->visibility_only = IRC_VISIBILITY_CONFIRM;
     st = irc__cast(k, rays, hits, m);
-    k->confirming = 0;
+    k->visibility_only = 0;
     if (st < 0)
         return st;
     for (i = 0; i < m; i++) {
-        const irc_hit *h = &hits[i];
-        if (h->status == IRC_RAY_HIT && !(h->dist > 0.0f && h->dist <= FLT_MAX))
-            return IRC_ERR_CALLBACK;
-        if (h->status < IRC_RAY_HIT || h->status > IRC_RAY_FAILED)
-            return IRC_ERR_CALLBACK;
-        if (h->status == IRC_RAY_HIT && h->dist < IRC__SIGHT_SHORT * len[i])
+        if ((st = irc__sight_hit(&hits[i])) < 0)
+            return st;
+        if (st && hits[i].dist < IRC__SIGHT_SHORT * len[i])
             ids[k->q.n_hidden++] = ids[at[i]];
     }
     return IRC_OK;

@@ -37,6 +37,7 @@ static int irc__query_make(const irc_cache *c, const float p[3], const float n[3
     q->hidden = NULL;
     q->n_hidden = 0;
     q->marks = NULL;
+    q->place = 0;
     return IRC_OK;
 }
 
@@ -59,7 +60,7 @@ static int irc__compute_in_slot(irc_cache *c, irc__call *k, uint32_t t, void *ho
     k->slot = irc__slot(c, t);
     k->host = host;
     k->rays = 0;
-    k->confirming = 0;
+    k->visibility_only = 0;
     return fn(k, out);
 }
 
@@ -142,7 +143,9 @@ int irc__lookup(irc_cache *c, const irc__kind *want, const irc__acc *ops, const 
 }
 
 /* The end of a miss: the computed record offered to the pool.  A full
- * pool is IRC_NOT_STORED, counted, not an error. */
+ * pool is IRC_NOT_STORED, counted, not an error.  *weight holds the
+ * weight of the records the lookup found beyond a R (their mean in out),
+ * which the answer blends in; it becomes 0, a computed record's. */
 static int irc__offer_computed(irc_cache *c, const void *rec, void *out, float *weight)
 {
     int st = irc__insert_checked(c, rec);
@@ -151,9 +154,11 @@ static int irc__offer_computed(irc_cache *c, const void *rec, void *out, float *
     irc__count(c, IRC__C_LOOKUPS, 1);
     if (st == IRC_ERR_FULL)
         irc__count(c, IRC__C_NOT_STORED, 1);
-    c->kind->answer(c, rec, out);
-    if (weight)
-        *weight = 0.0f;
+    if (*weight > 0.0f && c->kind->blend)
+        c->kind->blend(c, rec, out, *weight);
+    else
+        c->kind->answer(c, rec, out);
+    *weight = 0.0f;
     return st == IRC_ERR_FULL ? IRC_NOT_STORED : IRC_OK;
 }
 
@@ -242,6 +247,7 @@ int irc__lookup_or_compute(irc_cache *c, const irc__kind *want, float footprint,
     irc__call k;
     irc__marks marks;
     uint32_t rays = rays0;
+    float w = 0.0f;
     int st;
     if ((st = irc__open(c, want, out, p, n, &k.q)) < 0)
         return st;
@@ -255,15 +261,19 @@ int irc__lookup_or_compute(irc_cache *c, const irc__kind *want, float footprint,
     k.c = c;
     k.host = host;
     k.rays = 0;
-    k.confirming = 0;
-    st = irc__lookup_first(&k, out, weight, &rays);
-    st = st == IRC_MISS ? irc__miss(c, &k, out, weight, host, &rays) : irc__count_lookup(c, st);
+    k.visibility_only = 0;
+    k.q.place = c->w_inner > 0.0f;
+    st = irc__lookup_first(&k, out, &w, &rays);
+    st = st == IRC_MISS ? irc__miss(c, &k, out, &w, host, &rays) : irc__count_lookup(c, st);
     /* Nothing of a failed call stays in the block: not its use bits, nor
      * its rays in the counters. */
-    if (st < 0)
+    if (st < 0) {
         irc__unmark_used(c, &marks);
-    else
-        irc__count(c, IRC__C_RAYS, rays);
+        return st;
+    }
+    irc__count(c, IRC__C_RAYS, rays);
+    if (weight)
+        *weight = w;
     return st;
 }
 

@@ -25,7 +25,7 @@ int irc__cast(irc__call *k, irc_ray *rays, irc_hit *hits, uint32_t count)
     args.rays = rays;
     args.hits = hits;
     args.count = count;
-    args.visibility_only = k->confirming;
+    args.visibility_only = k->visibility_only;
     for (i = 0; i < count; i++)
         hits[i].status = -1;
     st = c->cfg.trace(&args);
@@ -33,4 +33,13 @@ int irc__cast(irc__call *k, irc_ray *rays, irc_hit *hits, uint32_t count)
         return IRC_ERR_CALLBACK;
     k->rays += count;
     return st;
+}
+
+int irc__sight_hit(const irc_hit *h)
+{
+    if (h->status < IRC_RAY_HIT || h->status > IRC_RAY_FAILED)
+        return IRC_ERR_CALLBACK;
+    if (h->status != IRC_RAY_HIT)
+        return 0;
+    return h->dist > 0.0f && h->dist <= FLT_MAX ? 1 : IRC_ERR_CALLBACK;
 }

@@ -47,7 +47,7 @@ typedef struct irc__walk {
                                 or a variant of it (a gradient lookup) */
     const irc__query *q;
     void *acc;
-    float w;
+    float w, wmax;
     uint32_t *ids, cap, found;
 } irc__walk;
 
@@ -75,6 +75,8 @@ static void irc__visit(void *ud, uint32_t id)
         !v->ops->weigh(c, r, v->q, &w, ni))
         return;
     v->w += w;
+    if (w > v->wmax)
+        v->wmax = w;
     if (v->acc) {
         v->ops->accumulate(c, r, v->q, w, ni, v->acc);
         irc__mark_used(v->c, v->q->marks, id);
@@ -93,6 +95,8 @@ static void irc__visit_take(void *ud, uint32_t id)
     const float w = v->ops->take(v->c, irc__rec_at(v->c, id), v->q, v->acc);
     if (w > 0.0f) {
         v->w += w;
+        if (w > v->wmax)
+            v->wmax = w;
         irc__mark_used(v->c, v->q->marks, id);
     }
 }
@@ -130,7 +134,12 @@ int irc__lookup_once(irc_cache *c, const irc__acc *ops, const irc__query *q, voi
         return st;
     if (weight)
         *weight = v.w;
-    return ops->finish(c, q, acc, v.w, out);
+    st = ops->finish(c, q, acc, v.w, out);
+    /* Records in reach but none within a R: out has their mean, *weight
+     * their weight, and the lookup-or-compute computes (lookup.c). */
+    if (st == IRC_OK && q->place && v.wmax <= c->w_inner)
+        st = IRC_MISS;
+    return st;
 }
 
 int irc__collect(irc_cache *c, const irc__query *q, uint32_t *ids, uint32_t cap,
