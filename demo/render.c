@@ -230,15 +230,9 @@ static int irradiance(renderer *r, const float p[3], const float n[3], float fp,
         } else if (ts->final) {
             st = irc_cache_lookup(r->cache, p, n, e, NULL);
         } else {
-            irc_stats s0, s1;
-            if (r->o.final_sweep)
-                irc_cache_stats(r->cache, &s0);
             st = irc_cache_lookup_or_compute_px(r->cache, p, n, r->o.no_footprint ? 0.0f : fp,
                                                 e, NULL, ts);
-            if (r->o.final_sweep) {
-                irc_cache_stats(r->cache, &s1);
-                ts->detail = s1.computes == s0.computes && s1.hits == s0.hits;
-            }
+            ts->detail = st == IRC_DETAIL;
         }
         clock_enter(ts, was);
         return st < 0 ? st : ts->final && st == IRC_MISS ? IRC_MISS : 0;

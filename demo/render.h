@@ -37,9 +37,7 @@ typedef struct render_opts {
     int final_sweep;       /* cache with passes: after the fill, every
                               pixel again with a plain lookup, so that it
                               blends every record near it (a pixel whose
-                              _px call was a detail estimate keeps it);
-                              one thread only (detail is told by the
-                              cache's counters) */
+                              _px call answered IRC_DETAIL keeps it) */
     uint32_t max_records;
     float min_radius, max_radius; /* max < 0: 0.1 x the diagonal of what
                                      the camera sees; 0: the library's */

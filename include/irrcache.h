@@ -89,6 +89,10 @@ typedef enum irc_status {
                                  read: the slot is empty (not an error) */
     IRC_NOT_STORED = 2,       /* lookup_or_compute: the value was computed and
                                  returned, not stored (pool full, no eviction) */
+    IRC_DETAIL = 3,           /* the _px call: answered by the point's own
+                                 estimate (cfg.irr.detail_pixels), stored
+                                 nowhere; a host that comes back to the same
+                                 pixel may keep the value (irc_stats.details) */
     IRC_ERR_NULL = -1,        /* a required pointer, or cfg.trace, is NULL */
     IRC_ERR_CONFIG = -2,      /* a config field out of its range; a handle not
                                  of a live cache (never made, finished, not
@@ -590,9 +594,11 @@ IRC_API int irc_cache_lookup_or_compute(irc_cache *cache, const float p[3],
  * camera); 0 is the plain call.  A record computed here gets a reach a R
  * in [cfg.irr.min_pixels, cfg.irr.max_pixels] x footprint (by default none
  * to 15 pixels) before [min_radius, max_radius], and points near finer
- * geometry get their own estimate first (cfg.irr.detail_pixels).  Returns
- * as irc_cache_lookup_or_compute; IRC_ERR_RANGE (nothing done) for a
- * negative footprint, IRC_ERR_NONFINITE for one not finite.
+ * geometry get their own estimate first (cfg.irr.detail_pixels): that
+ * answer returns IRC_DETAIL (weight 0), which a host that calls again for
+ * the same pixel (more samples a pixel) may keep instead.  Otherwise
+ * returns as irc_cache_lookup_or_compute; IRC_ERR_RANGE (nothing done) for
+ * a negative footprint, IRC_ERR_NONFINITE for one not finite.
  */
 IRC_API int irc_cache_lookup_or_compute_px(irc_cache *cache, const float p[3],
                                            const float n[3], float footprint, float rgb[3],
@@ -805,6 +811,7 @@ typedef struct irc_stats {
     uint64_t not_stored;     /* computed by lookup_or_compute but not stored:
                                 the pool was full (IRC_NOT_STORED) */
     uint64_t waits;          /* computes that waited for a scratch slot */
+    uint64_t details;        /* _px calls answered per pixel (IRC_DETAIL) */
     uint64_t rays;           /* rays cast through the callback: records',
                                 occlusion's, confirming rays and per-pixel
                                 detail's (probes and estimates) */

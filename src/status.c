@@ -9,6 +9,7 @@ const char *irc_strerror(int status)
     case IRC_OK: return "ok";
     case IRC_MISS: return "no record close enough (or an empty slot)";
     case IRC_NOT_STORED: return "computed, but the pool is full: not stored";
+    case IRC_DETAIL: return "answered by the point's own estimate: stored nowhere";
     case IRC_ERR_NULL: return "a required pointer is NULL";
     case IRC_ERR_CONFIG: return "a config field is out of range, or not a live cache";
     case IRC_ERR_NONFINITE: return "a coordinate or value is NaN or infinite";

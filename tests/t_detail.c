@@ -340,20 +340,23 @@ static irc_cache *wall_cache(tscene *s, irc_config *cfg, float detail, uint32_t 
  * of their errors against the closed form (*mean) over its standard error,
  * and the largest weight reported. */
 static double wall_z(irc_cache *c, const tscene *s, double delta, double *wmax, int *bad,
-                     double *mean)
+                     double *mean, int *details)
 {
     const float n[3] = {0, 0, 1};
     double sum = 0.0, sq = 0.0, m, var;
     int i;
     *wmax = 0.0;
     *bad = 0;
+    *details = 0;
     for (i = 0; i < 32; i++) {
         const float p[3] = {(float)-delta, -0.5f + (float)i / 32.0f, 0.0f};
         const double q[3] = {p[0], p[1], 0.0};
         float rgb[3], w = -1.0f;
         double d;
-        if (irc_cache_lookup_or_compute_px(c, p, n, 0.01f, rgb, &w, NULL) != IRC_OK)
+        const int st = irc_cache_lookup_or_compute_px(c, p, n, 0.01f, rgb, &w, NULL);
+        if (st != IRC_OK && st != IRC_DETAIL)
             (*bad)++;
+        *details += st == IRC_DETAIL;
         d = rgb[0] - box_plane_e(s, q);
         sum += d;
         sq += d * d;
@@ -378,12 +381,12 @@ TEST(test_detail_pixels_wall)
     irc_stats st;
     irc_cache *c = wall_cache(&s, &cfg, 4.0f, 8, NULL);
     double z, wmax, mean;
-    int bad;
+    int bad, details;
     CHECK(c != NULL, "init");
     if (!c)
         return;
-    z = wall_z(c, &s, 0.005, &wmax, &bad, &mean);
-    CHECK(bad == 0, "%d calls failed", bad);
+    z = wall_z(c, &s, 0.005, &wmax, &bad, &mean, &details);
+    CHECK(bad == 0 && details == 32, "%d calls failed, %d of 32 said IRC_DETAIL", bad, details);
     CHECK(fabs(z) < 4.0, "near the wall: mean error %.2f standard errors from pi (1 - F)", z);
     CHECK(wmax == 0.0, "a detail answer reported weight %g", wmax);
     CHECK(irc_cache_stats(c, &st) == IRC_OK && st.records == 1 && st.computes == 0,
@@ -391,20 +394,21 @@ TEST(test_detail_pixels_wall)
           (unsigned long long)st.records, (unsigned long long)st.computes);
     /* 32 calls of 8 probes (one batch) and 16 x 64 strata each */
     CHECK(st.rays == 32u * (8u + 1024u), "rays %llu", (unsigned long long)st.rays);
-    CHECK(st.lookups == 32 && st.hits == 0, "lookups %llu, hits %llu",
-          (unsigned long long)st.lookups, (unsigned long long)st.hits);
+    CHECK(st.lookups == 32 && st.hits == 0 && st.details == 32, "lookups %llu, hits %llu, "
+          "details %llu", (unsigned long long)st.lookups, (unsigned long long)st.hits,
+          (unsigned long long)st.details);
     /* 0.2 from the face: the probe hits at 0.23, beyond 4 x 0.01 */
-    z = wall_z(c, &s, 0.2, &wmax, &bad, &mean);
-    CHECK(bad == 0 && wmax > 0.0, "away from the wall the record did not answer (weight %g)",
-          wmax);
+    z = wall_z(c, &s, 0.2, &wmax, &bad, &mean, &details);
+    CHECK(bad == 0 && wmax > 0.0 && details == 0,
+          "away from the wall the record did not answer (weight %g, %d details)", wmax, details);
     block_free(&cfg);
 
     c = wall_cache(&s, &cfg, -1.0f, 8, NULL);
     CHECK(c != NULL, "init (off)");
     if (!c)
         return;
-    z = wall_z(c, &s, 0.005, &wmax, &bad, &mean);
-    CHECK(bad == 0 && wmax > 0.0 && mean > 0.25,
+    z = wall_z(c, &s, 0.005, &wmax, &bad, &mean, &details);
+    CHECK(bad == 0 && wmax > 0.0 && mean > 0.25 && details == 0,
           "off: the record should answer at the wall, far above the truth (mean error %.3f, "
           "weight %g)", mean, wmax);
     block_free(&cfg);
@@ -427,7 +431,7 @@ TEST(test_detail_pixels_calls)
     CHECK(c != NULL, "init");
     if (!c)
         return;
-    CHECK(irc_cache_lookup_or_compute_px(c, p, n, 0.01f, rgb, &w, NULL) == IRC_OK, "call");
+    CHECK(irc_cache_lookup_or_compute_px(c, p, n, 0.01f, rgb, &w, NULL) == IRC_DETAIL, "call");
     CHECK(irc_cache_stats(c, &st) == IRC_OK && st.rays == 1025, "rays %llu",
           (unsigned long long)st.rays);
     s.return_code = -77;
@@ -472,7 +476,7 @@ TEST(test_detail_pixels_calls)
         return;
     {
         const float near[3] = {-0.001f, 0.0f, 0.0f}, off[3] = {-0.01f, 0.0f, 0.0f};
-        CHECK(irc_cache_lookup_or_compute_px(c, near, n, 0.01f, rgb, &w, NULL) == IRC_OK &&
+        CHECK(irc_cache_lookup_or_compute_px(c, near, n, 0.01f, rgb, &w, NULL) == IRC_DETAIL &&
                   irc_cache_stats(c, &st) == IRC_OK && st.rays == 1025 && w == 0.0f,
               "default, near: rays %llu, weight %g", (unsigned long long)st.rays, w);
         CHECK(irc_cache_lookup_or_compute_px(c, off, n, 0.01f, rgb, &w, NULL) == IRC_OK &&
@@ -521,7 +525,7 @@ TEST(test_detail_probes_flagged)
     if (!c)
         return;
     /* near the wall: 8 probes in one flagged call, then 16 x 64 plain rays */
-    CHECK(irc_cache_lookup_or_compute_px(c, near, n, 0.01f, rgb, &w, NULL) == IRC_OK &&
+    CHECK(irc_cache_lookup_or_compute_px(c, near, n, 0.01f, rgb, &w, NULL) == IRC_DETAIL &&
               w == 0.0f && rgb[0] > 0.0f && rgb[0] < 4.0f,
           "near: weight %g, E %g", w, rgb[0]);
     CHECK(probe_seen.probe_calls == 1 && probe_seen.probe_rays == 8 &&

@@ -139,7 +139,7 @@ static void irc__layout_of(const irc_config *cfg, uint32_t capacity, irc__layout
     l->refs = at;
     at += irc__up((uint64_t)l->ref_cap * sizeof(irc__ref));
     l->ctr = at;
-    at += (uint64_t)IRC__STRIPES * IRC__ALIGN;
+    at += (uint64_t)IRC__STRIPES * IRC__STRIPE_BYTES;
     l->used = at;
     if (cfg->evict == IRC_EVICT_CLOCK)
         at += irc__up(((uint64_t)capacity + 63u) / 64u * sizeof(uint64_t));
@@ -480,7 +480,6 @@ int irc_attach(const irc_config *cfg, irc_cache **out)
  * promises (C99 has no static_assert: a negative array size stops the
  * build). */
 typedef char irc__view_fits[sizeof(irc_cache) <= IRC_VIEW_BYTES ? 1 : -1];
-typedef char irc__stripe_fits[IRC__C_COUNT * sizeof(uint64_t) <= IRC__ALIGN ? 1 : -1];
 
 int irc_join(const irc_config *cfg, void *view, size_t view_size, irc_cache **out)
 {

@@ -113,10 +113,13 @@ int irc__detail_px(irc_cache *c, const float p[3], const float n[3], float footp
     }
     irc__count(c, IRC__C_RAYS, rays);
     irc__count(c, IRC__C_LOOKUPS, 1);
+    irc__count(c, IRC__C_DETAILS, 1);
+    if (waited)
+        irc__count(c, IRC__C_WAITS, 1);
     rgb[0] = dt.e[0];
     rgb[1] = dt.e[1];
     rgb[2] = dt.e[2];
     if (weight)
         *weight = 0.0f;
-    return IRC_OK;
+    return IRC_DETAIL;
 }

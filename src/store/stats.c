@@ -1,5 +1,5 @@
 /*
- * stats.c -- the counters, in stripes of one cache line so that threads on
+ * stats.c -- the counters, in stripes of whole cache lines so that threads on
  * other cores rarely write the same line (stats.h, IRC__STRIPES), and
  * irc_cache_stats, which sums them and reports the block's bytes.
  */
@@ -11,7 +11,7 @@
 
 static inline uint64_t *irc__stripe(const irc_cache *c, uint32_t s)
 {
-    return (uint64_t *)(void *)irc__part(c, c->o_ctr + (size_t)s * IRC__ALIGN);
+    return (uint64_t *)(void *)irc__part(c, c->o_ctr + (size_t)s * IRC__STRIPE_BYTES);
 }
 
 /* The calling thread's stripe: its stack's address above 64 KiB
@@ -61,6 +61,7 @@ int irc_cache_stats(irc_cache *c, irc_stats *out)
     out->computes = irc__counter(c, IRC__C_COMPUTES);
     out->not_stored = irc__counter(c, IRC__C_NOT_STORED);
     out->waits = irc__counter(c, IRC__C_WAITS);
+    out->details = irc__counter(c, IRC__C_DETAILS);
     out->rays = irc__counter(c, IRC__C_RAYS);
     out->index_nodes_max = c->node_cap;
     out->index_refs_max = c->ref_cap;

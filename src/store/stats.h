@@ -8,11 +8,15 @@
 
 enum {
     IRC__C_INSERTS, IRC__C_EVICTIONS, IRC__C_LOOKUPS, IRC__C_HITS,
-    IRC__C_COMPUTES, IRC__C_RAYS, IRC__C_NOT_STORED, IRC__C_WAITS, IRC__C_COUNT
-}; /* IRC__C_COUNT * 8 bytes: one stripe, at most a cache line */
+    IRC__C_COMPUTES, IRC__C_RAYS, IRC__C_NOT_STORED, IRC__C_WAITS, IRC__C_DETAILS,
+    IRC__C_COUNT
+};
+/* A stripe: the counters, rounded up to whole cache lines. */
+#define IRC__STRIPE_BYTES \
+    ((IRC__C_COUNT * sizeof(uint64_t) + IRC__ALIGN - 1) / IRC__ALIGN * IRC__ALIGN)
 
 
-/* The counters, in IRC__STRIPES stripes of one cache line each (a part of
+/* The counters, in IRC__STRIPES stripes of whole cache lines each (a part of
  * the block at o_ctr): a thread adds to the stripe its stack's address
  * picks, so threads on other cores rarely write the same line, and
  * irc_cache_stats sums the stripes.  Any thread may use any stripe; the
