@@ -389,8 +389,10 @@ int add_run(ctx *c, const char *method, double param, const render_opts *o, cons
            100.0 * r->worst1, r->leaks, 100.0 * r->bias, (unsigned long long)r->st.records,
            100.0 * r->st.cache_s / r->st.cpu);
     if (o->mode == MODE_CACHE && !(o->features & IRC_FEATURE_SH))
-        printf("  %-10s lookups %llu, hits %llu, records %llu, per-pixel detail estimates %lld\n",
-               method, (unsigned long long)r->st.lookups, (unsigned long long)r->st.hits,
+        printf("  %-10s rays %llu, lookups %llu, hits %llu, records %llu, per-pixel detail "
+               "estimates %lld\n",
+               method, (unsigned long long)r->st.rays, (unsigned long long)r->st.lookups,
+               (unsigned long long)r->st.hits,
                (unsigned long long)r->st.records,
                (long long)(r->st.lookups - r->st.hits - r->st.records - r->st.evictions -
                            r->st.not_stored));

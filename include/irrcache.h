@@ -403,10 +403,10 @@ typedef struct irc_config {
          * decides a miss (V-Ray's "interpolation samples"): a point is
          * computed only where no record lies within a R, but answered
          * from every record within blend a R, weighted (1 - t^2)^2 at t =
-         * the Ward distance over blend a, so each record's noise is
-         * shared by more pixels.  1 (the default; 0 takes it): Ward's
-         * weight 1/e within a R, as before.  Finite, 1..4 (why:
-         * bench/README.md, "Noise and bias"). */
+         * e / (blend a), e Ward's distance, so each record's noise is
+         * shared by more pixels.  1: Ward's weight 1/e within a R (0.3's
+         * lookups).  Finite, 1..4; 0: 2 (why: bench/README.md, "Noise and
+         * bias"). */
         float blend;
     } irr;
     struct irc_config_sh {   /* SH records (IRC_FEATURE_SH) */

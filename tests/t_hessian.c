@@ -434,6 +434,7 @@ static irc_cache *hand_cache(tscene *s, irc_config *cfg, uint32_t features, irc_
     scene_init(s);
     *cfg = scene_config(s, features, 4, 4);
     cfg->accuracy = 0.5f;
+    cfg->irr.blend = 1.0f; /* Ward's 1/e within a R, whose closed forms these tests write */
     cfg->irr.leak_guard = 1; /* kept for the guard's test; the others' records carry none */
     c = block_cache(cfg, 8, 0);
     disk_record(r, e, rad);

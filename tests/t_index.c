@@ -70,7 +70,7 @@ static uint32_t compare(irc_cache *c, uint32_t queries, int decades, unsigned lo
     float *px = malloc(sizeof(float) * m * 4), *py = px + m, *pz = py + m, *r2 = pz + m;
     for (i0 = 0; i0 < m; i0++) {
         const irc__rec *r = irc__rec_at(c, i0);
-        double reach = (double)c->cfg.accuracy * r->r;
+        double reach = (double)c->reach_a * r->r; /* a R, or blend a R */
         px[i0] = r->p[0];
         py[i0] = r->p[1];
         pz[i0] = r->p[2];
@@ -79,6 +79,12 @@ static uint32_t compare(irc_cache *c, uint32_t queries, int decades, unsigned lo
     for (q = 0; q < queries; q++) {
         float p[3], n[3], rgb[3], wt;
         double scale = pow(10.0, (xrand(st) - 0.5) * decades), sum[3] = {0, 0, 0}, wsum = 0;
+        /* The lookup's running mean in float (m += (w / W)(v - m)) errs
+         * by a few ulps of the largest value it took in, not of its
+         * result: a light record of large E read before a heavy one of
+         * small E (weights near a blended reach's edge fall toward 0)
+         * leaves that much. */
+        double vmax = 0.0;
         uint32_t cnt = 0, ns = 0, i;
         int k, stt;
         if (q % 3 == 1) {
@@ -92,7 +98,7 @@ static uint32_t compare(irc_cache *c, uint32_t queries, int decades, unsigned lo
             const irc__rec *r = irc__rec_at(c, (uint32_t)(xrand(st) * irc__st(c)->count));
             float t1[3], t2[3], nd[3];
             double ang = xrand(st) * 6.283185307179586;
-            double d = (0.95 + 0.049 * xrand(st)) * c->cfg.accuracy * r->r;
+            double d = (0.95 + 0.049 * xrand(st)) * c->reach_a * r->r;
             float ni[3];
             irc__oct_decode(r->n, ni);
             for (k = 0; k < 3; k++)
@@ -129,6 +135,7 @@ static uint32_t compare(irc_cache *c, uint32_t queries, int decades, unsigned lo
                     scan[ns] = i;
                 ns++;
                 irc__extrapolate(c, irc__rec_at(c, i), ni, p, n, v);
+                vmax = fmax(vmax, v[0]);
                 for (k = 0; k < 3; k++)
                     sum[k] += w * v[k];
                 wsum += w;
@@ -143,7 +150,8 @@ static uint32_t compare(irc_cache *c, uint32_t queries, int decades, unsigned lo
         qsort(scan, ns, sizeof *scan, cmp_u32);
         if (cnt != ns || memcmp(ids, scan, cnt * sizeof *ids) != 0)
             bad++;
-        else if (ns && (stt != IRC_OK || fabs(rgb[0] - sum[0] / wsum) > 1e-5 * (sum[0] / wsum) + 1e-30))
+        else if (ns && (stt != IRC_OK || fabs(rgb[0] - sum[0] / wsum) >
+                                             1e-5 * fmax(sum[0] / wsum, vmax) + 1e-30))
             bad++;
         else if (!ns && stt != IRC_MISS)
             bad++;

@@ -31,6 +31,7 @@ TEST(test_weighted_mean)
     float p[3] = {0.04f, 0.03f, 0.0f}, n[3] = {0.1f, 0.0f, 1.0f}, rgb[3], w;
     double nn, wa, wb, want;
     cfg.accuracy = 0.5f;
+    cfg.irr.blend = 1.0f; /* Ward's weight (the blended one: test_blend_mean) */
     c = block_cache(&cfg, 8, 0);
     CHECK(c != NULL, "init");
     if (!c) return;
@@ -111,6 +112,7 @@ TEST(test_blend_mean)
 
     cfg = scene_config(&s, 0, 4, 4);
     cfg.accuracy = 0.2f;
+    cfg.irr.blend = 1.0f;
     cfg.check_visibility = IRC_OFF;
     c = block_cache(&cfg, 8, 0);
     CHECK(c != NULL && irc_cache_insert(c, &a) == IRC_OK && irc_cache_insert(c, &b) == IRC_OK,
