@@ -520,7 +520,8 @@ static int equal_records_table(ctx *c, const bscene *b, FILE *csv, FILE *md)
 
 
 /* Brute force at 16 .. 4096 rays per point; each cache method at five a
- * and two strata grids (quick: 16 .. 256 rays, three a, one grid). */
+ * (quick: 16 .. 256 rays, three a; the real scenes four), the strata
+ * following a (the library's knob: one sweep is the frontier). */
 static int sweep(ctx *c, const bscene *b, FILE *csv)
 {
     static const int brute[] = {16, 64, 256, 1024, 4096};
@@ -533,19 +534,18 @@ static int sweep(ctx *c, const bscene *b, FILE *csv)
         IRC_FEATURE_SH | IRC_FEATURE_SH_GRADIENT};
     double a_set[8];
     const int n_set = bench_a_list(a_set, 8);
-    int nb = c->quick ? 3 : 5, na = c->quick ? 3 : 5, ng = c->quick ? 1 : 2;
+    int nb = c->quick ? 3 : 5, na = c->quick ? 3 : 5;
     const double *as = c->quick ? a_quick : a_full;
     /* The real scenes: four a. */
     const int coarse = b->stride && !c->quick;
-    int i, m, g;
+    int i, m;
     if (coarse) {
         as = a_real;
         na = 4;
     }
-    if (n_set) { /* BENCH_A=0.4,0.2: these a at the default grid only */
+    if (n_set) { /* BENCH_A=0.4,0.2: these a */
         na = n_set;
         as = a_set;
-        ng = 1;
     }
     for (i = 0; i < nb && wanted("BENCH_METHODS", "brute"); i++) {
         render_opts o = base_opts(c);
@@ -557,14 +557,12 @@ static int sweep(ctx *c, const bscene *b, FILE *csv)
             return -1;
     }
     for (m = 1; m < NMETHODS; m++)
-        for (g = 0; g < ng && (strcmp(methods[m], "sh") || b->sh) && wanted("BENCH_METHODS", methods[m]); g++)
+        if ((strcmp(methods[m], "sh") || b->sh) && wanted("BENCH_METHODS", methods[m]))
             for (i = 0; i < na; i++) {
                 render_opts o = base_opts(c);
                 o.mode = MODE_CACHE;
                 o.features = feats[m];
                 o.accuracy = (float)as[i];
-                o.strata_m = DEF_M >> g; /* the default, then half each way */
-                o.strata_n = DEF_N >> g;
                 experiment_opts(&o);
                 if (add_run(c, methods[m], as[i], &o, b, csv) < 0)
                     return -1;

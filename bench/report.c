@@ -199,7 +199,7 @@ void corpus_summary(const ctx *c, FILE *md)
 {
     int k;
     fprintf(md, "\n**Over the scenes run** (geometric means): the defaults (translational + "
-                "rotational, a = 0.2, 32x128) against brute force at equal relative RMSE ");
+                "rotational, a = 0.2, the library's strata) against brute force at equal relative RMSE ");
     if (c->gm_n)
         fprintf(md, "%.1fx over %d scenes", exp(c->gm_log / c->gm_n), c->gm_n);
     else
@@ -229,7 +229,7 @@ void table(ctx *c, const bscene *b, FILE *md)
     }
     fprintf(md, ")\n\n");
     fprintf(md, "| method | runs | best rel. RMSE | its p99 / p99.9 / max, px > 10%% | "
-                "time to 8%% (speedup) | to 4%% | to 2%% | to 1%% | records at a = 0.2, 32x128 "
+                "time to 8%% (speedup) | to 4%% | to 2%% | to 1%% | records at a = 0.2 "
                 "(their bytes) | cache share there |\n"
                 "|---|---|---|---|---|---|---|---|---|---|\n");
     for (m = 0; m < NMETHODS; m++) {
@@ -268,7 +268,7 @@ void table(ctx *c, const bscene *b, FILE *md)
             c->runs[i].m == DEF_M) {
             double rec = (double)c->runs[i].st.records, e0 = rmse_at(c, "none", rec),
                    e1 = c->runs[i].rmse, e2 = rmse_at(c, "vis", rec), e3 = rmse_at(c, "hess", rec);
-            fprintf(md, "\nAt %llu records (trans+rot, a = 0.2, 32x128), along the 32x128 sweeps: "
+            fprintf(md, "\nAt %llu records (trans+rot, a = 0.2), along the sweeps of a: "
                         "relative RMSE no gradients %.4f, "
                         "translational + rotational %.4f, visibility %.4f, Hessian radii %.4f",
                     (unsigned long long)rec, e0, e1, e2, e3);
@@ -279,14 +279,14 @@ void table(ctx *c, const bscene *b, FILE *md)
         }
 }
 
-/* Each cache method at a = 0.2, 32x128 (the library's defaults for
+/* Each cache method at a = 0.2 and the library's strata (its defaults for
  * trans+rot) against brute force at the same error: by relative RMSE and
  * by p99, the worst 1% of pixels' share of the squared error, the pixels
  * that leak (and brute force's at the same RMSE), the bias. */
 void defaults_table(ctx *c, const bscene *b, FILE *md)
 {
     int m, i, bt, bp;
-    fprintf(md, "\n**%s at a = 0.2, 32x128** (the defaults for trans + rot; brute force's time "
+    fprintf(md, "\n**%s at a = 0.2** (the defaults for trans + rot; brute force's time "
                 "from its power-law fit at the same error, ext: extrapolated; leaks: pixels above the reference by more than "
                 "25%% of its mean)\n\n"
                 "| method | rel. RMSE | speedup at equal RMSE | p99 | speedup at equal p99 | "
@@ -336,7 +336,7 @@ void data_files(const ctx *c, const bscene *b, FILE *gp)
 {
     int m, i, first = 1;
     fprintf(gp, "set output '" OUT "/%s.png'\nset title '%s (reference noise %.4f); cache: "
-                "a = 0.4 .. 0.1 at 32x128, then 16x64'\nplot ", b->name, b->name, c->ref_noise);
+                "a = 0.4 .. 0.1, strata by a'\nplot ", b->name, b->name, c->ref_noise);
     for (m = 0; m < NMETHODS; m++) {
         char path[256];
         FILE *f = NULL;

@@ -23,7 +23,7 @@ static const char usage[] =
     "                          vis, vis,rot (vis: translational from visibility),\n"
     "                          sh, sh,grad (SH records, L = 3, E by convolution)\n"
     "  --accuracy A            cache accuracy a (default 0.2)\n"
-    "  --strata MxN            cache hemisphere strata (default 16x64)\n"
+    "  --strata MxN            cache hemisphere strata (default: the library's)\n"
     "  --records N             cache capacity (default 200000; CLOCK eviction)\n"
     "  --min-radius R          cache minimum radius (scene units, default 0)\n"
     "  --leak-guard            records keep a leak guard (irc_config.irr.leak_guard)\n"
@@ -31,6 +31,7 @@ static const char usage[] =
     "  --supersamples S        S more rays a record where strata differ (irc_config.irr.supersamples)\n"
     "  --full-pixels F         records narrower than F pixels take coarser strata (irc_config.irr.full_pixels; -1 never)\n"
     "  --detail-pixels D       points within D pixels of geometry get their own estimate (irc_config.irr.detail_pixels; -1 never)\n"
+    "  --blend B               lookups average the records within B a R (irc_config.irr.blend, 1..4; default 2)\n"
     "  --pixels MIN,MAX        a record's reach in pixels (default 0,15: none,15; -1: no\n"
     "                          bound on that side)\n"
     "  --no-footprint          records ignore the pixel (the plain lookup-or-compute)\n"
@@ -163,6 +164,7 @@ static int parse_args(int argc, char **argv, cli *c)
         else if (!strcmp(a, "--no-clamp")) c->o.clamp_neighbours = IRC_OFF;
         else if (!strcmp(a, "--full-pixels")) NEED(parse_float(n, &c->o.full_pixels));
         else if (!strcmp(a, "--detail-pixels")) NEED(parse_float(n, &c->o.detail_pixels));
+        else if (!strcmp(a, "--blend")) NEED(parse_float(n, &c->o.blend));
         else if (!strcmp(a, "--supersamples")) { NEED(parse_uint(n, 0, IRC_MAX_STRATA, &v)); c->o.supersamples = (uint32_t)v; }
         else if (!strcmp(a, "--no-footprint")) c->o.no_footprint = 1;
         else if (!strcmp(a, "--no-check-visibility")) c->o.check_visibility = IRC_OFF;

@@ -347,10 +347,12 @@ typedef struct irc_config {
      * cap); also the radius of a record whose rays all escaped (by default
      * the smallest float: set it for open scenes, or use the _px call). */
     float max_radius;
-    uint32_t strata_theta;   /* M rows in theta, 1..1024 (default 32; SH 16) */
-    uint32_t strata_phi;     /* N columns in phi, 1..4096 (default 128; SH
-                                64); M * N <= IRC_MAX_STRATA (why:
-                                bench/README.md, "The corpus") */
+    /* M rows in theta, 1..1024, and N columns in phi, 1..4096; M * N <=
+     * IRC_MAX_STRATA.  Default: they follow a, so that one knob sets a
+     * record's cost: M = 32 below a = 0.25, 16 below 0.35, 8 above, and N
+     * = 4 M (SH records: 16 x 64).  Why: bench/README.md, "One knob". */
+    uint32_t strata_theta;
+    uint32_t strata_phi;
     /* Scratch slots: record computations at once, 1..64 (default 1), each
      * bytes_scratch / threads bytes.  A compute that finds every slot taken
      * waits for one (see no_wait); any number of host threads may share it. */

@@ -4,7 +4,7 @@
 #define TESTS(X)                                                     \
     X(test_uniform_sky) X(test_sphere_over_plane) X(test_supersample) X(test_flat_blocker) X(test_box_closed_form)                    \
     X(test_rotational_gradient_sky) X(test_radius_rules) X(test_strata_directions) \
-    X(test_pack_roundtrip) X(test_weighted_mean) X(test_blend_mean) X(test_behind_relative)  \
+    X(test_pack_roundtrip) X(test_weighted_mean) X(test_blend_mean) X(test_strata_follow_accuracy) X(test_behind_relative)  \
     X(test_extrapolation) X(test_lookup_gradient_one) X(test_lookup_gradient_sphere) X(test_lookup_gradient_status) X(test_lookup_or_compute) X(test_open_sky_own_point) X(test_full_no_evict) \
     X(test_evict_clock) X(test_index_exact) X(test_weigh_fused) X(test_index_scales) X(test_index_grow_faces)          \
     X(test_config_checks) X(test_version) X(test_footprints) X(test_defaults) X(test_init_block) \

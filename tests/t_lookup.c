@@ -135,6 +135,37 @@ TEST(test_blend_mean)
     }
 }
 
+/* The strata follow a when left 0 (one knob for a record's cost): one
+ * record's rays are M x N = 4096, 1024, 256 at a = 0.2, 0.3, 0.4 (and at
+ * a = 0.24, 0.25, 0.34, 0.35 either side of the steps); strata given are
+ * kept; SH records keep 16 x 64 whatever a. */
+TEST(test_strata_follow_accuracy)
+{
+    static const struct { float a; uint32_t m, n, rays; } k[] = {
+        {0.0f, 0, 0, 4096}, {0.2f, 0, 0, 4096}, {0.24f, 0, 0, 4096}, {0.25f, 0, 0, 1024},
+        {0.3f, 0, 0, 1024}, {0.34f, 0, 0, 1024}, {0.35f, 0, 0, 256}, {0.4f, 0, 0, 256},
+        {0.8f, 0, 0, 256}, {0.4f, 32, 128, 4096}, {0.2f, 8, 0, 8 * 128}, {0.4f, 0, 64, 8 * 64}};
+    tscene s;
+    size_t i;
+    scene_sphere_plane(&s);
+    for (i = 0; i < sizeof k / sizeof k[0]; i++) {
+        irc_config cfg = scene_config(&s, 0, k[i].m, k[i].n);
+        const float p[3] = {0.3f, 0.1f, 0.0f}, n[3] = {0, 0, 1};
+        irc_record r;
+        irc_stats st;
+        irc_cache *c;
+        cfg.accuracy = k[i].a;
+        cfg.check_visibility = IRC_OFF;
+        c = block_cache(&cfg, 4, 0);
+        CHECK(c != NULL && irc_record_compute(c, p, n, &r, NULL) == IRC_OK &&
+                  irc_cache_stats(c, &st) == IRC_OK && st.rays == k[i].rays,
+              "a = %g, strata %ux%u given: %llu rays, want %u", k[i].a, k[i].m, k[i].n,
+              c ? (unsigned long long)st.rays : 0ull, k[i].rays);
+        if (c)
+            block_free(&cfg);
+    }
+}
+
 /* The "behind" test: a record in front of the query's surface by more than
  * 0.05 R_i is rejected, at every scale. */
 TEST(test_behind_relative)

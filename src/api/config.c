@@ -6,13 +6,13 @@
 #include "config.h"
 
 #define IRC__DEF_ACCURACY 0.2f
-/* Strata: 32 x 128 for irradiance records, whose noise is copied to
- * every pixel they serve (on the bench's corpus, without a pixel floor,
- * 16 x 64 records held the error at 2.5-5.5% whatever a, and 32 x 128
- * halved it: bench/README.md, "The corpus"); 16 x 64 for SH records,
- * whose two hemispheres double the rays and were not measured so. */
+/* Strata: 32 x 128 for irradiance records at the default a (coarser at
+ * coarser a: irc__theta_for), whose noise is copied to every pixel they
+ * serve (on the bench's corpus, without a pixel floor, 16 x 64 records
+ * held the error at 2.5-5.5% at a = 0.2, and 32 x 128 halved it:
+ * bench/README.md, "The corpus"); 16 x 64 for SH records, whose two
+ * hemispheres double the rays and were not measured so. */
 #define IRC__DEF_THETA 32u
-#define IRC__DEF_PHI 128u
 #define IRC__DEF_SH_THETA 16u
 #define IRC__DEF_SH_PHI 64u
 #define IRC__LOCK_MAX 4096u
@@ -38,11 +38,23 @@ static int irc__radii_resolve(irc_config *out)
     return IRC_OK;
 }
 
+/* An irradiance record's rows by default follow a, so that one knob sets
+ * what a record costs: at a = 0.4, 0.3 and 0.2 the grids 8 x 32, 16 x 64
+ * and 32 x 128 lay on the lower envelope of error against CPU time on two
+ * Sponza views (bench/README.md, "One knob"); each coarser grid has a
+ * quarter of the rays and twice the noise, which coarser placement no
+ * longer hides. */
+static uint32_t irc__theta_for(float a)
+{
+    return a < 0.25f ? IRC__DEF_THETA : a < 0.35f ? IRC__DEF_THETA / 2u : IRC__DEF_THETA / 4u;
+}
+
 static int irc__sampling_resolve(irc_config *out)
 {
     const int sh = (out->features & (IRC_FEATURE_SH | IRC_FEATURE_SH_GRADIENT)) != 0;
-    if (out->strata_theta == 0) out->strata_theta = sh ? IRC__DEF_SH_THETA : IRC__DEF_THETA;
-    if (out->strata_phi == 0) out->strata_phi = sh ? IRC__DEF_SH_PHI : IRC__DEF_PHI;
+    const uint32_t m = sh ? IRC__DEF_SH_THETA : irc__theta_for(out->accuracy);
+    if (out->strata_theta == 0) out->strata_theta = m;
+    if (out->strata_phi == 0) out->strata_phi = sh ? IRC__DEF_SH_PHI : 4u * m;
     if (out->strata_theta > 1024u || out->strata_phi > 4096u ||
         out->strata_theta * out->strata_phi > IRC_MAX_STRATA)
         return IRC_ERR_CONFIG;
@@ -91,13 +103,13 @@ int irc__config_resolve(const irc_config *in, irc_config *out)
     if ((st = irc__kind_features(out->features)) < 0)
         return st;
     k = irc__kind_of(out->features);
-    if ((st = irc__kind_fields_alone(k, out)) < 0 || (st = irc__radii_resolve(out)) < 0 ||
-        (st = irc__sampling_resolve(out)) < 0 || (st = irc__kind_resolve(k, out)) < 0)
-        return st;
     if (out->accuracy == 0.0f)
         out->accuracy = IRC__DEF_ACCURACY;
     if (!(out->accuracy > 0.0f && out->accuracy <= 10.0f))
         return IRC_ERR_CONFIG;
+    if ((st = irc__kind_fields_alone(k, out)) < 0 || (st = irc__radii_resolve(out)) < 0 ||
+        (st = irc__sampling_resolve(out)) < 0 || (st = irc__kind_resolve(k, out)) < 0)
+        return st;
     if (out->evict > IRC_EVICT_CLOCK)
         return IRC_ERR_CONFIG;
     if (!out->port)
