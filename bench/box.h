@@ -51,6 +51,9 @@ static inline irc_cache *box_cache(uint32_t count, irc_config *cfg)
     cfg->trace = box_no_trace;
     cfg->accuracy = 0.2f;
     cfg->features = IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION;
+    /* Ward's lookups within a R, the work pbrt-v2's anchor does
+     * (bench/anchor.c); BENCH_BLEND=2 measures the default's blended ones */
+    cfg->irr.blend = getenv("BENCH_BLEND") ? (float)atof(getenv("BENCH_BLEND")) : 1.0f;
     cfg->port = &irc_port_none;
     if (count == 0 || irc_footprint(cfg, count, &bytes) != IRC_OK ||
         !(cfg->buffer = malloc(bytes)))

@@ -61,7 +61,7 @@ static void read_vec(fuzz_in *in, float v[3])
 
 static int status_ok(int st)
 {
-    return st >= IRC_ERR_LAST && st <= IRC_NOT_STORED;
+    return st >= IRC_ERR_LAST && st <= IRC_DETAIL;
 }
 
 static void read_config(fuzz_in *in, irc_config *cfg, host *h, uint32_t *cap)

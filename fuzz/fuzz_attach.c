@@ -80,16 +80,16 @@ static void use(irc_cache *c, int sh)
         if (sh) {
             irc_sh r;
             s = irc_sh_lookup(c, p, n, &r, &w);
-            check(s >= IRC_ERR_LAST && s <= IRC_NOT_STORED);
+            check(s >= IRC_ERR_LAST && s <= IRC_DETAIL);
             if (i < st.records)
                 check(irc_sh_record(c, i, &r) == IRC_OK);
             if (i == 3)
                 check((s = irc_sh_lookup_or_compute(c, p, n, &r, &w, NULL)) >= IRC_ERR_LAST &&
-                      s <= IRC_NOT_STORED);
+                      s <= IRC_DETAIL);
             continue;
         }
         s = irc_cache_lookup(c, p, n, rgb, &w);
-        check(s >= IRC_ERR_LAST && s <= IRC_NOT_STORED);
+        check(s >= IRC_ERR_LAST && s <= IRC_DETAIL);
         if (s >= 0)
             check(isfinite(w) && w >= 0.0f);
         if (i < st.records) {
@@ -98,7 +98,7 @@ static void use(irc_cache *c, int sh)
         }
         if (i == 3)
             check((s = irc_cache_lookup_or_compute(c, p, n, rgb, &w, NULL)) >= IRC_ERR_LAST &&
-                  s <= IRC_NOT_STORED);
+                  s <= IRC_DETAIL);
     }
 }
 

@@ -154,7 +154,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             if (st >= 0)
                 check(fin(rgb[0]) && fin(rgb[1]) && fin(rgb[2]) && rgb[0] >= 0.0f);
         }
-        check(st == HOST_CODE || (st >= IRC_ERR_LAST && st <= IRC_NOT_STORED));
+        check(st == HOST_CODE || (st >= IRC_ERR_LAST && st <= IRC_DETAIL));
         if (st < 0)
             check(memcmp(b.copy, b.block, bytes) == 0);
     }

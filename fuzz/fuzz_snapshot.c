@@ -80,7 +80,7 @@ static void check_after(irc_cache *c, int sh)
             check(isfinite(r.radius) && r.radius > 0.0f && r.e[0] >= 0.0f && r.e[1] >= 0.0f &&
                   r.e[2] >= 0.0f && isfinite(r.e[0]) && isfinite(r.e[1]) && isfinite(r.e[2]));
             s = irc_cache_lookup(c, p, n, rgb, &w);
-            check(s >= IRC_ERR_LAST && s <= IRC_NOT_STORED);
+            check(s >= IRC_ERR_LAST && s <= IRC_DETAIL);
             if (s >= 0)
                 check(isfinite(rgb[0]) && isfinite(rgb[1]) && isfinite(rgb[2]) && w >= 0.0f);
         }

@@ -148,7 +148,7 @@ switches() {
     $MAKE -s BUILD=$d PORT=none OPT="-O2 -fno-inline" \
         LEAVE_OUT="SH VISIBILITY HESSIAN SIGHT SUPERSAMPLE GUARD" $d/libirrcache.a || return 1
     ! nm "$d/libirrcache.a" 2>/dev/null |
-        grep -q 'irc__sh_eval\|irc__hessian\|irc__grad_visibility\|irc__sight\|irc__supersample\|irc__leak_guard\|irc__guarded' ||
+        grep -q 'irc__sh_eval\|irc__hessian\|irc__grad_visibility\|irc__confirm_batch\|irc__supersample\|irc__leak_guard\|irc__guarded' ||
         { echo "a part left out was compiled"; return 1; }
     cc -std=c99 -Wall -Wextra -Werror -Iinclude -Isrc tests/switches.c $d/libirrcache.a -lm \
         -o $d/switches || return 1

@@ -93,11 +93,11 @@ TEST(test_config_checks)
     CHECK(irc_footprint(&cfg, 0, &bytes) == IRC_ERR_CONFIG, "zero records");
     /* Every library code has a text of its own: not the host-code text,
      * not the unknown-status text, and no two alike. */
-    for (i = IRC_ERR_LAST; i <= IRC_NOT_STORED; i++) {
+    for (i = IRC_ERR_LAST; i <= IRC_DETAIL; i++) {
         int j;
         CHECK(irc_strerror(i) != NULL && *irc_strerror(i), "strerror %d", i);
         CHECK(strcmp(irc_strerror(i), irc_strerror(IRC_ERR_LAST - 1)) != 0 &&
-                  strcmp(irc_strerror(i), irc_strerror(IRC_NOT_STORED + 1)) != 0,
+                  strcmp(irc_strerror(i), irc_strerror(IRC_DETAIL + 1)) != 0,
               "strerror %d is a fallback: %s", i, irc_strerror(i));
         for (j = IRC_ERR_LAST; j < i; j++)
             CHECK(strcmp(irc_strerror(i), irc_strerror(j)) != 0, "strerror %d = %d", i, j);

@@ -24,7 +24,7 @@ static int use(irc_cache *c)
         bad += st != IRC_OK && st != IRC_MISS && st != IRC_ERR_NONFINITE;
         if (i == 5) {
             st = irc_cache_lookup_or_compute(c, p, n, rgb, &w, NULL);
-            bad += st < IRC_ERR_LAST || st > IRC_NOT_STORED;
+            bad += st < IRC_ERR_LAST || st > IRC_DETAIL;
         }
     }
     return bad;
@@ -158,7 +158,7 @@ static int use_more(irc_cache *c, irc_cache *healthy, unsigned char *snap, size_
             st = i % 3 ? irc_cache_lookup(c, p, n, rgb, &w)
                        : irc_cache_lookup_or_compute(c, p, n, rgb, &w, NULL);
         }
-        bad += st < IRC_ERR_LAST || st > IRC_NOT_STORED;
+        bad += st < IRC_ERR_LAST || st > IRC_DETAIL;
     }
     if (!sh) {
         irc_record r;
@@ -168,7 +168,7 @@ static int use_more(irc_cache *c, irc_cache *healthy, unsigned char *snap, size_
         r.e[0] = r.e[1] = r.e[2] = 1.0f;
         r.radius = 0.5f;
         st = irc_cache_insert(c, &r);
-        bad += st < IRC_ERR_LAST || st > IRC_NOT_STORED;
+        bad += st < IRC_ERR_LAST || st > IRC_DETAIL;
     }
     st = irc_pass_begin(c);
     bad += st < IRC_ERR_LAST || st > 0;
@@ -178,7 +178,7 @@ static int use_more(irc_cache *c, irc_cache *healthy, unsigned char *snap, size_
             irc_sh out;
             int s2 = sh ? irc_sh_lookup_or_compute(c, p, n, &out, &w, NULL)
                         : irc_cache_lookup_or_compute(c, p, n, rgb, &w, NULL);
-            bad += s2 < IRC_ERR_LAST || s2 > IRC_NOT_STORED;
+            bad += s2 < IRC_ERR_LAST || s2 > IRC_DETAIL;
         }
         st = irc_pass_end(c, NULL);
         bad += st < IRC_ERR_LAST || st > 0;

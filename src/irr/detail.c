@@ -69,7 +69,7 @@ static int irc__detail_probe(irc__call *k, irc__detail *dt)
         if (st < 0)
             return st;
         for (j = 0; j < cnt; j++) {
-            if ((st = irc__sight_hit(&hits[j])) < 0)
+            if ((st = irc__visibility_hit(&hits[j])) < 0)
                 return st;
             if (st && hits[j].dist <= dt->reach)
                 dt->near = 1;

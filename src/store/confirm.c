@@ -98,7 +98,7 @@ int irc__confirm_batch(irc__call *k, uint32_t *ids, uint32_t first, uint32_t n,
     if (st < 0)
         return st;
     for (i = 0; i < m; i++) {
-        if ((st = irc__sight_hit(&hits[i])) < 0)
+        if ((st = irc__visibility_hit(&hits[i])) < 0)
             return st;
         if (st && hits[i].dist < IRC__SIGHT_SHORT * len[i])
             ids[k->q.n_hidden++] = ids[at[i]];

@@ -35,7 +35,7 @@ int irc__cast(irc__call *k, irc_ray *rays, irc_hit *hits, uint32_t count)
     return st;
 }
 
-int irc__sight_hit(const irc_hit *h)
+int irc__visibility_hit(const irc_hit *h)
 {
     if (h->status < IRC_RAY_HIT || h->status > IRC_RAY_FAILED)
         return IRC_ERR_CALLBACK;

@@ -13,6 +13,6 @@ int irc__cast(irc__call *k, irc_ray *rays, irc_hit *hits, uint32_t count);
 /* A hit of a ray cast with visibility_only: 1 a hit (its dist > 0 and
  * finite), 0 escaped or failed, IRC_ERR_CALLBACK for a bad status or
  * distance; nothing else of it is read. */
-int irc__sight_hit(const irc_hit *h);
+int irc__visibility_hit(const irc_hit *h);
 
 #endif
