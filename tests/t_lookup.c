@@ -60,6 +60,22 @@ TEST(test_weighted_mean)
  * record lies within a R and answers its record (weight 1) blended with
  * those it found, reporting weight 0; with blend 1 the same point misses.
  * Values outside 1..4 are refused. */
+static irc_cache *blend_cache(tscene *s, irc_config *cfg, float blend, const irc_record *a,
+                              const irc_record *b)
+{
+    irc_cache *c;
+    *cfg = scene_config(s, 0, 4, 4);
+    cfg->accuracy = 0.2f;
+    cfg->irr.blend = blend;
+    cfg->check_visibility = IRC_OFF;
+    c = block_cache(cfg, 8, 0);
+    if (c && (irc_cache_insert(c, a) != IRC_OK || irc_cache_insert(c, b) != IRC_OK)) {
+        block_free(cfg);
+        return NULL;
+    }
+    return c;
+}
+
 TEST(test_blend_mean)
 {
     tscene s;
@@ -73,15 +89,10 @@ TEST(test_blend_mean)
     static const float bad[] = {0.5f, -1.0f, 4.5f, NAN, INFINITY};
     size_t i;
     scene_sphere_plane(&s);
-    cfg = scene_config(&s, 0, 4, 4);
-    cfg.accuracy = 0.2f;
-    cfg.irr.blend = 2.0f;
-    cfg.check_visibility = IRC_OFF;
-    c = block_cache(&cfg, 8, 0);
-    CHECK(c != NULL, "init");
+    c = blend_cache(&s, &cfg, 2.0f, &a, &b);
+    CHECK(c != NULL, "init, blend 2");
     if (!c)
         return;
-    CHECK(irc_cache_insert(c, &a) == IRC_OK && irc_cache_insert(c, &b) == IRC_OK, "insert");
     /* e_a = 0.1, e_b = 0.2: t = 0.25 and 0.5 of the reach 0.4 */
     wa = (1.0 - 0.0625) * (1.0 - 0.0625);
     wb = 0.75 * 0.75;
@@ -110,13 +121,8 @@ TEST(test_blend_mean)
           "the computed record blended: %g (want %g, its own E %g)", rgb[0], want, r.e[0]);
     block_free(&cfg);
 
-    cfg = scene_config(&s, 0, 4, 4);
-    cfg.accuracy = 0.2f;
-    cfg.irr.blend = 1.0f;
-    cfg.check_visibility = IRC_OFF;
-    c = block_cache(&cfg, 8, 0);
-    CHECK(c != NULL && irc_cache_insert(c, &a) == IRC_OK && irc_cache_insert(c, &b) == IRC_OK,
-          "init, blend 1");
+    c = blend_cache(&s, &cfg, 1.0f, &a, &b);
+    CHECK(c != NULL, "init, blend 1");
     if (!c)
         return;
     CHECK(irc_cache_lookup(c, q, n, rgb, &w) == IRC_MISS, "blend 1: beyond a R misses");
@@ -137,13 +143,13 @@ TEST(test_blend_mean)
 
 /* The strata follow a when left 0 (one knob for a record's cost): one
  * record's rays are M x N = 4096, 1024, 256 at a = 0.2, 0.3, 0.4 (and at
- * a = 0.24, 0.25, 0.34, 0.35 either side of the steps); strata given are
+ * a = 0.24, 0.25, 0.37, 0.375 either side of the steps); strata given are
  * kept; SH records keep 16 x 64 whatever a. */
 TEST(test_strata_follow_accuracy)
 {
     static const struct { float a; uint32_t m, n, rays; } k[] = {
         {0.0f, 0, 0, 4096}, {0.2f, 0, 0, 4096}, {0.24f, 0, 0, 4096}, {0.25f, 0, 0, 1024},
-        {0.3f, 0, 0, 1024}, {0.34f, 0, 0, 1024}, {0.35f, 0, 0, 256}, {0.4f, 0, 0, 256},
+        {0.3f, 0, 0, 1024}, {0.37f, 0, 0, 1024}, {0.375f, 0, 0, 256}, {0.4f, 0, 0, 256},
         {0.8f, 0, 0, 256}, {0.4f, 32, 128, 4096}, {0.2f, 8, 0, 8 * 128}, {0.4f, 0, 64, 8 * 64}};
     tscene s;
     size_t i;

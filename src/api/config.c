@@ -46,7 +46,9 @@ static int irc__radii_resolve(irc_config *out)
  * longer hides. */
 static uint32_t irc__theta_for(float a)
 {
-    return a < 0.25f ? IRC__DEF_THETA : a < 0.35f ? IRC__DEF_THETA / 2u : IRC__DEF_THETA / 4u;
+    /* steps at binary fractions: a float a compares with them alike
+     * where constants are evaluated wider (x87) */
+    return a < 0.25f ? IRC__DEF_THETA : a < 0.375f ? IRC__DEF_THETA / 2u : IRC__DEF_THETA / 4u;
 }
 
 static int irc__sampling_resolve(irc_config *out)
