@@ -18,7 +18,11 @@
  *           irc_cache_lookup and, on a miss, the _px call;
  *   open    as passes, with the samples' phase inside one more open pass
  *           (lookups in a pass take no lock; a miss's record shows after
- *           irc_pass_end).
+ *           irc_pass_end);
+ *   pixel   as passes, but one cache call a pixel: its first sample's E
+ *           serves the pixel's other samples.
+ * In every cache mode a pixel whose call answered IRC_DETAIL (its own
+ * estimate) keeps that E for its later samples.
  * Error is relative RMSE against path tracing at many more samples (its
  * own random numbers) and the mean of the worst 1% of pixels' relative
  * errors.  The library's time is the time inside irc_* calls less the time
@@ -27,7 +31,8 @@
  * nothing else running: lookups a second, as a profile would see them.
  *
  * Usage: bench_host [width height samples reference_samples]
- * (default 128 96 256 2048).  HOST_IMAGES=DIR writes each mode's image
+ * (default 128 96 256 2048); HOST_A=a sets the cache's accuracy (the
+ * library's default otherwise).  HOST_IMAGES=DIR writes each mode's image
  * and its error (red: above the reference, blue: below, full at 25% of
  * the reference) as DIR/MODE.ppm and DIR/MODE-err.ppm.  Exit status 0
  * when every run completed.
@@ -214,8 +219,8 @@ static void camera(const host *h, float x, float y, float d[3])
     d[2] /= l;
 }
 
-enum mode { PATH, FREE, PASSES, OPEN, MODES };
-static const char *const mode_name[MODES] = {"path", "free", "passes", "open"};
+enum mode { PATH, FREE, PASSES, OPEN, PIXEL, MODES };
+static const char *const mode_name[MODES] = {"path", "free", "passes", "open", "pixel"};
 
 typedef struct run {
     double seconds, library, rel_rmse, worst1, replay_rate;
@@ -281,11 +286,11 @@ static int cache_irradiance(host *h, irc_cache *c, int mode, int fill, const flo
         }
     }
     out->library += bench_now() - t0 - (h->t_trace - tr);
-    if (st == IRC_DETAIL && !fill) {
+    if ((st == IRC_DETAIL || mode == PIXEL) && !fill && st >= 0) {
         h->has_detail[h->pixel] = 1;
         memcpy(&h->detail[3 * h->pixel], e, sizeof(float) * 3);
-        out->details++;
     }
+    out->details += st == IRC_DETAIL && !fill;
     return st < 0 ? st : 0;
 }
 
@@ -356,7 +361,7 @@ static int render(host *h, irc_cache *c, int mode, int spp, float *img, run *out
     const int sq = (int)ceil(sqrt((double)spp));
     int x, y, s, k;
     double t0 = bench_now();
-    if (mode == PASSES || mode == OPEN)
+    if (mode == PASSES || mode == OPEN || mode == PIXEL)
         if (fill_passes(h, c, out) < 0)
             return -1;
     if (mode == OPEN && irc_pass_begin(c) < 0)
@@ -513,6 +518,8 @@ int main(int argc, char **argv)
         h.rng = 0x9e3779b97f4a7c15ull;
         cfg.trace = trace;
         cfg.context = &h;
+        /* HOST_A: the knob (irrcache.h: the strata follow it) */
+        cfg.accuracy = getenv("HOST_A") ? (float)atof(getenv("HOST_A")) : 0.0f;
         if (mode != PATH) {
             if (irc_footprint(&cfg, max, &bytes) < 0 || !(cfg.buffer = malloc(bytes)))
                 return 1;
