@@ -313,29 +313,24 @@ static int record_noise(ctx *c, const render_opts *o, const float *img, run *r)
 {
     render_opts o2 = *o;
     render_stats st;
-    run d;
-    float *two = malloc(sizeof(float) * 3 * (size_t)c->w * c->h);
+    const int n = c->w * c->h;
+    float *two = malloc(sizeof(float) * 3 * (size_t)n);
+    double sd = 0.0, sr = 0.0;
+    int i, k;
     r->noise = -1.0;
-    if (!two)
-        return -1;
     o2.seed = o->seed + 1;
-    if (render(c, &o2, two, &st) < 0) {
+    if (!two || render(c, &o2, two, &st) < 0) {
         free(two);
         return -1;
     }
-    measure(c, img, two, &d); /* sqrt(sum (T1 - T2)^2 / sum T2^2) */
-    {
-        const int n = c->w * c->h;
-        double s2 = 0.0, sr = 0.0;
-        int i, k;
-        for (i = 0; i < n; i++)
-            if (on_lattice(c, i))
-                for (k = 0; k < 3; k++) {
-                    s2 += two[3 * i + k] * (double)two[3 * i + k];
-                    sr += c->ref[3 * i + k] * (double)c->ref[3 * i + k];
-                }
-        r->noise = sr > 0.0 ? d.rmse * sqrt(s2 / sr / 2.0) : 0.0;
-    }
+    for (i = 0; i < n; i++)
+        if (on_lattice(c, i))
+            for (k = 0; k < 3; k++) {
+                const double d = (double)img[3 * i + k] - two[3 * i + k];
+                sd += d * d;
+                sr += c->ref[3 * i + k] * (double)c->ref[3 * i + k];
+            }
+    r->noise = sr > 0.0 ? sqrt(sd / 2.0 / sr) : 0.0;
     free(two);
     return 0;
 }
