@@ -31,8 +31,8 @@
  * nothing else running: lookups a second, as a profile would see them.
  *
  * Usage: bench_host [width height samples reference_samples]
- * (default 128 96 256 2048); HOST_A=a sets the cache's accuracy (the
- * library's default otherwise).  HOST_IMAGES=DIR writes each mode's image
+ * (default 128 96 256 2048); HOST_A=a and HOST_BLEND=b set the cache's
+ * accuracy and cfg.irr.blend (the library's defaults otherwise).  HOST_IMAGES=DIR writes each mode's image
  * and its error (red: above the reference, blue: below, full at 25% of
  * the reference) as DIR/MODE.ppm and DIR/MODE-err.ppm.  Exit status 0
  * when every run completed.
@@ -520,6 +520,7 @@ int main(int argc, char **argv)
         cfg.context = &h;
         /* HOST_A: the knob (irrcache.h: the strata follow it) */
         cfg.accuracy = getenv("HOST_A") ? (float)atof(getenv("HOST_A")) : 0.0f;
+        cfg.irr.blend = getenv("HOST_BLEND") ? (float)atof(getenv("HOST_BLEND")) : 0.0f;
         if (mode != PATH) {
             if (irc_footprint(&cfg, max, &bytes) < 0 || !(cfg.buffer = malloc(bytes)))
                 return 1;
