@@ -61,12 +61,7 @@ static int irc__detail_probe(irc__call *k, irc__detail *dt)
             IRC_MEMCPY(rays[j].org, k->q.p, sizeof rays[j].org);
             irc__detail_dir(k, t1, t2, i + j, rays[j].dir);
         }
-        /* only their distances are read: flagged so the host need not
-         * shade them */
-        k->visibility_only = IRC_VISIBILITY_PROBE;
-        st = irc__cast(k, rays, hits, cnt);
-        k->visibility_only = 0;
-        if (st < 0)
+        if ((st = irc__cast_visibility(k, rays, hits, cnt, IRC_VISIBILITY_PROBE)) < 0)
             return st;
         for (j = 0; j < cnt; j++) {
             if ((st = irc__visibility_hit(&hits[j])) < 0)

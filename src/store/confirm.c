@@ -92,10 +92,7 @@ int irc__confirm_batch(irc__call *k, uint32_t *ids, uint32_t first, uint32_t n,
     }
     if (m == 0)
         return IRC_OK;
-    k->visibility_only = IRC_VISIBILITY_CONFIRM;
-    st = irc__cast(k, rays, hits, m);
-    k->visibility_only = 0;
-    if (st < 0)
+    if ((st = irc__cast_visibility(k, rays, hits, m, IRC_VISIBILITY_CONFIRM)) < 0)
         return st;
     for (i = 0; i < m; i++) {
         if ((st = irc__visibility_hit(&hits[i])) < 0)

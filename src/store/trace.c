@@ -35,6 +35,16 @@ int irc__cast(irc__call *k, irc_ray *rays, irc_hit *hits, uint32_t count)
     return st;
 }
 
+int irc__cast_visibility(irc__call *k, irc_ray *rays, irc_hit *hits, uint32_t count,
+                         uint32_t why)
+{
+    int st;
+    k->visibility_only = why;
+    st = irc__cast(k, rays, hits, count);
+    k->visibility_only = 0;
+    return st;
+}
+
 int irc__visibility_hit(const irc_hit *h)
 {
     if (h->status < IRC_RAY_HIT || h->status > IRC_RAY_FAILED)
