@@ -385,12 +385,10 @@ int add_run(ctx *c, const char *method, double param, const render_opts *o, cons
            100.0 * r->st.cache_s / r->st.cpu);
     if (o->mode == MODE_CACHE && !(o->features & IRC_FEATURE_SH))
         printf("  %-10s rays %llu, lookups %llu, hits %llu, records %llu, per-pixel detail "
-               "estimates %lld\n",
+               "estimates %llu\n",
                method, (unsigned long long)r->st.rays, (unsigned long long)r->st.lookups,
-               (unsigned long long)r->st.hits,
-               (unsigned long long)r->st.records,
-               (long long)(r->st.lookups - r->st.hits - r->st.records - r->st.evictions -
-                           r->st.not_stored));
+               (unsigned long long)r->st.hits, (unsigned long long)r->st.records,
+               (unsigned long long)r->st.details);
     if (r->st.evictions || r->st.not_stored)
         printf("  %-10s the pool of %d records (one a pixel) filled: %llu evicted, %llu not "
                "stored\n", method, c->w * c->h, (unsigned long long)r->st.evictions,

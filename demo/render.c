@@ -18,18 +18,21 @@
 
 #define PI 3.14159265358979323846
 
-double render_clock(void)
+static double seconds_of(clockid_t id)
 {
     struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
+    clock_gettime(id, &t);
     return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+double render_clock(void)
+{
+    return seconds_of(CLOCK_MONOTONIC);
 }
 
 double render_cpu_clock(void)
 {
-    struct timespec t;
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+    return seconds_of(CLOCK_PROCESS_CPUTIME_ID);
 }
 
 /* The default maximum radius: 0.1 x the diagonal of what the camera sees
@@ -439,7 +442,6 @@ static void *worker(void *arg)
             j->next = 0;
             j->level = level + 1;
         }
-
         pthread_barrier_wait(&j->wall);
     }
     if (j->detail) { /* the final sweep: every pixel once more, all records in */
@@ -474,6 +476,7 @@ static void collect(renderer *r, const tstate *ts, int n, double wall, double cp
         st->hits = cs.hits;
         st->evictions = cs.evictions;
         st->not_stored = cs.not_stored;
+        st->details = cs.details;
         st->cache_bytes = cs.bytes_total;
         st->record_bytes = cs.record_bytes;
     }

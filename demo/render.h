@@ -105,6 +105,7 @@ typedef struct render_stats {
     uint64_t records;
     uint64_t lookups, hits;
     uint64_t evictions, not_stored; /* the first cache's (irc_stats) */
+    uint64_t details;     /* its per-pixel estimates (irc_stats.details) */
     size_t cache_bytes;   /* the cache's block */
     size_t record_bytes;  /* bytes of one stored record */
     uint64_t level_records[MAX_BOUNCES]; /* records of levels 2, 3, ... */

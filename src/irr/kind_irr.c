@@ -278,17 +278,17 @@ static void irc__irr_answer(const irc_cache *c, const void *rec, void *out)
     rgb[2] = r->e[2];
 }
 
-/* The computed record at t = 0 of the blended weight (weight 1) and the
- * neighbours' mean in out, of weight w. */
+/* The computed record, at its own point (t = 0 of the blended weight),
+ * taken into the neighbours' mean that out holds, of weight w: the
+ * lookup's own accumulator, one record more. */
 static void irc__irr_blend(const irc_cache *c, const void *rec, void *out, float w)
 {
-    const irc_record *r = (const irc_record *)rec;
-    float *rgb = (float *)out;
-    const float f = 1.0f / (1.0f + w);
-    int ch;
+    float *rgb = (float *)out, a[4];
     (void)c;
-    for (ch = 0; ch < 3; ch++)
-        rgb[ch] += f * (r->e[ch] - rgb[ch]);
+    IRC_MEMCPY(a, rgb, 3 * sizeof(float));
+    a[3] = w;
+    (void)irc__irr_mean(a, irc__blend_weight(0.0f), ((const irc_record *)rec)->e);
+    IRC_MEMCPY(rgb, a, 3 * sizeof(float));
 }
 
 static const irc__acc irc__irr_lookup;
