@@ -253,12 +253,13 @@ demo: $(BUILD)/irc_demo
 # files and materials beside them.
 REAL_SCENES = $(BUILD)/scenes/sponza.obj $(BUILD)/scenes/bunny.obj $(BUILD)/scenes/sponza.mtl \
               $(patsubst demo/scenes/%,$(BUILD)/scenes/%,$(wildcard demo/scenes/sponza-*.scene \
-                 demo/scenes/breakfast-room-*.scene demo/scenes/grey-white-room-*.scene))
+                 demo/scenes/breakfast-room-*.scene demo/scenes/grey-white-room-*.scene \
+                 demo/scenes/country-kitchen-*.scene))
 # The furnished interiors' models are not shipped (bench/README.md, "The
 # corpus"): where CORPUS holds them (NAME.obj.gz and NAME.mtl), they are
 # copied in too; make bench skips their views otherwise.
 CORPUS ?= ../shared/data/real-scenes
-CORPUS_MODELS = $(foreach m,breakfast-room grey-white-room,$(if $(wildcard $(CORPUS)/$(m).obj.gz),\
+CORPUS_MODELS = $(foreach m,breakfast-room grey-white-room country-kitchen,$(if $(wildcard $(CORPUS)/$(m).obj.gz),\
                   $(BUILD)/scenes/$(m).obj $(BUILD)/scenes/$(m).mtl))
 $(BUILD)/scenes/%.obj: demo/scenes/%.obj.gz
 	@mkdir -p $(dir $@)
@@ -575,3 +576,7 @@ clean:
 # (bench/README.md, "On real geometry"); needs make bench's cached references.
 $(BUILD)/outliers: experiments/outliers.c $(DEMO_LIBA) demo/*.h $(LIBA)
 	$(CC) $(DEMO_CFLAGS) experiments/outliers.c $(DEMO_LIBA) $(LIBA) -o $@ -lm -lpthread
+
+# How many pixels the records serve (bench/README.md: "Where the records go").
+$(BUILD)/reach: experiments/reach.c $(DEMO_LIBA) demo/*.h $(LIBA)
+	$(CC) $(DEMO_CFLAGS) experiments/reach.c $(DEMO_LIBA) $(LIBA) -o $@ -lm -lpthread
