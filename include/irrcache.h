@@ -384,15 +384,18 @@ typedef struct irc_config {
          * bench/README.md, "On real geometry"). */
         uint32_t leak_guard;
         /* Bounds in pixels on the reach a R of a _px call's record
-         * (pbrt-v2's pixel spacings).  Finite; 0: the defaults, none and 15
-         * (why: bench/README.md, "The corpus"); negative: unbounded;
+         * (pbrt-v2's pixel spacings).  Finite (past IRC_RADIUS_CAP: as
+         * IRC_RADIUS_CAP, as for every pixel count here); 0: the
+         * defaults, none and 15 (why: bench/README.md, "The corpus");
+         * negative: unbounded;
          * max_pixels >= min_pixels (a default one is at least min_pixels). */
         float min_pixels;
         float max_pixels;
         /* A _px record whose R spans fewer than full_pixels pixels is
          * sampled on M/2 x N/2 strata, below full_pixels / 2 on M/4 x N/4
          * (docs/DESIGN.md, "Records that cost what they serve").  Not with
-         * VISIBILITY, HESSIAN or supersamples.  Finite; 0 or negative: off. */
+         * VISIBILITY, HESSIAN or supersamples (IRC_ERR_CONFIG).  Finite; 0
+         * or negative: off. */
         float full_pixels;
         /* The _px call first casts up to 8 probe rays; a point with a hit
          * within detail_pixels x footprint gets its own M x N estimate (E
@@ -611,8 +614,10 @@ IRC_API int irc_cache_lookup_or_compute_px(irc_cache *cache, const float p[3],
  * pixel on the surface at p (normal n, either side) seen from eye, along
  * forward (any length), a pixel pixel_angle wide at distance 1 (2
  * tan(fov_y / 2) / height): pixel_angle |p - eye| (d.f)^(3/2) /
- * sqrt(max(|d.n|, 0.05)), d and f unit.  Returns IRC_OK, IRC_ERR_NULL,
- * IRC_ERR_NONFINITE, IRC_ERR_NORMAL (n zero or not finite), or
+ * sqrt(max(|d.n|, 0.05)), d and f unit (forward, n and p - eye of any
+ * finite length).  Returns IRC_OK, IRC_ERR_NULL, IRC_ERR_NONFINITE (an
+ * input not finite, or a footprint past FLT_MAX), IRC_ERR_NORMAL (n zero
+ * or not finite), or
  * IRC_ERR_RANGE (pixel_angle <= 0, forward zero, p at eye or behind it);
  * *footprint is written only on IRC_OK.  Thread safe; needs no cache.
  */

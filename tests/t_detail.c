@@ -4,6 +4,7 @@
  * of the finer grid; a record serving few pixels stays coarse and still
  * meets the closed form; the plain call and the switch's off position
  * keep the full grid. */
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -209,6 +210,32 @@ TEST(test_detail_config)
     cfg = scene_config(&s, IRC_FEATURE_SH, 0, 0);
     cfg.irr.full_pixels = 8.0f;
     CHECK(irc_footprint(&cfg, 16, &bytes) == IRC_ERR_CONFIG, "an SH cache took an irradiance field");
+    /* "Finite": every finite pixel count, FLT_MAX too */
+    cfg = scene_config(&s, 0, 0, 0);
+    cfg.irr.full_pixels = FLT_MAX;
+    cfg.irr.detail_pixels = 1e38f;
+    cfg.irr.min_pixels = 1e30f;
+    cfg.irr.max_pixels = FLT_MAX;
+    CHECK(irc_footprint(&cfg, 16, &bytes) == IRC_OK, "finite pixel counts >= 2^100 refused");
+    cfg.irr.min_pixels = -FLT_MAX;
+    cfg.irr.full_pixels = -FLT_MAX;
+    CHECK(irc_footprint(&cfg, 16, &bytes) == IRC_OK, "-FLT_MAX refused");
+    cfg.irr.min_pixels = 1e38f; /* both past the cap, max below min */
+    cfg.irr.max_pixels = 1e35f;
+    CHECK(irc_footprint(&cfg, 16, &bytes) == IRC_ERR_CONFIG, "max_pixels < min_pixels accepted");
+    /* full_pixels: "Not with VISIBILITY, HESSIAN or supersamples" */
+    cfg = scene_config(&s, IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION | IRC_FEATURE_HESSIAN, 0, 0);
+    cfg.irr.full_pixels = 8.0f;
+    CHECK(irc_footprint(&cfg, 16, &bytes) == IRC_ERR_CONFIG, "full_pixels with HESSIAN accepted");
+    cfg.irr.full_pixels = -1.0f;
+    CHECK(irc_footprint(&cfg, 16, &bytes) == IRC_OK, "full_pixels off with HESSIAN refused");
+    cfg = scene_config(&s, IRC_FEATURE_VISIBILITY, 0, 0);
+    cfg.irr.full_pixels = 8.0f;
+    CHECK(irc_footprint(&cfg, 16, &bytes) == IRC_ERR_CONFIG, "full_pixels with VISIBILITY accepted");
+    cfg = scene_config(&s, 0, 0, 0);
+    cfg.irr.full_pixels = 8.0f;
+    cfg.irr.supersamples = 4;
+    CHECK(irc_footprint(&cfg, 16, &bytes) == IRC_ERR_CONFIG, "full_pixels with supersamples accepted");
 }
 
 /* Intersects the ray from the origin through (x, y, 1) with the plane
@@ -299,6 +326,61 @@ TEST(test_pixel_footprint)
         CHECK(irc_pixel_footprint(eye, fwd, s, eye, n, &fp) == IRC_ERR_RANGE, "p at eye");
         CHECK(irc_pixel_footprint(eye, fwd, s, behind, n, &fp) == IRC_ERR_RANGE, "behind");
         CHECK(fp == 7.0f, "a refused call wrote %g", fp);
+    }
+}
+
+/* The header's "forward (any length)" and any n not zero: scaling forward
+ * or n by any finite non-zero factor, and moving p and the eye together
+ * by any finite amount, leaves the footprint as it was; p k times farther
+ * along the same ray gives k times the footprint, until float overflows
+ * (IRC_ERR_NONFINITE then, nothing written). */
+TEST(test_pixel_footprint_lengths)
+{
+    const float eye[3] = {0, 0, 0}, fwd[3] = {0.1f, 0.2f, 2.0f}, s = 0.004f;
+    const float p[3] = {0.5f, -0.3f, 4.0f}, n[3] = {0.2f, 0.3f, -0.9f};
+    static const float scales[] = {1e-38f, 1e-30f, 1e-19f, 1e-10f, 1e10f, 1e19f, 1e30f, 1.5e38f};
+    float base, fp;
+    unsigned i;
+    int k;
+    CHECK(irc_pixel_footprint(eye, fwd, s, p, n, &base) == IRC_OK && base > 0.0f, "base call");
+    for (i = 0; i < sizeof scales / sizeof scales[0]; i++) {
+        float f2[3], n2[3];
+        for (k = 0; k < 3; k++) {
+            f2[k] = fwd[k] * scales[i];
+            n2[k] = n[k] * scales[i];
+        }
+        fp = -1.0f;
+        CHECK(irc_pixel_footprint(eye, f2, s, p, n, &fp) == IRC_OK && fabsf(fp / base - 1.0f) < 1e-5f,
+              "forward x %g: %g against %g", (double)scales[i], (double)fp, (double)base);
+        fp = -1.0f;
+        CHECK(irc_pixel_footprint(eye, fwd, s, p, n2, &fp) == IRC_OK && fabsf(fp / base - 1.0f) < 1e-5f,
+              "n x %g: %g against %g", (double)scales[i], (double)fp, (double)base);
+    }
+    {
+        /* p and the eye far from the origin, and p far from the eye */
+        const float far_eye[3] = {1e25f, -1e25f, 3e25f};
+        float fp_far = -1.0f, p2[3], p3[3], e3[3];
+        for (k = 0; k < 3; k++) {
+            p2[k] = p[k] * 1e30f;
+            e3[k] = -1e38f * fwd[k] / fwd[2];
+            p3[k] = 1e38f * fwd[k] / fwd[2];
+        }
+        CHECK(irc_pixel_footprint(eye, fwd, s, p2, n, &fp_far) == IRC_OK &&
+                  fabsf(fp_far / (base * 1e30f) - 1.0f) < 1e-5f,
+              "p at 1e30: %g against %g", (double)fp_far, (double)base * 1e30);
+        for (k = 0; k < 3; k++)
+            p2[k] = far_eye[k] + p[k] * 1e22f;
+        CHECK(irc_pixel_footprint(far_eye, fwd, s, p2, n, &fp_far) == IRC_OK &&
+                  fabsf(fp_far / (base * 1e22f) - 1.0f) < 1e-3f,
+              "eye at 1e25: %g against %g", (double)fp_far, (double)base * 1e22);
+        /* 2e38 from the eye along forward: finite; pixel_angle 1e3 makes
+         * the footprint overflow */
+        fp = 7.0f;
+        CHECK(irc_pixel_footprint(e3, fwd, s, p3, n, &fp) == IRC_OK && fp > 0.0f && fp < FLT_MAX,
+              "p 2e38 from the eye: %g", (double)fp);
+        fp = 7.0f;
+        CHECK(irc_pixel_footprint(e3, fwd, 1e3f, p3, n, &fp) == IRC_ERR_NONFINITE && fp == 7.0f,
+              "overflowing footprint");
     }
 }
 

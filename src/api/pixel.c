@@ -11,10 +11,32 @@
  * pixel's stretch wide there would reach far past what the pixel sees. */
 #define IRC__GRAZE 0.05f
 
+/* v over its length, for any finite v not zero: scaled by its largest
+ * component first, so that no square underflows or overflows (lengths
+ * from denormals to FLT_MAX).  Returns the length over that component's
+ * magnitude m (in [1, sqrt 3]) and writes m, or 0 for a zero vector. */
+static float irc__unit(const float v[3], float u[3], float *m)
+{
+    float big = IRC_FABSF(v[0]), l;
+    int i;
+    for (i = 1; i < 3; i++)
+        if (IRC_FABSF(v[i]) > big)
+            big = IRC_FABSF(v[i]);
+    *m = big;
+    if (!(big > 0.0f))
+        return 0.0f;
+    for (i = 0; i < 3; i++)
+        u[i] = v[i] / big;
+    l = IRC_SQRTF(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+    for (i = 0; i < 3; i++)
+        u[i] /= l;
+    return l;
+}
+
 int irc_pixel_footprint(const float eye[3], const float forward[3], float pixel_angle,
                         const float p[3], const float n[3], float *footprint)
 {
-    float d[3], t = 0.0f, fl = 0.0f, nl = 0.0f, df = 0.0f, dn = 0.0f, f;
+    float half[3], d[3], f[3], un[3], t, m, fm, nm, df, dn, out;
     int i;
     if (!eye || !forward || !p || !n || !footprint)
         return IRC_ERR_NULL;
@@ -23,21 +45,16 @@ int irc_pixel_footprint(const float eye[3], const float forward[3], float pixel_
         return IRC_ERR_NONFINITE;
     if (!irc__finite3(n) || (n[0] == 0.0f && n[1] == 0.0f && n[2] == 0.0f))
         return IRC_ERR_NORMAL;
-    for (i = 0; i < 3; i++) {
-        d[i] = p[i] - eye[i];
-        t += d[i] * d[i];
-        fl += forward[i] * forward[i];
-        nl += n[i] * n[i];
-    }
-    if (!(pixel_angle > 0.0f) || !(t > 0.0f) || !(fl > 0.0f) || !(t <= FLT_MAX))
+    /* Half the offset: p - eye of two finite floats can overflow, half of
+     * it cannot. */
+    for (i = 0; i < 3; i++)
+        half[i] = 0.5f * p[i] - 0.5f * eye[i];
+    t = irc__unit(half, d, &m);
+    if (!(pixel_angle > 0.0f) || !(t > 0.0f) || !(irc__unit(forward, f, &fm) > 0.0f))
         return IRC_ERR_RANGE;
-    t = IRC_SQRTF(t);
-    for (i = 0; i < 3; i++) {
-        df += d[i] * forward[i];
-        dn += d[i] * n[i];
-    }
-    df /= t * IRC_SQRTF(fl);
-    dn = IRC_FABSF(dn) / (t * IRC_SQRTF(nl));
+    (void)irc__unit(n, un, &nm);
+    df = d[0] * f[0] + d[1] * f[1] + d[2] * f[2];
+    dn = IRC_FABSF(d[0] * un[0] + d[1] * un[1] + d[2] * un[2]);
     if (!(df > 0.0f))
         return IRC_ERR_RANGE; /* behind the camera */
     if (dn < IRC__GRAZE)
@@ -46,10 +63,11 @@ int irc_pixel_footprint(const float eye[3], const float forward[3], float pixel_
      * subtends s^2 (d.f)^3 of solid angle in direction d (the plane lies
      * 1/(d.f) away along d, tilted by the same angle); at distance t that
      * covers t^2 s^2 (d.f)^3 / |d.n| of the surface.  The footprint is the
-     * square root. */
-    f = pixel_angle * t * df * IRC_SQRTF(df / dn);
-    if (!irc__finite(f))
+     * square root.  |p - eye| = 2 m t, multiplied in last: the product
+     * passes FLT_MAX only when the footprint does. */
+    out = 2.0f * (pixel_angle * df * IRC_SQRTF(df / dn) * m) * t;
+    if (!irc__finite(out))
         return IRC_ERR_NONFINITE;
-    *footprint = f;
+    *footprint = out;
     return IRC_OK;
 }

@@ -335,14 +335,14 @@ static IRC__NOINLINE void irc__record_build(const irc_cache *c, const irc__grid 
  * the pixel bounds, and refine (irc__refine: the pilot's rays are kept)
  * one level at a time while R / f reaches cfg.irr.full_pixels / 2^level:
  * rays grow with the served area (R / f)^2, up to the configured grid
- * when R / f >= full_pixels.  Not with visibility gradients or the
- * Hessian (they read every stratum's direction, which a refinement would
- * have to move too), nor with super-samples. */
+ * when R / f >= full_pixels.  Configs refuse it with visibility
+ * gradients or the Hessian (they read every stratum's direction, which a
+ * refinement would have to move too) and with super-samples
+ * (kind_irr.c). */
 static uint32_t irc__pilot_level(const irc__call *k)
 {
     const irc_cache *c = k->c;
-    if (!(k->footprint > 0.0f) || !(c->cfg.irr.full_pixels > 0.0f) || c->keep_geom ||
-        c->cfg.irr.supersamples)
+    if (!(k->footprint > 0.0f) || !(c->cfg.irr.full_pixels > 0.0f))
         return 0;
     return irc__grid_levels(c->cfg.strata_theta, c->cfg.strata_phi) - 1u;
 }

@@ -433,13 +433,21 @@ static int irc__irr_features(irc_config *cfg)
  * encoding of "none" every pixel count of the config resolves to. */
 static int irc__pixels_resolve(float *v, float def)
 {
-    if (!(*v > -IRC__CAP && *v < IRC__CAP))
+    if (!(*v >= -FLT_MAX && *v <= FLT_MAX))
         return IRC_ERR_CONFIG;
     if (*v == 0.0f)
         *v = def;
     if (*v < 0.0f)
         *v = -1.0f;
     return IRC_OK;
+}
+
+/* A count past IRC__CAP bounds nothing a radius can reach: held there, so
+ * that its products with a footprint stay where 2^100's do. */
+static void irc__pixels_cap(float *v)
+{
+    if (*v > IRC__CAP)
+        *v = IRC__CAP;
 }
 
 static int irc__irr_resolve(irc_config *cfg)
@@ -470,6 +478,16 @@ static int irc__irr_resolve(irc_config *cfg)
         return IRC_ERR_CONFIG;
     /* a default maximum never falls below the host's minimum */
     if (cfg->irr.max_pixels > 0.0f && cfg->irr.max_pixels < cfg->irr.min_pixels)
+        return IRC_ERR_CONFIG;
+    irc__pixels_cap(&cfg->irr.min_pixels);
+    irc__pixels_cap(&cfg->irr.max_pixels);
+    irc__pixels_cap(&cfg->irr.full_pixels);
+    irc__pixels_cap(&cfg->irr.detail_pixels);
+    /* Coarser grids for small records move strata that visibility
+     * gradients, the Hessian and super-samples read as first cast
+     * (irradiance.c, irc__pilot_level). */
+    if (cfg->irr.full_pixels > 0.0f &&
+        ((cfg->features & (IRC_FEATURE_VISIBILITY | IRC_FEATURE_HESSIAN)) || cfg->irr.supersamples))
         return IRC_ERR_CONFIG;
     irc__switch_defaults(cfg, IRC_ON, IRC_ON);
     cfg->irr.leak_guard = cfg->irr.leak_guard == IRC_ON;
