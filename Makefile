@@ -76,11 +76,13 @@ PORT_OBJ = $(PORT_SRC:%.c=$(BUILD)/%.o)
 # The version: irrcache.h's macros, the one place it is defined.
 version_part = $(shell sed -n 's/^\#define IRC_VERSION_$(1) \([0-9]*\)$$/\1/p' include/irrcache.h)
 MAJOR := $(call version_part,MAJOR)
-VERSION := $(MAJOR).$(call version_part,MINOR).$(call version_part,PATCH)
+MINOR := $(call version_part,MINOR)
+VERSION := $(MAJOR).$(MINOR).$(call version_part,PATCH)
 LIBA = $(BUILD)/libirrcache.a
-# libirrcache.so.X.Y.Z, soname libirrcache.so.X, and the link the
+# libirrcache.so.X.Y.Z, soname libirrcache.so.X (libirrcache.so.0.Y while
+# the major is 0: each minor is another ABI, irrcache.h), and the link the
 # linker's -lirrcache finds.
-SONAME = libirrcache.so.$(MAJOR)
+SONAME = libirrcache.so.$(MAJOR)$(if $(filter 0,$(MAJOR)),.$(MINOR))
 LIBSO_REAL = $(BUILD)/libirrcache.so.$(VERSION)
 LIBSO = $(BUILD)/libirrcache.so
 THREAD_LIBS = $(if $(filter posix,$(PORT)),-lpthread,)

@@ -57,10 +57,15 @@ extern "C" {
 #endif
 
 /* The one place the version is defined (the Makefile reads it).  Another
- * major, or another minor while the major is 0, is another ABI (CHANGES.md,
- * "Upgrading"); a host written for 0.3 may #error on another minor. */
+ * major, or another minor while the major is 0, is another ABI, config and
+ * cost (CHANGES.md, "Upgrading from 0.3"), so a host written for 0.4
+ * refuses any other at build time:
+ *     #if IRC_VERSION_MAJOR != 0 || IRC_VERSION_MINOR != 4
+ *     #error "written for irrcache 0.4: see its CHANGES.md"
+ *     #endif
+ * and at run time irc_version_number() / 100 == IRC_VERSION_NUMBER / 100. */
 #define IRC_VERSION_MAJOR 0
-#define IRC_VERSION_MINOR 3
+#define IRC_VERSION_MINOR 4
 #define IRC_VERSION_PATCH 0
 #define IRC_VERSION_NUMBER \
     (IRC_VERSION_MAJOR * 10000 + IRC_VERSION_MINOR * 100 + IRC_VERSION_PATCH)

@@ -10,7 +10,8 @@
 #                host too; a request for a newer version must fail
 #   c++          g++ on examples/minimal.cpp, the header in a .cpp
 # Each run's irradiance must match the closed form it prints (3%); the
-# shared builds must need libirrcache.so.MAJOR (the soname); make
+# shared builds must need libirrcache.so.MAJOR (the soname; MAJOR.MINOR
+# while the major is 0); make
 # uninstall must leave no file behind; and the same with LIBDIR and
 # INCLUDEDIR where a distribution puts them.
 set -eu
@@ -25,13 +26,15 @@ part() { sed -n "s/^#define IRC_VERSION_$1 \([0-9]*\)\$/\1/p" include/irrcache.h
 major=$(part MAJOR)
 minor=$(part MINOR)
 version=$major.$minor.$(part PATCH)
-for f in include/irrcache.h lib/libirrcache.a lib/libirrcache.so.$version lib/libirrcache.so.$major \
+soname=$major
+[ "$major" = 0 ] && soname=$major.$minor
+for f in include/irrcache.h lib/libirrcache.a lib/libirrcache.so.$version lib/libirrcache.so.$soname \
          lib/libirrcache.so lib/pkgconfig/irrcache.pc lib/cmake/irrcache/irrcacheConfig.cmake \
          lib/cmake/irrcache/irrcacheConfigVersion.cmake; do
     [ -e "$S$P/$f" ] || { echo "not installed: $f"; exit 1; }
 done
-readelf -d "$S$P/lib/libirrcache.so.$version" | grep -q "SONAME.*\[libirrcache.so.$major\]" ||
-    { echo "soname is not libirrcache.so.$major"; exit 1; }
+readelf -d "$S$P/lib/libirrcache.so.$version" | grep -q "SONAME.*\[libirrcache.so.$soname\]" ||
+    { echo "soname is not libirrcache.so.$soname"; exit 1; }
 
 # E against the closed form on every line of a host's output.
 checked() { # name binary
@@ -42,8 +45,8 @@ checked() { # name binary
               print name ": 9 points within 3% of the closed form, e.g. " $0 }'
 }
 needs_soname() { # binary
-    readelf -d "$1" | grep -q "NEEDED.*\[libirrcache.so.$major\]" ||
-        { echo "$1 does not need libirrcache.so.$major"; return 1; }
+    readelf -d "$1" | grep -q "NEEDED.*\[libirrcache.so.$soname\]" ||
+        { echo "$1 does not need libirrcache.so.$soname"; return 1; }
 }
 export LD_LIBRARY_PATH="$S$P/lib"
 
