@@ -165,8 +165,9 @@ test:
 # The maintainer's loop (TESTING.md, "Tiers"): the library, the core suite
 # in its quick mode, the documents, the suites' lists, module cycles, the one-file library
 # (gcc, posix), in under a minute on an idle 2-core machine.
-check: $(BUILD)/irc_tests
+check:
 	@start=$$(date +%s); \
+	$(MAKE) -s WERROR=-Werror $(BUILD)/irc_tests || exit 1; \
 	IRC_TEST_QUICK=1 $(BUILD)/irc_tests > $(BUILD)/check.log 2>&1; rc=$$?; \
 	grep -E '^(FAIL|  )' $(BUILD)/check.log; tail -2 $(BUILD)/check.log; \
 	[ $$rc = 0 ] && sh tests/docs.sh && sh tests/listed.sh && $(MAKE) -s cycles && AMALG_QUICK=1 sh tests/amalgamation.sh && \

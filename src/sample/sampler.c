@@ -193,12 +193,12 @@ static void irc__keep_geometry(const irc_cache *c, const irc__sample *s, uint32_
 }
 
 /* Fills the slot's samples first + j * N + k for every stratum of the
- * hemisphere around n, casting rays in batches of cfg.max_batch.  *used
- * gets the number of usable samples.  Returns IRC_OK or a negative code
+ * hemisphere around n, casting rays in batches of cfg.max_batch (the
+ * estimators count the usable ones again as they sum them).  Returns
+ * IRC_OK, IRC_ERR_NOSAMPLES (fewer than half usable), or a negative code
  * (the callback's own, passed through). */
 int irc__sample_hemisphere(irc__call *k, const irc__grid *gr, const float n[3],
-                           const float t1[3], const float t2[3], uint32_t first,
-                           uint32_t *used)
+                           const float t1[3], const float t2[3], uint32_t first)
 {
     irc_cache *c = k->c;
     irc__sample *base = (irc__sample *)(void *)k->slot, *out = base + first;
@@ -236,7 +236,6 @@ int irc__sample_hemisphere(irc__call *k, const irc__grid *gr, const float n[3],
                 irc__keep_geometry(c, base, first + s0 + i, rays[i].dir, &hits[i]);
         }
     }
-    *used = good;
     return good * 2u < total || good == 0 ? IRC_ERR_NOSAMPLES : IRC_OK;
 }
 
@@ -386,10 +385,9 @@ int irc__supersample(irc__call *k, const irc__grid *gr, const float n[3], const 
 int irc__hemisphere(irc__call *k, const irc__grid *g, float t1[3], float t2[3],
                     uint32_t extra)
 {
-    uint32_t used = 0;
     int st;
     irc__frame(k->q.n, t1, t2);
-    st = irc__sample_hemisphere(k, g, k->q.n, t1, t2, 0, &used);
+    st = irc__sample_hemisphere(k, g, k->q.n, t1, t2, 0);
 #ifndef IRC_NO_SUPERSAMPLE /* else no config asks for any (kind_irr.c) */
     if (st == IRC_OK && extra)
         st = irc__supersample(k, g, k->q.n, t1, t2, extra);

@@ -44,8 +44,7 @@ int irc__accept_hit(const irc_hit *h, irc__sample *s);
 int irc__hemisphere(irc__call *k, const irc__grid *g, float t1[3], float t2[3],
                     uint32_t extra);
 int irc__sample_hemisphere(irc__call *k, const irc__grid *g, const float n[3],
-                           const float t1[3], const float t2[3], uint32_t first,
-                           uint32_t *used);
+                           const float t1[3], const float t2[3], uint32_t first);
 int irc__supersample(irc__call *k, const irc__grid *g, const float n[3], const float t1[3],
                      const float t2[3], uint32_t extra);
 /* The samples of grid `from` (level l) refined into grid `to` (level l -

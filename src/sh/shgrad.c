@@ -240,7 +240,7 @@ int irc__sh_sample(irc__call *k, irc__shsum *a)
     float t1[3], t2[3];
     irc__shgrid g;
     irc__grid grid;
-    uint32_t used, h;
+    uint32_t h;
     int st;
     g.s = (const irc__sample *)(const void *)k->slot;
     g.dir = irc__slot_dirs(c, g.s);
@@ -255,7 +255,7 @@ int irc__sh_sample(irc__call *k, irc__shsum *a)
     irc__frame(g.axis[0], t1, t2);
     irc__grid_at(c, 0, &grid);
     for (h = 0; h < g.halves; h++) {
-        st = irc__sample_hemisphere(k, &grid, g.axis[h], t1, t2, h * c->strata, &used);
+        st = irc__sample_hemisphere(k, &grid, g.axis[h], t1, t2, h * c->strata);
         if (st < 0)
             return st;
     }
