@@ -46,8 +46,8 @@ SRC = src/status.c src/version.c \
       src/index/cells.c src/index/index.c src/index/query.c src/index/compact.c src/index/verify.c \
       src/store/lock.c src/store/stats.c src/store/trace.c src/store/store.c src/store/walk.c \
       src/store/confirm.c src/store/lookup.c \
-      src/kind/weight.c src/sample/grid.c src/sample/sampler.c src/sample/strata.c \
-      src/irr/kind_irr.c src/irr/irradiance.c src/irr/gradient.c src/irr/visibility.c \
+      src/sample/grid.c src/sample/sampler.c src/sample/strata.c \
+      src/irr/weight.c src/irr/kind_irr.c src/irr/irradiance.c src/irr/gradient.c src/irr/visibility.c \
       src/irr/hessian.c src/irr/detail.c \
       src/sh/kind_sh.c src/sh/sh.c src/sh/shgrad.c \
       src/api/kinds.c src/api/config.c src/api/life.c src/api/api_irr.c src/api/api_sh.c \
@@ -147,7 +147,7 @@ $(BUILD)/tests/port_c11.o: port/c11/irc_port.c include/irrcache.h
 # A record kind of the tests' own (tests/kind_occ.c): the registry
 # compiled again with it listed, linked before the library's.
 TEST_KINDS = $(BUILD)/tests/kinds.o
-$(BUILD)/tests/kinds.o: src/api/kinds.c src/kind/kind.h include/irrcache.h
+$(BUILD)/tests/kinds.o: src/api/kinds.c src/base/kind.h include/irrcache.h
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_LIB) -DIRC_KIND_EXTRA=irc__kind_occ -c $< -o $@
 
@@ -175,10 +175,12 @@ check:
 
 # No module of the library uses another that uses it back (tests/cycles.sh
 # on the library's objects; DESIGN.md, "Layers").
-LAYERS = top block index store kind,sample irr,sh api,persist
+LAYERS = top base block index store sample irr,sh api,persist
 cycles: $(LIBA)
 	sh tests/cycles.sh --self-test
 	LAYERS="$(LAYERS)" sh tests/cycles.sh $(OBJ)
+	sh tests/includes.sh --self-test
+	LAYERS="$(LAYERS)" sh tests/includes.sh src
 	sh tests/state.sh
 
 # Line and branch coverage of src/ (gcov): the core suite and the fuzz

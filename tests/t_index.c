@@ -8,7 +8,7 @@
 #include "index/index.h"
 #include "sample/sampler.h"
 #include "block/octa.h"
-#include "kind/weight.h"
+#include "irr/weight.h"
 #include "scenes.h"
 #include "test.h"
 #include "block/check.h"

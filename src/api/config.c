@@ -2,7 +2,7 @@
  * config.c -- the config's defaults and rules: zero in any field means its
  * default, and every field is checked against its documented range.
  */
-#include "../kind/kind.h"
+#include "../base/kind.h"
 #include "config.h"
 
 #define IRC__DEF_ACCURACY 0.2f

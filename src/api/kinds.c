@@ -4,7 +4,7 @@
  * line here; IRC_KIND_EXTRA adds a kind built outside src/ (a program
  * compiles this file again with it, as the tests do with tests/kind_occ.c).
  */
-#include "../kind/kind.h"
+#include "../base/kind.h"
 
 extern const irc__kind irc__kind_irr, irc__kind_sh;
 #ifdef IRC_KIND_EXTRA

@@ -16,7 +16,7 @@
 #include "../block/check.h"
 #include "../index/index.h"
 #include "../index/verify.h"
-#include "../kind/weight.h"
+#include "../irr/weight.h"
 #include "../sample/sampler.h"
 #include "../store/lock.h"
 #include "../store/stats.h"

@@ -5,7 +5,7 @@
 #ifndef IRC_CHECK_H
 #define IRC_CHECK_H
 
-#include "../kind/kind.h"
+#include "../base/kind.h"
 
 /* A live cache (IRC_ERR_NULL, IRC_ERR_CONFIG for anything else), of the
  * kind the call serves when want is set (IRC_ERR_UNSUPPORTED). */

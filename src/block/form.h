@@ -11,7 +11,7 @@
 #ifndef IRC_FORM_H
 #define IRC_FORM_H
 
-#include "../kind/kind.h"
+#include "../base/kind.h"
 #include "../util.h"
 #include "irrcache.h"
 

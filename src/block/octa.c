@@ -3,7 +3,7 @@
  * mapping, 16 bits a coordinate, worst error ~5e-5 rad), and the tangent
  * frame records keep their gradients in.
  */
-#include "../kind/kind.h"
+#include "../base/kind.h"
 #include "octa.h"
 
 uint32_t irc__oct_encode(const float n[3])

@@ -4,7 +4,7 @@
 #ifndef IRC_SLOTS_H
 #define IRC_SLOTS_H
 
-#include "../kind/kind.h"
+#include "../base/kind.h"
 
 /* Claims a scratch slot (waiting unless cfg.no_wait; IRC_OK or
  * IRC_ERR_BUSY; *waited set when it waited). */

@@ -5,7 +5,7 @@
 #ifndef IRC_TORN_H
 #define IRC_TORN_H
 
-#include "../kind/kind.h"
+#include "../base/kind.h"
 
 /* A word of the block set with release order: what follows is not
  * written before it. */

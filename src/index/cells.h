@@ -4,7 +4,7 @@
 #ifndef IRC_CELLS_H
 #define IRC_CELLS_H
 
-#include "../kind/kind.h"
+#include "../base/kind.h"
 #include "index.h"
 
 #define IRC__ONE ((int64_t)1 << 58) /* the root's edge in integer units */

@@ -5,7 +5,7 @@
 #ifndef IRC_VERIFY_H
 #define IRC_VERIFY_H
 
-#include "../kind/kind.h"
+#include "../base/kind.h"
 
 /* Every link in bounds and every walk finite. */
 int irc__block_sane(const irc_cache *c);

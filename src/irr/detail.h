@@ -4,7 +4,7 @@
 #ifndef IRC_DETAIL_H
 #define IRC_DETAIL_H
 
-#include "../kind/kind.h"
+#include "../base/kind.h"
 
 /* The _px call's per-pixel answer near geometry; IRC_MISS when
  * the point is not detail (or the plain path must answer or refuse), with

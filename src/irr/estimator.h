@@ -7,7 +7,7 @@
 #ifndef IRC_ESTIMATOR_H
 #define IRC_ESTIMATOR_H
 
-#include "../kind/kind.h"
+#include "../base/kind.h"
 #include "../sample/sampler.h"
 
 /* The irradiance record kind (kind_irr.c): its number in a block, and its

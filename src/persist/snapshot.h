@@ -5,7 +5,7 @@
 #ifndef IRC_SNAPSHOT_H
 #define IRC_SNAPSHOT_H
 
-#include "../kind/kind.h"
+#include "../base/kind.h"
 /* merge.c: the canonical order of packed records, and a heap sort of
  * slots [first, first + n) by it */
 int irc__order(const irc_cache *c, const unsigned char *a, const unsigned char *b);

@@ -4,7 +4,7 @@
 #ifndef IRC_GRID_H
 #define IRC_GRID_H
 
-#include "../kind/kind.h"
+#include "../base/kind.h"
 
 /* A grid of strata: M rows in theta, N columns in phi, and its table of
  * angles and weights.  Level 0 is the configured grid; level l halves M

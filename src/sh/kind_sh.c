@@ -7,7 +7,7 @@
 #include "../block/form.h"
 #include "../block/check.h"
 #include "../block/octa.h"
-#include "../kind/weight.h"
+#include "../irr/weight.h"
 #include "../store/walk.h"
 #include "shrec.h"
 

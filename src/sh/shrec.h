@@ -5,7 +5,7 @@
 #ifndef IRC_SHREC_H
 #define IRC_SHREC_H
 
-#include "../kind/kind.h"
+#include "../base/kind.h"
 
 /* The SH record kind (kind_sh.c, or absent.c's table when the build
  * leaves it out): its number in a block, its record's parts in order. */

@@ -5,7 +5,7 @@
 #ifndef IRC_CONFIRM_H
 #define IRC_CONFIRM_H
 
-#include "../kind/kind.h"
+#include "../base/kind.h"
 
 #define IRC__SIGHT_CAP 32u   /* records checked per lookup; more: unchecked */
 #define IRC__SIGHT_BATCH 8u  /* rays per callback call, at most */

@@ -5,7 +5,7 @@
 #ifndef IRC_LOCK_H
 #define IRC_LOCK_H
 
-#include "../kind/kind.h"
+#include "../base/kind.h"
 
 int irc__write_lock(irc_cache *c);
 void irc__write_unlock(irc_cache *c);

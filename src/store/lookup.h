@@ -5,7 +5,7 @@
 #ifndef IRC_LOOKUP_H
 #define IRC_LOOKUP_H
 
-#include "../kind/kind.h"
+#include "../base/kind.h"
 
 /* Runs fn in a claimed slot; its rays in *rays and whether it waited in
  * *waited, counted by the caller (nothing of a failed call is). */

@@ -4,7 +4,7 @@
 #ifndef IRC_STATS_H
 #define IRC_STATS_H
 
-#include "../kind/kind.h"
+#include "../base/kind.h"
 
 enum {
     IRC__C_INSERTS, IRC__C_EVICTIONS, IRC__C_LOOKUPS, IRC__C_HITS,

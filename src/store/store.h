@@ -4,7 +4,7 @@
 #ifndef IRC_STORE_H
 #define IRC_STORE_H
 
-#include "../kind/kind.h"
+#include "../base/kind.h"
 
 /* The handle checked (want), the record checked by its kind, then stored
  * (IRC_ERR_FULL when no slot is free and CLOCK is off or a pass is

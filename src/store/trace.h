@@ -4,7 +4,7 @@
 #ifndef IRC_TRACE_H
 #define IRC_TRACE_H
 
-#include "../kind/kind.h"
+#include "../base/kind.h"
 
 /* Casts count rays through cfg.trace with the call's arguments; k->rays
  * counts them.  IRC_OK, IRC_ERR_CALLBACK for a positive return, or the

@@ -4,7 +4,7 @@
 #ifndef IRC_WALK_H
 #define IRC_WALK_H
 
-#include "../kind/kind.h"
+#include "../base/kind.h"
 
 /* The records a lookup at q uses, weighed and accumulated with ops (the
  * accumulator of the cache's kind, or one that answers more from the same

@@ -5,8 +5,8 @@
 #ifndef IRC_WEIGHT_H
 #define IRC_WEIGHT_H
 
-#include "kind.h"
-#include "../irr/estimator.h"
+#include "../base/kind.h"
+#include "estimator.h"
 /* weight.c */
 /* shaped: the record's ellipse and leak guard count (the irradiance
  * kind's parts; 0 for a kind that borrows the weight) */

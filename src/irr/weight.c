@@ -4,7 +4,7 @@
  */
 #include "../block/form.h"
 #include "../block/octa.h"
-#include "../irr/estimator.h"
+#include "estimator.h"
 #include "../sample/sampler.h"
 #include "weight.h"
 
