@@ -51,7 +51,7 @@ SRC = src/status.c src/version.c \
       src/irr/hessian.c src/irr/detail.c \
       src/sh/kind_sh.c src/sh/sh.c src/sh/shgrad.c \
       src/api/kinds.c src/api/config.c src/api/life.c src/api/api_irr.c src/api/api_sh.c \
-      src/api/occlusion.c src/api/pixel.c src/api/pass.c \
+      src/api/occlusion.c src/api/pixel.c src/api/pass.c src/api/inspect.c \
       src/persist/snapshot.c src/persist/merge.c
 # make LEAVE_OUT="SH VISIBILITY HESSIAN SIGHT SUPERSAMPLE GUARD" (any of them): those parts are
 # not compiled, and util.h's IRC_NO_* switch tells the rest (the same

@@ -277,8 +277,8 @@ int irc__lookup_or_compute(irc_cache *c, const irc__kind *want, float footprint,
     return st;
 }
 
-int irc_cache_neighbours(irc_cache *c, const float p[3], const float n[3],
-                         uint32_t *ids, uint32_t cap, uint32_t *count)
+int irc__neighbours(irc_cache *c, const float p[3], const float n[3], uint32_t *ids,
+                    uint32_t cap, uint32_t *count)
 {
     irc__query q;
     int st;

@@ -23,4 +23,8 @@ int irc__lookup_or_compute(irc_cache *c, const irc__kind *want, float footprint,
                            const float n[3], void *out, float *weight, void *host,
                            uint32_t rays0);
 
+/* irc_cache_neighbours: the ids a lookup at (p, n) would use. */
+int irc__neighbours(irc_cache *c, const float p[3], const float n[3], uint32_t *ids,
+                    uint32_t cap, uint32_t *count);
+
 #endif

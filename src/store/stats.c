@@ -38,8 +38,7 @@ static uint64_t irc__counter(const irc_cache *c, int which)
     return sum;
 }
 
-
-int irc_cache_stats(irc_cache *c, irc_stats *out)
+int irc__stats(irc_cache *c, irc_stats *out)
 {
     int st = irc__enter(c, NULL);
     if (st < 0)

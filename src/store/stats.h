@@ -25,5 +25,8 @@ enum {
 
 /* Adds v to counter which (IRC__C_*) in the caller's stripe. */
 void irc__count(irc_cache *c, int which, uint64_t v);
+/* irc_cache_stats: the counters summed over the stripes, the store's
+ * counts and the block's sizes. */
+int irc__stats(irc_cache *c, irc_stats *out);
 
 #endif

@@ -170,15 +170,3 @@ int irc__record_get(irc_cache *c, const irc__kind *want, uint32_t id, void *out)
     irc__read_unlock(c);
     return st;
 }
-
-int irc_cache_clear(irc_cache *c)
-{
-    int st = irc__enter(c, NULL);
-    if (st < 0)
-        return st;
-    if ((st = irc__write_lock_idle(c)) < 0)
-        return st;
-    irc__clear_locked(c);
-    irc__write_unlock(c);
-    return IRC_OK;
-}
