@@ -523,7 +523,7 @@ bench-records: $(BUILD)/bench_records
 	for f in bare both sh shgrad; do $(BUILD)/bench_records $$f 2000 || exit 1; done
 
 # Speed against error on every shipped scene (bench/README.md: "Speed against
-# error").  BENCH_QUICK=1: small images, fewer runs, under two minutes.
+# error").  BENCH_QUICK=1: small images, fewer runs (over 12 minutes).
 BENCH_RUN_SRC = bench/bench.c bench/report.c bench/bounces.c bench/select.c
 $(BUILD)/bench_run: $(BENCH_RUN_SRC) bench/bench.h $(DEMO_LIBA) demo/*.h $(LIBA)
 	$(CC) $(DEMO_CFLAGS) $(BENCH_RUN_SRC) $(DEMO_LIBA) $(LIBA) -o $@ -lm -lpthread

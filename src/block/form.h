@@ -73,7 +73,7 @@ struct irc_cache {
     size_t o_state,          /* the mutable state (cache.h) */
            o_lock, o_scratch, o_records, o_ix, o_nodes, o_refs, o_ctr,
            o_used,           /* o_used 0: no CLOCK */
-           o_gtab;           /* the strata's table (gradient.c) */
+           o_gtab;           /* the strata's table (sample/grid.c) */
 };
 
 
