@@ -349,8 +349,10 @@ int main(int argc, char **argv)
     {
         irc_stats st;
         irc_cache_stats(w.cache, &st);
-        printf("  cache (defaults, _px, passes): relative RMSE %.4f in %6.2f s, %llu records\n", ec,
-               tc, (unsigned long long)st.records);
+        printf("  cache (defaults, _px, passes): relative RMSE %.4f in %6.2f s, %llu records, "
+               "%llu per-pixel answers, %llu not stored\n",
+               ec, tc, (unsigned long long)st.records, (unsigned long long)st.details,
+               (unsigned long long)st.not_stored);
     }
     for (i = 1; i < 3; i++) /* brute force's time at the cache's error */
         if (eb[i] <= ec && eb[i - 1] >= ec)

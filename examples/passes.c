@@ -229,6 +229,13 @@ int main(void)
            (unsigned long long)st1.records, rmse1, worst1);
     printf("  4 samples a pixel: %llu records, relative RMSE %.4f, worst pixel %.4f\n",
            (unsigned long long)st4.records, rmse4, worst4);
+    /* Done, but not as asked: answers computed and not kept (a pool too
+     * small: IRC_NOT_STORED) and per-pixel answers (IRC_DETAIL), which
+     * the statuses told each call and the counters add up. */
+    printf("  %llu answers not stored, %llu per-pixel answers\n",
+           (unsigned long long)st4.not_stored, (unsigned long long)st4.details);
+    if (st4.not_stored)
+        return fprintf(stderr, "the pool is too small\n"), 1;
     irc_fini(j.cache);
     pthread_barrier_destroy(&j.wall);
     free(cfg.buffer);

@@ -111,9 +111,11 @@ int main(void)
             worst = ws[i].worst;
     }
     irc_cache_stats(cache, &s);
-    printf("%llu records, %llu computes, %llu waited for a slot, %llu rays, %d errors\n",
+    printf("%llu records, %llu computes, %llu waited for a slot, %llu rays, %llu not stored, "
+           "%d errors\n",
            (unsigned long long)s.records, (unsigned long long)s.computes,
-           (unsigned long long)s.waits, (unsigned long long)s.rays, errors);
+           (unsigned long long)s.waits, (unsigned long long)s.rays,
+           (unsigned long long)s.not_stored, errors);
     irc_fini(cache);
     free(cfg.buffer);
     /* The per-thread counters add up to the cache's, and every lookup got
@@ -122,6 +124,6 @@ int main(void)
         unsigned long sum = 0;
         for (i = 0; i < WORKERS; i++)
             sum += ws[i].rays;
-        return errors == 0 && sum == s.rays && worst < 0.05 ? 0 : 1;
+        return errors == 0 && sum == s.rays && s.not_stored == 0 && worst < 0.05 ? 0 : 1;
     }
 }

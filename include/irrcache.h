@@ -476,9 +476,15 @@ typedef struct irc_cache irc_cache; /* lives inside cfg.buffer; opaque */
  * Bytes of block a cache of max_records (1..IRC_MAX_RECORDS) records needs
  * with this config (buffer and buffer_size ignored).  Thread safe.  Returns
  * IRC_OK and writes *bytes, IRC_ERR_CONFIG when that would not fit a
- * size_t, or a negative error code.  A frame of one lookup a pixel needs
- * max_records = pixels at most; a full pool computes every later miss
- * again (IRC_NOT_STORED): keep irc_stats.not_stored 0, or IRC_EVICT_CLOCK.
+ * size_t, or a negative error code.  Sizing: a lookup-or-compute makes at
+ * most one record, so a frame of one lookup a pixel needs max_records =
+ * pixels at most, at every setting (the corpus's views made 0.14-0.57 a
+ * pixel at a = 0.1-0.4: bench/README.md, "The corpus"); a host that looks
+ * up at several points a pixel (one a sample) can make up to one a
+ * lookup (a path tracer at a = 0.1: 2.0 a pixel), so size it by the
+ * distinct points or evict.  A full pool computes every later miss again
+ * (IRC_NOT_STORED, a positive status, counted in irc_stats.not_stored):
+ * keep that counter 0, or IRC_EVICT_CLOCK.
  */
 IRC_API int irc_footprint(const irc_config *cfg, uint32_t max_records, size_t *bytes);
 
@@ -625,6 +631,12 @@ IRC_API int irc_cache_lookup_or_compute_px(irc_cache *cache, const float p[3],
  * or not finite), or
  * IRC_ERR_RANGE (pixel_angle <= 0, forward zero, p at eye or behind it);
  * *footprint is written only on IRC_OK.  Thread safe; needs no cache.
+ * A point seen through flat mirrors: pass the unfolded path, eye = p - L d
+ * (L the path's length from the eye, d the last segment's unit direction)
+ * and forward = the camera's forward reflected by the same mirrors, or d
+ * itself (then up to 1/(d0.f)^(3/2) wider off the image's axis, d0 the
+ * camera ray); through curved mirrors or refraction the cone changes: use
+ * a ray differential's sqrt(|dp/dx x dp/dy|) instead.
  */
 IRC_API int irc_pixel_footprint(const float eye[3], const float forward[3], float pixel_angle,
                                 const float p[3], const float n[3], float *footprint);

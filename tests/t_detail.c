@@ -384,6 +384,51 @@ TEST(test_pixel_footprint_lengths)
     }
 }
 
+/* The header's rule for a point seen through a flat mirror: the unfolded
+ * path gives the footprint the point would have if the mirror image were
+ * seen directly.  Camera at the origin along +z (tilted), a mirror in the
+ * plane z = 5 facing the camera, a surface point p in front of it at z =
+ * 3 (its image p' at z = 7).  With forward reflected the two agree; with
+ * forward = d the footprint is wider by at most 1/(d0.f)^(3/2). */
+TEST(test_pixel_footprint_mirror)
+{
+    const float eye[3] = {0, 0, 0}, fwd[3] = {0.1f, -0.05f, 1.0f}, s = 0.003f;
+    const float img[3] = {0.8f, 0.5f, 7.0f}, n_img[3] = {0.3f, -0.2f, -0.93f};
+    float p[3], n[3], d[3], d0[3], eye2[3], fwd_r[3], direct, folded, along_d, len0, len1, L, dn;
+    int k;
+    /* the mirror image of p' and n' across z = 5 */
+    for (k = 0; k < 3; k++) {
+        p[k] = img[k];
+        n[k] = n_img[k];
+        fwd_r[k] = fwd[k];
+    }
+    p[2] = 10.0f - img[2];
+    n[2] = -n_img[2];
+    fwd_r[2] = -fwd[2];
+    /* the camera ray hits the mirror at t0; the reflected ray reaches p */
+    len0 = 5.0f / img[2];
+    for (k = 0; k < 3; k++)
+        d0[k] = img[k];
+    L = sqrtf(d0[0] * d0[0] + d0[1] * d0[1] + d0[2] * d0[2]); /* |p' - eye| */
+    len1 = L * (1.0f - len0);
+    for (k = 0; k < 3; k++) {
+        const float hit = img[k] * len0;
+        d[k] = (p[k] - hit) / len1;
+    }
+    for (k = 0; k < 3; k++)
+        eye2[k] = p[k] - L * d[k];
+    CHECK(irc_pixel_footprint(eye, fwd, s, img, n_img, &direct) == IRC_OK, "direct");
+    CHECK(irc_pixel_footprint(eye2, fwd_r, s, p, n, &folded) == IRC_OK, "folded");
+    CHECK(irc_pixel_footprint(eye2, d, s, p, n, &along_d) == IRC_OK, "along d");
+    CHECK(fabsf(folded / direct - 1.0f) < 1e-4f, "unfolded %g against direct %g", (double)folded,
+          (double)direct);
+    dn = (d0[0] * fwd[0] + d0[1] * fwd[1] + d0[2] * fwd[2]) /
+         (L * sqrtf(fwd[0] * fwd[0] + fwd[1] * fwd[1] + fwd[2] * fwd[2]));
+    CHECK(along_d >= direct * (1.0f - 1e-5f) && along_d <= direct / (dn * sqrtf(dn)) * (1.0f + 1e-4f),
+          "forward = d: %g outside [%g, %g]", (double)along_d, (double)direct,
+          (double)(direct / (dn * sqrtf(dn))));
+}
+
 /* Per-pixel detail (cfg.irr.detail_pixels) in the box-plane scene made a
  * wall: a black slab 0.5 high along y standing on z = 0 at x in [0, 0.2],
  * under a uniform sky.  Beside its face, E = pi (1 - F) with F the face's
