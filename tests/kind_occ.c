@@ -215,7 +215,7 @@ static int occ_lookup(irc_cache *c, const float p[3], const float n[3], float *o
 }
 static int occ_lookup_or_compute(irc_cache *c, const float p[3], const float n[3], float *open)
 {
-    return irc__lookup_or_compute(c, &irc__kind_occ, 0.0f, p, n, open, NULL, NULL, 0u);
+    return irc__lookup_or_compute(c, &irc__kind_occ, p, n, open, NULL, NULL);
 }
 static int occ_record_get(irc_cache *c, uint32_t id, occ_record *out)
 {

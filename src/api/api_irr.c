@@ -45,11 +45,12 @@ int irc_cache_lookup_or_compute(irc_cache *c, const float p[3], const float n[3]
 int irc_cache_lookup_or_compute_px(irc_cache *c, const float p[3], const float n[3],
                                    float footprint, float rgb[3], float *weight, void *host)
 {
-    uint32_t probes;
-    const int st = irc__detail_px(c, p, n, footprint, rgb, weight, host, &probes);
-    if (st != IRC_MISS)
+    irc__px px;
+    int st = irc__px_open(c, &irc__kind_irr, p, n, footprint, rgb, &px);
+    if (st < 0)
         return st;
-    return irc__lookup_or_compute(c, &irc__kind_irr, footprint, p, n, rgb, weight, host, probes);
+    st = irc__detail_px(c, &px, rgb, host);
+    return irc__px_finish(c, &px, st, rgb, weight, host);
 }
 
 int irc_cache_record(irc_cache *c, uint32_t id, irc_record *out)

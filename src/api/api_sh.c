@@ -28,7 +28,7 @@ int irc_sh_lookup(irc_cache *c, const float p[3], const float n[3], irc_sh *out,
 int irc_sh_lookup_or_compute(irc_cache *c, const float p[3], const float n[3], irc_sh *out,
                              float *weight, void *host)
 {
-    return irc__lookup_or_compute(c, &irc__kind_sh, 0.0f, p, n, out, weight, host, 0u);
+    return irc__lookup_or_compute(c, &irc__kind_sh, p, n, out, weight, host);
 }
 
 int irc_sh_record(irc_cache *c, uint32_t id, irc_sh *out)

@@ -83,18 +83,15 @@ static int irc__detail_run(irc__call *k, void *out)
     return irc__irr_estimate(k, dt->e);
 }
 
-int irc__detail_px(irc_cache *c, const float p[3], const float n[3], float footprint,
-                   float rgb[3], float *weight, void *host, uint32_t *probes)
+int irc__detail_px(irc_cache *c, irc__px *px, float rgb[3], void *host)
 {
     irc__detail dt;
     uint32_t rays;
     int st, waited;
-    *probes = 0;
-    if (irc__enter(c, &irc__kind_irr) < 0 || !rgb || !irc__finite(footprint) ||
-        !(footprint > 0.0f) || !(c->cfg.irr.detail_pixels > 0.0f))
-        return IRC_MISS; /* the plain path answers, or refuses */
-    dt.reach = c->cfg.irr.detail_pixels * footprint;
-    st = irc__compute_quiet(c, &irc__kind_irr, p, n, &dt, host, irc__detail_run, &rays, &waited);
+    if (!(px->footprint > 0.0f) || !(c->cfg.irr.detail_pixels > 0.0f))
+        return IRC_MISS;
+    dt.reach = c->cfg.irr.detail_pixels * px->footprint;
+    st = irc__compute_at(c, &px->q, &dt, host, irc__detail_run, &rays, &waited);
     /* No slot (cfg.no_wait) or the caller's own (from inside its
      * callback): the plain path answers what records cover, as without
      * detail. */
@@ -102,19 +99,14 @@ int irc__detail_px(irc_cache *c, const float p[3], const float n[3], float footp
         return IRC_MISS;
     if (st < 0)
         return st;
-    if (!dt.near) {
-        *probes = rays;
+    px->tally.add[IRC__C_RAYS] += rays;
+    if (!dt.near)
         return IRC_MISS;
-    }
-    irc__count(c, IRC__C_RAYS, rays);
-    irc__count(c, IRC__C_LOOKUPS, 1);
-    irc__count(c, IRC__C_DETAILS, 1);
-    if (waited)
-        irc__count(c, IRC__C_WAITS, 1);
+    px->tally.add[IRC__C_LOOKUPS]++;
+    px->tally.add[IRC__C_DETAILS]++;
+    px->tally.add[IRC__C_WAITS] += waited != 0;
     rgb[0] = dt.e[0];
     rgb[1] = dt.e[1];
     rgb[2] = dt.e[2];
-    if (weight)
-        *weight = 0.0f;
     return IRC_DETAIL;
 }

@@ -4,12 +4,13 @@
 #ifndef IRC_DETAIL_H
 #define IRC_DETAIL_H
 
-#include "../base/kind.h"
+#include "../store/lookup.h"
 
-/* The _px call's per-pixel answer near geometry; IRC_MISS when
- * the point is not detail (or the plain path must answer or refuse), with
- * the probes' rays in *probes for that path to count if it succeeds. */
-int irc__detail_px(irc_cache *c, const float p[3], const float n[3], float footprint,
-                   float rgb[3], float *weight, void *host, uint32_t *probes);
+/* The _px call's per-pixel answer near geometry, between the halves of a
+ * lookup-or-compute (lookup.h), for px's checked query: IRC_DETAIL (rgb
+ * written), IRC_MISS when the point is not detail or no slot is to be had
+ * (the lookup answers), or a negative code; its rays and counts go to
+ * px's tally. */
+int irc__detail_px(irc_cache *c, irc__px *px, float rgb[3], void *host);
 
 #endif

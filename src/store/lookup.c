@@ -73,29 +73,26 @@ static int irc__compute_and_release(irc_cache *c, irc__call *k, uint32_t t, void
     return st;
 }
 
-static void irc__count_compute(irc_cache *c, const irc__call *k, int record, int waited)
+/* What a compute in a slot adds: a record when record is set, a wait, its
+ * rays. */
+static void irc__tally_compute(irc__counts *t, const irc__call *k, int record, int waited)
 {
-    if (record)
-        irc__count(c, IRC__C_COMPUTES, 1);
-    if (waited)
-        irc__count(c, IRC__C_WAITS, 1);
-    irc__count(c, IRC__C_RAYS, k->rays);
+    t->add[IRC__C_COMPUTES] += record != 0;
+    t->add[IRC__C_WAITS] += waited != 0;
+    t->add[IRC__C_RAYS] += k->rays;
 }
 
-/* Runs fn in a claimed slot; its rays in *rays and whether it waited in
- * *waited, counted by the caller (nothing of a failed call is). */
-int irc__compute_quiet(irc_cache *c, const irc__kind *want, const float p[3], const float n[3],
-                       void *out, void *host, int (*fn)(irc__call *k, void *out),
-                       uint32_t *rays, int *waited)
+int irc__compute_at(irc_cache *c, const irc__query *q, void *out, void *host,
+                    int (*fn)(irc__call *k, void *out), uint32_t *rays, int *waited)
 {
     irc__call k;
     uint32_t t;
     int st;
+    k.q = *q;
     k.footprint = 0.0f;
     *waited = 0;
     *rays = 0;
-    if ((st = irc__open(c, want, out, p, n, &k.q)) < 0 ||
-        (st = irc__slot_claim(c, &t, waited)) < 0 ||
+    if ((st = irc__slot_claim(c, &t, waited)) < 0 ||
         (st = irc__compute_and_release(c, &k, t, host, fn, out)) < 0)
         return st;
     *rays = k.rays;
@@ -106,22 +103,25 @@ int irc__compute(irc_cache *c, const irc__kind *want, const float p[3], const fl
                  void *out, void *host, int (*fn)(irc__call *k, void *out), int record)
 {
     irc__call k;
+    irc__counts t;
     int st, waited;
-    if ((st = irc__compute_quiet(c, want, p, n, out, host, fn, &k.rays, &waited)) < 0)
+    if ((st = irc__open(c, want, out, p, n, &k.q)) < 0 ||
+        (st = irc__compute_at(c, &k.q, out, host, fn, &k.rays, &waited)) < 0)
         return st;
-    irc__count_compute(c, &k, record, waited);
+    IRC_MEMSET(&t, 0, sizeof t);
+    irc__tally_compute(&t, &k, record, waited);
+    irc__count_tally(c, &t);
     return IRC_OK;
 }
 
-/* Counts a lookup that returned st (and a hit when it answered).  Errors
- * count nothing. */
-static int irc__count_lookup(irc_cache *c, int st)
+/* A lookup that returned st, and a hit when it answered.  Errors add
+ * nothing. */
+static int irc__tally_lookup(irc__counts *t, int st)
 {
     if (st < 0)
         return st;
-    irc__count(c, IRC__C_LOOKUPS, 1);
-    if (st == IRC_OK)
-        irc__count(c, IRC__C_HITS, 1);
+    t->add[IRC__C_LOOKUPS]++;
+    t->add[IRC__C_HITS] += st == IRC_OK;
     return st;
 }
 
@@ -130,6 +130,7 @@ int irc__lookup(irc_cache *c, const irc__kind *want, const irc__acc *ops, const 
 {
     irc__query q;
     irc__marks marks;
+    irc__counts t;
     int st = irc__open(c, want, out, p, n, &q);
     if (st < 0)
         return st;
@@ -137,23 +138,28 @@ int irc__lookup(irc_cache *c, const irc__kind *want, const irc__acc *ops, const 
     q.marks = &marks;
     /* A lookup that read records and then failed (its answer past float)
      * takes its use bits back. */
-    if ((st = ops->find(c, &q, out, weight)) < 0)
+    if ((st = ops->find(c, &q, out, weight)) < 0) {
         irc__unmark_used(c, &marks);
-    return irc__count_lookup(c, st);
+        return st;
+    }
+    IRC_MEMSET(&t, 0, sizeof t);
+    irc__tally_lookup(&t, st);
+    irc__count_tally(c, &t);
+    return st;
 }
 
 /* The end of a miss: the computed record offered to the pool.  A full
  * pool is IRC_NOT_STORED, counted, not an error.  *weight holds the
  * weight of the records the lookup found beyond a R (their mean in out),
  * which the answer blends in; it becomes 0, a computed record's. */
-static int irc__offer_computed(irc_cache *c, const void *rec, void *out, float *weight)
+static int irc__offer_computed(irc_cache *c, const void *rec, void *out, float *weight,
+                               irc__counts *t)
 {
     int st = irc__insert_checked(c, rec);
     if (st < 0 && st != IRC_ERR_FULL)
         return st;
-    irc__count(c, IRC__C_LOOKUPS, 1);
-    if (st == IRC_ERR_FULL)
-        irc__count(c, IRC__C_NOT_STORED, 1);
+    t->add[IRC__C_LOOKUPS]++;
+    t->add[IRC__C_NOT_STORED] += st == IRC_ERR_FULL;
     if (*weight > 0.0f && c->kind->blend)
         c->kind->blend(c, rec, out, *weight);
     else
@@ -207,74 +213,90 @@ static int irc__find_in_sight(irc__call *k, void *out, float *weight)
 }
 
 /* A lookup-or-compute's lookup: what it read, and the rays it cast to
- * confirm its records, counted only if the call succeeds. */
-static int irc__lookup_first(irc__call *k, void *out, float *weight, uint32_t *rays)
+ * confirm its records. */
+static int irc__lookup_first(irc__call *k, void *out, float *weight, irc__counts *t)
 {
     int st = irc__find_in_sight(k, out, weight);
-    *rays += k->rays;
+    t->add[IRC__C_RAYS] += k->rays;
     return st;
 }
 
 static int irc__miss(irc_cache *c, irc__call *k, void *out, float *weight, void *host,
-                     uint32_t *rays)
+                     irc__counts *t)
 {
-    uint32_t t;
+    uint32_t slot;
     void *rec;
     int st, waited = 0;
-    if ((st = irc__slot_claim(c, &t, &waited)) < 0)
+    if ((st = irc__slot_claim(c, &slot, &waited)) < 0)
         return st;
     /* While this thread waited, another may have stored a record here. */
     k->rays = 0;
-    if (waited && (st = irc__lookup_first(k, out, weight, rays)) != IRC_MISS) {
-        irc__slot_release(c, t);
-        return irc__count_lookup(c, st);
+    if (waited && (st = irc__lookup_first(k, out, weight, t)) != IRC_MISS) {
+        irc__slot_release(c, slot);
+        return irc__tally_lookup(t, st);
     }
     /* The record is built in the slot's tail and kept before the slot is
-     * given back; its rays are counted with it, the lookups' by the
-     * caller. */
-    rec = irc__slot_record(c, t);
-    if ((st = irc__compute_in_slot(c, k, t, host, c->kind->compute, rec)) >= 0 &&
-        (st = irc__offer_computed(c, rec, out, weight)) >= 0)
-        irc__count_compute(c, k, 1, waited);
-    irc__slot_release(c, t);
+     * given back. */
+    rec = irc__slot_record(c, slot);
+    if ((st = irc__compute_in_slot(c, k, slot, host, c->kind->compute, rec)) >= 0 &&
+        (st = irc__offer_computed(c, rec, out, weight, t)) >= 0)
+        irc__tally_compute(t, k, 1, waited);
+    irc__slot_release(c, slot);
     return st;
 }
 
-int irc__lookup_or_compute(irc_cache *c, const irc__kind *want, float footprint,
-                           const float p[3], const float n[3], void *out, float *weight,
-                           void *host, uint32_t rays0)
+int irc__px_open(irc_cache *c, const irc__kind *want, const float p[3], const float n[3],
+                 float footprint, const void *out, irc__px *px)
 {
-    irc__call k;
-    irc__marks marks;
-    uint32_t rays = rays0;
-    float w = 0.0f;
     int st;
-    if ((st = irc__open(c, want, out, p, n, &k.q)) < 0)
+    if ((st = irc__open(c, want, out, p, n, &px->q)) < 0)
         return st;
     if (!irc__finite(footprint))
         return IRC_ERR_NONFINITE;
     if (footprint < 0.0f)
         return IRC_ERR_RANGE;
-    marks.n = 0;
-    k.q.marks = &marks;
-    k.footprint = footprint;
-    k.c = c;
-    k.host = host;
-    k.rays = 0;
-    k.visibility_only = 0;
-    k.q.place = c->w_inner > 0.0f;
-    st = irc__lookup_first(&k, out, &w, &rays);
-    st = st == IRC_MISS ? irc__miss(c, &k, out, &w, host, &rays) : irc__count_lookup(c, st);
-    /* Nothing of a failed call stays in the block: not its use bits, nor
-     * its rays in the counters. */
-    if (st < 0) {
-        irc__unmark_used(c, &marks);
-        return st;
+    px->footprint = footprint;
+    IRC_MEMSET(&px->tally, 0, sizeof px->tally);
+    return IRC_OK;
+}
+
+int irc__px_finish(irc_cache *c, irc__px *px, int st, void *out, float *weight, void *host)
+{
+    irc__call k;
+    irc__marks marks;
+    float w = 0.0f;
+    if (st == IRC_MISS) {
+        k.q = px->q;
+        marks.n = 0;
+        k.q.marks = &marks;
+        k.footprint = px->footprint;
+        k.c = c;
+        k.host = host;
+        k.rays = 0;
+        k.visibility_only = 0;
+        k.q.place = c->w_inner > 0.0f;
+        st = irc__lookup_first(&k, out, &w, &px->tally);
+        st = st == IRC_MISS ? irc__miss(c, &k, out, &w, host, &px->tally)
+                            : irc__tally_lookup(&px->tally, st);
+        /* Nothing of a failed call stays in the block: not its use bits,
+         * nor anything in the counters. */
+        if (st < 0)
+            irc__unmark_used(c, &marks);
     }
-    irc__count(c, IRC__C_RAYS, rays);
+    if (st < 0)
+        return st;
+    irc__count_tally(c, &px->tally);
     if (weight)
         *weight = w;
     return st;
+}
+
+int irc__lookup_or_compute(irc_cache *c, const irc__kind *want, const float p[3],
+                           const float n[3], void *out, float *weight, void *host)
+{
+    irc__px px;
+    const int st = irc__px_open(c, want, p, n, 0.0f, out, &px);
+    return st < 0 ? st : irc__px_finish(c, &px, IRC_MISS, out, weight, host);
 }
 
 int irc__neighbours(irc_cache *c, const float p[3], const float n[3], uint32_t *ids,

@@ -6,22 +6,38 @@
 #define IRC_LOOKUP_H
 
 #include "../base/kind.h"
+#include "stats.h"
 
-/* Runs fn in a claimed slot; its rays in *rays and whether it waited in
- * *waited, counted by the caller (nothing of a failed call is). */
-int irc__compute_quiet(irc_cache *c, const irc__kind *want, const float p[3], const float n[3],
-                       void *out, void *host, int (*fn)(irc__call *k, void *out),
-                       uint32_t *rays, int *waited);
-/* The same, counted (a record computed when record is set). */
+/* Runs fn in a claimed slot for a checked query; its rays in *rays and
+ * whether it waited in *waited, for the caller to count (nothing of a
+ * failed call is). */
+int irc__compute_at(irc_cache *c, const irc__query *q, void *out, void *host,
+                    int (*fn)(irc__call *k, void *out), uint32_t *rays, int *waited);
+/* Checks the query, then computes and counts (a record computed when
+ * record is set). */
 int irc__compute(irc_cache *c, const irc__kind *want, const float p[3], const float n[3],
                  void *out, void *host, int (*fn)(irc__call *k, void *out), int record);
 int irc__lookup(irc_cache *c, const irc__kind *want, const irc__acc *ops, const float p[3],
                 const float n[3], void *out, float *weight);
-/* The record it computes on a miss is built in the claimed slot; rays0:
- * rays the call cast before (counted with its own, only if it succeeds). */
-int irc__lookup_or_compute(irc_cache *c, const irc__kind *want, float footprint, const float p[3],
-                           const float n[3], void *out, float *weight, void *host,
-                           uint32_t rays0);
+
+/* A lookup-or-compute in two halves, so that a kind's step between them
+ * (the _px call's per-pixel answer, detail.c) takes the checked query and
+ * adds to the same tally: irc__px_open checks everything once (the cache,
+ * out, p, n, then the footprint: IRC_ERR_NONFINITE, IRC_ERR_RANGE when
+ * negative); irc__px_finish takes the step's status: IRC_MISS looks up
+ * and computes on a miss, in the claimed slot; any other counts the tally
+ * (on success) and returns it.  The counters are written there only. */
+typedef struct irc__px {
+    irc__query q;
+    float footprint;
+    irc__counts tally;
+} irc__px;
+int irc__px_open(irc_cache *c, const irc__kind *want, const float p[3], const float n[3],
+                 float footprint, const void *out, irc__px *px);
+int irc__px_finish(irc_cache *c, irc__px *px, int st, void *out, float *weight, void *host);
+/* Both halves with no step between and no footprint (SH records). */
+int irc__lookup_or_compute(irc_cache *c, const irc__kind *want, const float p[3],
+                           const float n[3], void *out, float *weight, void *host);
 
 /* irc_cache_neighbours: the ids a lookup at (p, n) would use. */
 int irc__neighbours(irc_cache *c, const float p[3], const float n[3], uint32_t *ids,

@@ -29,6 +29,15 @@ void irc__count(irc_cache *c, int which, uint64_t v)
     c->port->fetch_add(&irc__stripe(c, irc__my_stripe())[which], v);
 }
 
+void irc__count_tally(irc_cache *c, const irc__counts *t)
+{
+    uint64_t *stripe = irc__stripe(c, irc__my_stripe());
+    int i;
+    for (i = 0; i < IRC__C_COUNT; i++)
+        if (t->add[i])
+            c->port->fetch_add(&stripe[i], t->add[i]);
+}
+
 static uint64_t irc__counter(const irc_cache *c, int which)
 {
     uint64_t sum = 0;

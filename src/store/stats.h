@@ -25,6 +25,13 @@ enum {
 
 /* Adds v to counter which (IRC__C_*) in the caller's stripe. */
 void irc__count(irc_cache *c, int which, uint64_t v);
+
+/* What one call adds to the counters, gathered as it goes and added once
+ * when it succeeds (nothing of a failed call is counted). */
+typedef struct irc__counts {
+    uint64_t add[IRC__C_COUNT];
+} irc__counts;
+void irc__count_tally(irc_cache *c, const irc__counts *t);
 /* irc_cache_stats: the counters summed over the stripes, the store's
  * counts and the block's sizes. */
 int irc__stats(irc_cache *c, irc_stats *out);
