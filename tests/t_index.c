@@ -6,6 +6,7 @@
 
 #include "block/cache.h" /* internals on purpose: records scanned without the index */
 #include "index/index.h"
+#include "index/layout.h"
 #include "sample/sampler.h"
 #include "block/octa.h"
 #include "irr/weight.h"

@@ -10,6 +10,7 @@
 
 #include "block/cache.h" /* internals on purpose: candidates the index hands over */
 #include "index/index.h"
+#include "index/layout.h"
 #include "scenes.h"
 #include "test.h"
 

@@ -8,6 +8,7 @@
 
 #include "block/cache.h" /* internals on purpose: stored bytes and index compared */
 #include "index/index.h"
+#include "index/layout.h"
 #include "scenes.h"
 #include "test.h"
 

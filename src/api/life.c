@@ -15,6 +15,7 @@
 #include "../block/cache.h"
 #include "../block/check.h"
 #include "../index/index.h"
+#include "../index/layout.h"
 #include "../index/verify.h"
 #include "../irr/weight.h"
 #include "../sample/sampler.h"

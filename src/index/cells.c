@@ -7,6 +7,7 @@
 #include "../block/cache.h"
 #include "cells.h"
 #include "index.h"
+#include "layout.h"
 
 #define IRC__FRONT 8 /* cells a box can overlap at one depth */
 

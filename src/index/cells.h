@@ -5,7 +5,7 @@
 #define IRC_CELLS_H
 
 #include "../base/kind.h"
-#include "index.h"
+#include "layout.h"
 
 #define IRC__ONE ((int64_t)1 << 58) /* the root's edge in integer units */
 

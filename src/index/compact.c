@@ -17,6 +17,7 @@
 #include "../block/cache.h"
 #include "../block/torn.h"
 #include "index.h"
+#include "layout.h"
 
 /* Depth-first walk of the nodes that hold records or children: calls fn
  * on every node in the order queries visit them.  An explicit stack of a

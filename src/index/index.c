@@ -46,6 +46,7 @@
 #include "../block/cache.h"
 #include "cells.h"
 #include "index.h"
+#include "layout.h"
 
 #ifndef IRC__SPLIT
 #define IRC__SPLIT 16u
@@ -392,26 +393,18 @@ static void irc__root_cover(irc_cache *c, const float p[3])
     while (!irc__in_root(&q, p) && irc__grow(c, p));
 }
 
-void irc__index_insert(irc_cache *c, uint32_t id)
+/* Step 1: a root that holds the record's position and, when its reach's
+ * box is smaller than the root, the box's corners too, rounded outward (a
+ * box the root cuts, records on the face it was fitted to, would be
+ * placed in the root's list); a root leaf grown past SPLIT is fitted to
+ * its records first. */
+static void irc__insert_root(irc_cache *c, const float p[3], double half)
 {
-    const float *p = irc__rec_at(c, id)->p;
-    irc__ixe *e = &irc__ix(c)[id];
-    irc__place pl;
-    irc__box b;
-    uint32_t k;
-    int L;
-    double half;
-    IRC_ASSERT(e->refs == 0);
-    e->reach = irc__reach(c, irc__rec_at(c, id)->r);
-    half = irc__half(p, (double)e->reach);
     irc__root_cover(c, p);
     if (!irc__nodes(c)[0].child && irc__st(c)->root_h < IRC__ROOT_MAX &&
         irc__list_len(c, irc__nodes(c)[0].head, IRC__SPLIT) >= IRC__SPLIT)
         irc__root_refit(c, p);
     if (half < irc__st(c)->root_h) {
-        /* the box's corners too, rounded outward: a box the root cuts
-         * (records on the face it was fitted to) would be placed in the
-         * root's list */
         float lo[3], hi[3];
         int i;
         for (i = 0; i < 3; i++) {
@@ -421,49 +414,83 @@ void irc__index_insert(irc_cache *c, uint32_t id)
         irc__root_cover(c, lo);
         irc__root_cover(c, hi);
     }
+}
+
+/* Step 2: the level to place at, L or above.  A level up while the
+ * references it takes are more than the pool can spare: at the root it
+ * takes one, which the pool keeps.  Counted only when the pool could be
+ * short: a box no wider than the cells of its level is cut by at most one
+ * of their faces an axis, and every node it is placed in holds whole
+ * pieces of it, so it takes 8 at most. */
+static int irc__insert_level(irc_cache *c, const irc__box *b, int L, irc__place *pl)
+{
+    while (irc__spare(c) + 1u < 8u) {
+        pl->count = 0;
+        if (b->inside)
+            irc__cover(c, b, L, 0, irc__place_at, pl);
+        if (pl->count <= irc__spare(c) + 1u || L == 0)
+            break;
+        L--;
+    }
+    return L;
+}
+
+/* Step 3: the references pushed, in the nodes the box meets at level L,
+ * or in the root's list for a box outside the root's frame. */
+static void irc__insert_refs(irc_cache *c, uint32_t id, const irc__box *b, int L,
+                             irc__place *pl)
+{
+    pl->push = 1;
+    pl->count = 0;
+    if (b->inside) {
+        irc__cover(c, b, L, 0, irc__place_at, pl);
+    } else {
+        irc__cube q;
+        const float reach = irc__ix(c)[id].reach;
+        irc__root_cube(c, &q);
+        irc__ref_push(c, 0, &q, id, 1);
+        if (reach > irc__nodes(c)[0].reach)
+            irc__nodes(c)[0].reach = reach;
+        pl->count = 1;
+    }
+}
+
+/* Step 4: the leaves the references went to, split where their lists
+ * grew.  A leaf is tried when its list passes SPLIT and every SPLIT
+ * references after: one that may not split (no nodes or references to
+ * spare, or a list mostly of its own level) is not tried again each time,
+ * and a child that took a long list from its parent's split is split in
+ * its turn. */
+static void irc__insert_splits(irc_cache *c, const irc__place *pl)
+{
+    uint32_t k;
+    for (k = 0; k < pl->n_leaves; k++) {
+        const uint32_t len = irc__list_len(c, irc__nodes(c)[pl->leaves[k].node].head, IRC__NIL);
+        if (len > IRC__SPLIT && (len - 1u) % IRC__SPLIT == 0)
+            irc__split(c, &pl->leaves[k], pl->depths[k]);
+    }
+}
+
+void irc__index_insert(irc_cache *c, uint32_t id)
+{
+    const float *p = irc__rec_at(c, id)->p;
+    irc__ixe *e = &irc__ix(c)[id];
+    irc__place pl;
+    irc__box b;
+    int L;
+    IRC_ASSERT(e->refs == 0);
+    e->reach = irc__reach(c, irc__rec_at(c, id)->r);
+    irc__insert_root(c, p, irc__half(p, (double)e->reach));
     L = irc__placement(c, id, &b);
     IRC_MEMSET(&pl, 0, sizeof pl);
     pl.id = id;
     pl.b = &b;
-    /* A level up while the references it takes are more than the pool
-     * can spare: at the root it takes one, which the pool keeps.  Counted
-     * only when the pool could be short: a box no wider than the cells of
-     * its level is cut by at most one of their faces an axis, and every
-     * node it is placed in holds whole pieces of it, so it takes 8 at
-     * most. */
-    while (irc__spare(c) + 1u < 8u) {
-        pl.count = 0;
-        if (b.inside)
-            irc__cover(c, &b, L, 0, irc__place_at, &pl);
-        if (pl.count <= irc__spare(c) + 1u || L == 0)
-            break;
-        L--;
-    }
-    pl.push = 1;
-    pl.count = 0;
-    if (b.inside) {
-        irc__cover(c, &b, L, 0, irc__place_at, &pl);
-    } else {
-        irc__cube q;
-        irc__root_cube(c, &q);
-        irc__ref_push(c, 0, &q, id, 1);
-        if (e->reach > irc__nodes(c)[0].reach)
-            irc__nodes(c)[0].reach = e->reach;
-        pl.count = 1;
-    }
-    IRC_ASSERT(pl.count <= 8u); /* what lets the count above be skipped */
+    L = irc__insert_level(c, &b, L, &pl);
+    irc__insert_refs(c, id, &b, L, &pl);
+    IRC_ASSERT(pl.count <= 8u); /* what lets irc__insert_level skip the count */
     e->refs = pl.count;
     irc__st(c)->indexed++;
-    /* A leaf is tried for a split when its list passes SPLIT and every
-     * SPLIT references after: one that may not split (no nodes or
-     * references to spare, or a list mostly of its own level) is not
-     * tried again each time, and a child that took a long list from its
-     * parent's split is split in its turn. */
-    for (k = 0; k < pl.n_leaves; k++) {
-        const uint32_t len = irc__list_len(c, irc__nodes(c)[pl.leaves[k].node].head, IRC__NIL);
-        if (len > IRC__SPLIT && (len - 1u) % IRC__SPLIT == 0)
-            irc__split(c, &pl.leaves[k], pl.depths[k]);
-    }
+    irc__insert_splits(c, &pl);
 }
 
 /* Removal: every list of a node the record's box overlaps, unlinked of

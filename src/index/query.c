@@ -29,6 +29,7 @@
  */
 #include "../block/cache.h"
 #include "index.h"
+#include "layout.h"
 
 /* Four lanes in the compiler's vector types (GCC and Clang; no header)
  * where the target has SSE2 (every x86-64), unless IRC_NO_SIMD: the scalar

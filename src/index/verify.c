@@ -8,7 +8,7 @@
  */
 #include "../block/cache.h"
 #include "../bytes.h"
-#include "index.h"
+#include "layout.h"
 #include "verify.h"
 
 int irc__rec_head_sane(const irc_cache *c, const irc__rec *r)

@@ -6,6 +6,7 @@
 #include "../block/cache.h"
 #include "../block/check.h"
 #include "../index/index.h"
+#include "../index/layout.h"
 #include "lock.h"
 #include "stats.h"
 
