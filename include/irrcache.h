@@ -570,7 +570,9 @@ IRC_API int irc_record_compute(irc_cache *cache, const float p[3], const float n
                                irc_record *out, void *host);
 
 /* Store a record (a copy, packed): rec->radius > 0, rec->e >= 0 (else
- * IRC_ERR_RANGE), every field finite.  Returns IRC_OK, IRC_ERR_FULL (pool
+ * IRC_ERR_RANGE), every field it stores finite (p, n, e, the radii, axis,
+ * the gradients; else IRC_ERR_NONFINITE, IRC_ERR_NORMAL for n; mean_dist,
+ * hessian and the counts are not read).  Returns IRC_OK, IRC_ERR_FULL (pool
  * full, eviction off), or a negative error code. */
 IRC_API int irc_cache_insert(irc_cache *cache, const irc_record *rec);
 
@@ -613,8 +615,8 @@ IRC_API int irc_cache_lookup_or_compute(irc_cache *cache, const float p[3],
  * geometry get their own estimate first (cfg.irr.detail_pixels): that
  * answer returns IRC_DETAIL (weight 0), which a host that calls again for
  * the same pixel (more samples a pixel) may keep instead.  Otherwise
- * returns as irc_cache_lookup_or_compute; IRC_ERR_RANGE (nothing done) for
- * a negative footprint, IRC_ERR_NONFINITE for one not finite.
+ * returns as irc_cache_lookup_or_compute; IRC_ERR_NONFINITE (nothing done)
+ * for a footprint not finite, else IRC_ERR_RANGE for a negative one.
  */
 IRC_API int irc_cache_lookup_or_compute_px(irc_cache *cache, const float p[3],
                                            const float n[3], float footprint, float rgb[3],
@@ -933,7 +935,8 @@ IRC_API int irc_cache_neighbours(irc_cache *cache, const float p[3], const float
  * block is checked as irc_attach checks it and never written.  Returns
  * IRC_OK and writes *cache; IRC_ERR_CONFIG (no cache of this build, another
  * offset or port), IRC_ERR_CORRUPT (a check failed), IRC_ERR_NOMEM
- * (view_size or buffer_size short), or a negative code.
+ * (view_size short of IRC_VIEW_BYTES, view not aligned for a double, or
+ * buffer_size short), or a negative code.
  */
 #define IRC_VIEW_BYTES 1024u
 IRC_API int irc_join(const irc_config *cfg, void *view, size_t view_size, irc_cache **cache);

@@ -8,7 +8,7 @@
     X(test_extrapolation) X(test_lookup_gradient_one) X(test_lookup_gradient_sphere) X(test_lookup_gradient_status) X(test_lookup_or_compute) X(test_open_sky_own_point) X(test_full_no_evict) \
     X(test_evict_clock) X(test_index_exact) X(test_weigh_fused) X(test_index_scales) X(test_index_grow_faces)          \
     X(test_config_checks) X(test_version) X(test_footprints) X(test_defaults) X(test_init_block) \
-    X(test_bad_input_unchanged) X(test_callback_failures) X(test_overflow_radiance) X(test_ports) \
+    X(test_normal_any_length) X(test_bad_input_unchanged) X(test_callback_failures) X(test_overflow_radiance) X(test_ports) \
     X(test_threads_stress) X(test_threads_determinism)                 \
     X(test_visibility_sphere) X(test_visibility_box) X(test_visibility_open_sky) \
     X(test_sight_wall) X(test_sight_clear) X(test_sight_callback) X(test_sight_failure_unchanged) X(test_sight_convex) X(test_attach_bit_flips) X(test_attach_damaged) X(test_attach_open_pass_overfull) \

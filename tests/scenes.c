@@ -104,6 +104,12 @@ static void inject(tscene *s, irc_hit *h)
         h->normal[0] = h->normal[1] = h->normal[2] = 0.0f;
         break;
     case FAIL_BAD_STATUS: h->status = 7; break;
+    case FAIL_INF_DIST: h->status = IRC_RAY_HIT; h->dist = INFINITY; break;
+    case FAIL_NAN_NORMAL:
+        h->status = IRC_RAY_HIT;
+        h->dist = 1.0f;
+        h->normal[0] = NAN;
+        break;
     case FAIL_UNTOUCHED: h->status = -1; break;
     default: break;
     }

@@ -85,12 +85,29 @@ TEST(test_config_checks)
     CASE(cfg.accuracy = 0.0f, IRC_OK);
     CASE((cfg.strata_theta = 1, cfg.strata_phi = 1), IRC_OK);
     CASE((cfg.strata_theta = 256, cfg.strata_phi = 256), IRC_OK);
+    /* The header's promises, one CASE each (TESTING.md, "The header's
+     * promises"): SH with VISIBILITY; an irradiance field in an SH
+     * config and an SH field in an irradiance one; the pixel counts
+     * finite whichever sign; phi's own bound. */
+    CASE(cfg.features = IRC_FEATURE_SH | IRC_FEATURE_VISIBILITY, IRC_ERR_CONFIG);
+    CASE((cfg.features = IRC_FEATURE_SH, cfg.irr.min_pixels = 2.0f), IRC_ERR_CONFIG);
+    CASE((cfg.features = IRC_FEATURE_SH, cfg.irr.detail_pixels = -1.0f), IRC_ERR_CONFIG);
+    CASE(cfg.sh.channels = 1, IRC_ERR_CONFIG);
+    CASE(cfg.irr.min_pixels = NAN, IRC_ERR_CONFIG);
+    CASE(cfg.irr.min_pixels = -INFINITY, IRC_ERR_CONFIG);
+    CASE(cfg.irr.max_pixels = INFINITY, IRC_ERR_CONFIG);
+    CASE(cfg.irr.full_pixels = -INFINITY, IRC_ERR_CONFIG);
+    CASE(cfg.irr.detail_pixels = -INFINITY, IRC_ERR_CONFIG);
+    CASE((cfg.strata_theta = 1, cfg.strata_phi = 4097), IRC_ERR_CONFIG);
+    CHECK(n <= (int)(sizeof cases / sizeof cases[0]), "%d cases", n);
 #undef CASE
     (void)cases;
     cfg = scene_config(&sky, 0, 0, 0);
     CHECK(irc_footprint(NULL, 16, &bytes) == IRC_ERR_NULL, "null cfg");
     CHECK(irc_footprint(&cfg, 16, NULL) == IRC_ERR_NULL, "null out");
     CHECK(irc_footprint(&cfg, 0, &bytes) == IRC_ERR_CONFIG, "zero records");
+    CHECK(irc_footprint(&cfg, IRC_MAX_RECORDS + 1u, &bytes) == IRC_ERR_CONFIG,
+          "records past IRC_MAX_RECORDS");
     /* Every library code has a text of its own: not the host-code text,
      * not the unknown-status text, and no two alike. */
     for (i = IRC_ERR_LAST; i <= IRC_DETAIL; i++) {
@@ -280,6 +297,42 @@ TEST(test_init_block)
 
 /* Every rejected call leaves the block byte for byte as it was, and
  * nothing is written past it. */
+/* "n any length > 0" (irc_record_compute, and every call that takes a
+ * normal): n scaled by any finite factor gives the same record, bit for
+ * bit, as the unit normal. */
+TEST(test_normal_any_length)
+{
+    static const float scales[] = {2.0f, 0x1p120f, 0x1p-120f, 1e-38f, 3e38f};
+    const float p[3] = {0.5f, 0.25f, 0.0f}, unit[3] = {0.0f, 0.6f, 0.8f};
+    irc_config cfg;
+    irc_cache *c;
+    irc_record want, got;
+    unsigned i;
+    int k, ch;
+    sky_init();
+    cfg = scene_config(&sky, IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION, 8, 16);
+    c = block_cache(&cfg, 16, 0);
+    CHECK(c && irc_record_compute(c, p, unit, &want, NULL) == IRC_OK, "unit normal");
+    if (!c) return;
+    for (i = 0; i < sizeof scales / sizeof scales[0]; i++) {
+        float n[3];
+        int same = 1;
+        for (k = 0; k < 3; k++)
+            n[k] = unit[k] * scales[i];
+        CHECK(irc_record_compute(c, p, n, &got, NULL) == IRC_OK, "n x %g", (double)scales[i]);
+        for (k = 0; k < 3; k++) {
+            same &= got.e[k] == want.e[k] && got.n[k] == want.n[k];
+            for (ch = 0; ch < 3; ch++)
+                same &= got.grad_t[ch][k] == want.grad_t[ch][k] &&
+                        got.grad_r[ch][k] == want.grad_r[ch][k];
+        }
+        same &= got.radius == want.radius;
+        CHECK(same, "n x %g: another record (E %g against %g)", (double)scales[i],
+              (double)got.e[0], (double)want.e[0]);
+    }
+    block_free(&cfg);
+}
+
 TEST(test_bad_input_unchanged)
 {
     const float nanv = NAN, inf = INFINITY;
@@ -348,6 +401,32 @@ TEST(test_bad_input_unchanged)
         bad = rec;
         bad.p[2] = nanv;
         SAME(irc_cache_insert(c, &bad), IRC_ERR_NONFINITE);
+        /* "every field it stores finite": each of them */
+        bad = rec;
+        bad.radius = inf;
+        SAME(irc_cache_insert(c, &bad), IRC_ERR_NONFINITE);
+        bad = rec;
+        bad.radius = nanv;
+        SAME(irc_cache_insert(c, &bad), IRC_ERR_NONFINITE);
+        bad = rec;
+        bad.minor_radius = nanv;
+        SAME(irc_cache_insert(c, &bad), IRC_ERR_NONFINITE);
+        bad = rec;
+        bad.axis[1] = inf;
+        SAME(irc_cache_insert(c, &bad), IRC_ERR_NONFINITE);
+        bad = rec;
+        bad.grad_r[1][2] = -inf;
+        SAME(irc_cache_insert(c, &bad), IRC_ERR_NONFINITE);
+        bad = rec;
+        bad.e[2] = -1.0f;
+        SAME(irc_cache_insert(c, &bad), IRC_ERR_RANGE);
+        /* what it does not store is not read: a record read back has
+         * mean_dist NaN, and inserts as it is */
+        bad = rec;
+        bad.mean_dist = nanv;
+        bad.hessian[0][0] = inf;
+        CHECK(irc_cache_insert(c, &bad) == IRC_OK, "mean_dist and the Hessian were read");
+        memcpy(copy, cfg.buffer, cfg.buffer_size); /* the block as it now is */
     }
     /* A cache handle that is not one. */
     {
@@ -383,7 +462,8 @@ TEST(test_callback_failures)
         {FAIL_ZERO_DIST, 5, IRC_ERR_CALLBACK},   {FAIL_INF_RADIANCE, 5, IRC_ERR_CALLBACK},
         {FAIL_NAN_RADIANCE, 5, IRC_ERR_CALLBACK}, {FAIL_NEG_RADIANCE, 5, IRC_ERR_CALLBACK},
         {FAIL_ZERO_NORMAL, 5, IRC_ERR_CALLBACK}, {FAIL_BAD_STATUS, 5, IRC_ERR_CALLBACK},
-        {FAIL_UNTOUCHED, 5, IRC_ERR_CALLBACK},   {FAIL_RAY, 1, IRC_ERR_NOSAMPLES},
+        {FAIL_UNTOUCHED, 5, IRC_ERR_CALLBACK},   {FAIL_INF_DIST, 5, IRC_ERR_CALLBACK},
+        {FAIL_NAN_NORMAL, 5, IRC_ERR_CALLBACK},  {FAIL_RAY, 1, IRC_ERR_NOSAMPLES},
         {FAIL_RAY, 3, IRC_OK}};
     const float p[3] = {0.5f, 0.25f, 0.0f}, n[3] = {0, 0, 1};
     size_t i;

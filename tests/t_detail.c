@@ -223,6 +223,31 @@ TEST(test_detail_config)
     cfg.irr.min_pixels = 1e38f; /* both past the cap, max below min */
     cfg.irr.max_pixels = 1e35f;
     CHECK(irc_footprint(&cfg, 16, &bytes) == IRC_ERR_CONFIG, "max_pixels < min_pixels accepted");
+    {
+        /* past the cap acts as the cap: a floor of 1e38 pixels of 1e-30
+         * gives the reach of IRC_RADIUS_CAP pixels (R = 6.3 at a = 0.2),
+         * not 5e8 */
+        static const float floors[2] = {1e38f, IRC_RADIUS_CAP};
+        const float p[3] = {0.5f, 0.25f, 0.0f}, n[3] = {0, 0, 1};
+        float radius[2] = {0, 0}, rgb[3], w;
+        int k;
+        for (k = 0; k < 2; k++) {
+            irc_cache *c;
+            irc_record rec;
+            cfg = scene_config(&s, 0, 8, 32);
+            cfg.irr.min_pixels = floors[k];
+            cfg.irr.max_pixels = -1.0f; /* unbounded: the floor alone decides */
+            cfg.irr.detail_pixels = -1.0f;
+            c = block_cache(&cfg, 16, 0);
+            CHECK(c && irc_cache_lookup_or_compute_px(c, p, n, 1e-30f, rgb, &w, NULL) == IRC_OK &&
+                      irc_cache_record(c, 0, &rec) == IRC_OK,
+                  "floor %g", (double)floors[k]);
+            radius[k] = c ? rec.radius : 0.0f;
+            block_free(&cfg);
+        }
+        CHECK(radius[0] == radius[1] && radius[0] > 5.0f && radius[0] < 8.0f,
+              "radius %g with 1e38, %g with the cap", (double)radius[0], (double)radius[1]);
+    }
     /* full_pixels: "Not with VISIBILITY, HESSIAN or supersamples" */
     cfg = scene_config(&s, IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION | IRC_FEATURE_HESSIAN, 0, 0);
     cfg.irr.full_pixels = 8.0f;
@@ -325,6 +350,14 @@ TEST(test_pixel_footprint)
         CHECK(irc_pixel_footprint(eye, zero, s, p, n, &fp) == IRC_ERR_RANGE, "zero forward");
         CHECK(irc_pixel_footprint(eye, fwd, s, eye, n, &fp) == IRC_ERR_RANGE, "p at eye");
         CHECK(irc_pixel_footprint(eye, fwd, s, behind, n, &fp) == IRC_ERR_RANGE, "behind");
+        CHECK(irc_pixel_footprint(eye, NULL, s, p, n, &fp) == IRC_ERR_NULL, "null forward");
+        CHECK(irc_pixel_footprint(eye, fwd, s, NULL, n, &fp) == IRC_ERR_NULL, "null p");
+        CHECK(irc_pixel_footprint(eye, fwd, s, p, NULL, &fp) == IRC_ERR_NULL, "null n");
+        CHECK(irc_pixel_footprint(bad, fwd, s, p, n, &fp) == IRC_ERR_NONFINITE, "nan eye");
+        CHECK(irc_pixel_footprint(eye, bad, s, p, n, &fp) == IRC_ERR_NONFINITE, "nan forward");
+        CHECK(irc_pixel_footprint(eye, fwd, NAN, p, n, &fp) == IRC_ERR_NONFINITE, "nan angle");
+        CHECK(irc_pixel_footprint(eye, fwd, s, p, bad, &fp) == IRC_ERR_NORMAL, "nan normal");
+        CHECK(irc_pixel_footprint(eye, fwd, -s, p, n, &fp) == IRC_ERR_RANGE, "negative angle");
         CHECK(fp == 7.0f, "a refused call wrote %g", fp);
     }
 }
@@ -569,6 +602,11 @@ TEST(test_detail_pixels_calls)
           "negative footprint");
     CHECK(irc_cache_lookup_or_compute_px(c, p, n, NAN, rgb, &w, NULL) == IRC_ERR_NONFINITE,
           "NaN footprint");
+    CHECK(irc_cache_lookup_or_compute_px(c, p, n, INFINITY, rgb, &w, NULL) == IRC_ERR_NONFINITE,
+          "infinite footprint");
+    /* negative and not finite: not finite comes first (irrcache.h) */
+    CHECK(irc_cache_lookup_or_compute_px(c, p, n, -INFINITY, rgb, &w, NULL) == IRC_ERR_NONFINITE,
+          "-inf footprint");
     /* a sky so bright that 1,024 strata sum past FLT_MAX: refused, as a
      * record of it would be */
     s.sky_a[0] = s.sky_a[1] = s.sky_a[2] = 3e37f;

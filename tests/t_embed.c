@@ -139,6 +139,21 @@ TEST(test_relocate)
         CHECK(cache && irc_attach(&f, &c) == IRC_ERR_CONFIG, "port without cas");
         block_free(&f);
     }
+    {   /* irrcache.h's port rules: a lock of at most 4096 bytes, owner and
+         * owner_alive both or neither */
+        irc_config f = scene_config(&sphere, 0, 4, 4);
+        irc_port big = irc_port_none, one = irc_port_posix;
+        size_t bytes;
+        big.lock_size = 4097;
+        f.port = &big;
+        CHECK(irc_footprint(&f, 100, &bytes) == IRC_ERR_CONFIG, "a lock of 4097 bytes");
+        big.lock_size = 4096;
+        CHECK(irc_footprint(&f, 100, &bytes) == IRC_OK, "a lock of 4096 bytes refused");
+        one.owner_alive = NULL;
+        f.port = &one;
+        CHECK(!irc_port_posix.owner || irc_footprint(&f, 100, &bytes) == IRC_ERR_CONFIG,
+              "owner without owner_alive");
+    }
     cfg.buffer = NULL;
     CHECK(irc_attach(&cfg, &c) == IRC_ERR_NULL, "NULL buffer");
     {   /* a block cut short, and a closed one */

@@ -566,6 +566,23 @@ TEST(test_index_root_refused)
         irc__st(c)->root_c[0] = was;
         free(copy);
     }
+    {
+        /* irrcache.h: irc_attach refuses an older layout's block (0.3's,
+         * layout 19) and another ABI's (pointer width), block unchanged */
+        const uint32_t abi = c->abi;
+        unsigned char *copy = malloc(cfg.buffer_size);
+        for (k = 0; k < 2; k++) {
+            /* layout 19; pointers of 4 bytes where they were 8 (or 8 where 4) */
+            c->abi = k == 0 ? abi - 1u : abi ^ (12u << 8);
+            memcpy(copy, cfg.buffer, cfg.buffer_size);
+            ac = cfg;
+            CHECK(irc_attach(&ac, &a) == IRC_ERR_CONFIG, "%s attached",
+                  k == 0 ? "an older layout" : "another ABI");
+            CHECK(memcmp(copy, cfg.buffer, cfg.buffer_size) == 0, "abi %d: block changed", k);
+        }
+        c->abi = abi;
+        free(copy);
+    }
     ac = cfg;
     CHECK(irc_attach(&ac, &a) == IRC_OK, "the block as it was");
     block_free(&cfg);

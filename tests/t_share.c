@@ -209,6 +209,25 @@ TEST(test_join_refused)
         free(copy);
     }
     CHECK(irc_join(&cfg, NULL, sizeof view, &v) == IRC_ERR_NULL, "NULL view");
+    /* irrcache.h: IRC_ERR_CONFIG for no cache of this build, IRC_ERR_NOMEM
+     * for a buffer_size short of the block, IRC_ERR_NOMEM for a short view */
+    other = cfg;
+    other.buffer_size = 64;
+    CHECK(irc_join(&other, view, sizeof view, &v) == IRC_ERR_NOMEM, "a short buffer_size");
+    CHECK(irc_join(&cfg, view, IRC_VIEW_BYTES - 1u, &v) == IRC_ERR_NOMEM, "a short view");
+    CHECK(irc_join(&cfg, (char *)view + 4, sizeof view - 8u, &v) == IRC_ERR_NOMEM,
+          "a view not aligned for a double");
+    {
+        unsigned char *junk = malloc(cfg.buffer_size);
+        if (junk) {
+            memset(junk, 0x5a, cfg.buffer_size);
+            junk[0] = 8; /* the pad byte a block starts with */
+            other = cfg;
+            other.buffer = junk;
+            CHECK(irc_join(&other, view, sizeof view, &v) == IRC_ERR_CONFIG, "no cache joined");
+            free(junk);
+        }
+    }
     CHECK(irc_join(&cfg, view, sizeof view, &v) == IRC_OK && irc_fini(v) == IRC_OK &&
               irc_cache_clear(c) == IRC_OK,
           "a view's fini leaves the creator's lock");

@@ -399,6 +399,9 @@ TEST(test_sh_glossy_zonal)
         float n[3] = {0, 0, 1}, z[3] = {0, 0, 0}, rgb[3];
         CHECK(irc_sh_glossy(&sh, n, -1.0f, rgb) == IRC_ERR_RANGE, "negative s");
         CHECK(irc_sh_glossy(&sh, n, NAN, rgb) == IRC_ERR_RANGE, "NaN s");
+        CHECK(irc_sh_glossy(&sh, n, 1.001e4f, rgb) == IRC_ERR_RANGE, "s past 1e4");
+        CHECK(irc_sh_glossy(&sh, n, INFINITY, rgb) == IRC_ERR_RANGE, "infinite s");
+        CHECK(irc_sh_glossy(&sh, n, 1e4f, rgb) == IRC_OK, "s = 1e4 refused");
         CHECK(irc_sh_irradiance(&sh, z, rgb) == IRC_ERR_NORMAL, "zero normal");
         CHECK(irc_sh_irradiance(NULL, n, rgb) == IRC_ERR_NULL, "null");
         sh.bands = 6;
@@ -633,6 +636,16 @@ TEST(test_sh_bad_input)
     CHECK(irc_sh_insert(c, &bad) == IRC_ERR_RANGE, "channels"); SAME();
     bad = good; bad.radius = 0.0f;
     CHECK(irc_sh_insert(c, &bad) == IRC_ERR_RANGE, "radius"); SAME();
+    bad = good; bad.e[1] = -1.0f;
+    CHECK(irc_sh_insert(c, &bad) == IRC_ERR_RANGE, "negative e"); SAME();
+    bad = good; bad.radius = -1.0f;
+    CHECK(irc_sh_insert(c, &bad) == IRC_ERR_RANGE, "negative radius"); SAME();
+    bad = good; bad.e[0] = NAN;
+    CHECK(irc_sh_insert(c, &bad) == IRC_ERR_NONFINITE, "NaN e"); SAME();
+    bad = good; bad.radius = INFINITY;
+    CHECK(irc_sh_insert(c, &bad) == IRC_ERR_NONFINITE, "infinite radius"); SAME();
+    bad = good; bad.p[1] = -INFINITY;
+    CHECK(irc_sh_insert(c, &bad) == IRC_ERR_NONFINITE, "infinite p"); SAME();
     bad = good; bad.c[2][3] = INFINITY;
     CHECK(irc_sh_insert(c, &bad) == IRC_ERR_NONFINITE, "coefficient"); SAME();
     bad = good; bad.grad[1][0][2] = NAN;

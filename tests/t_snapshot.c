@@ -67,8 +67,15 @@ TEST(test_snapshot_round_trip)
     k.b = malloc(bytes);
     k.n = 0;
     k.cap = bytes;
+    memset(buf, 0xa5, bytes);
     CHECK(irc_snapshot_write(a, 77u, buf, bytes - 1, NULL, NULL, &written) == IRC_ERR_NOMEM,
           "short buffer");
+    {
+        size_t at;
+        for (at = 0; at < bytes && buf[at] == 0xa5; at++)
+            ;
+        CHECK(at == bytes, "a short buffer was written at byte %zu", at);
+    }
     CHECK(irc_snapshot_write(a, 77u, buf, bytes, NULL, NULL, &written) == IRC_OK &&
               written == bytes, "write %zu", written);
     CHECK(irc_snapshot_write(a, 77u, NULL, 0, to_sink, &k, &written) == IRC_OK && k.n == bytes &&

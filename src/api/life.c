@@ -491,7 +491,9 @@ int irc_join(const irc_config *cfg, void *view, size_t view_size, irc_cache **ou
     int st;
     if (!cfg || !out || !cfg->buffer || !cfg->trace || !view)
         return IRC_ERR_NULL;
-    if (view_size < sizeof *v || ((uintptr_t)view & (sizeof(double) - 1u)))
+    /* IRC_VIEW_BYTES, not this build's sizeof: a host sized by less would
+     * fail only under a later build. */
+    if (view_size < IRC_VIEW_BYTES || ((uintptr_t)view & (sizeof(double) - 1u)))
         return IRC_ERR_NOMEM;
     port = cfg->port ? cfg->port : irc_port_default;
     if ((st = irc__find(cfg, &at, &head)) < 0)
