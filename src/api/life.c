@@ -17,7 +17,6 @@
 #include "../index/index.h"
 #include "../index/layout.h"
 #include "../index/verify.h"
-#include "../irr/weight.h"
 #include "../sample/sampler.h"
 #include "../store/lock.h"
 #include "../store/stats.h"
@@ -223,13 +222,13 @@ static void irc__set_parts(irc_cache *c, const irc__layout *l)
     c->o_ctr = (size_t)l->ctr;
     c->o_used = c->cfg.evict == IRC_EVICT_CLOCK ? (size_t)l->used : 0;
     c->o_gtab = (size_t)l->gtab;
-    /* lookups reach blend a R when they blend wider (weight.c) */
+    /* lookups reach further than a R when the kind blends wider (the
+     * kind from the config: init and attach's check call this before the
+     * handle has one) */
     c->reach_a = c->cfg.accuracy;
     c->w_inner = 0.0f;
-    if (c->cfg.irr.blend > 1.0f) {
-        c->reach_a = c->cfg.accuracy * c->cfg.irr.blend;
-        c->w_inner = irc__blend_weight(1.0f / c->cfg.irr.blend);
-    }
+    if (irc__kind_of(c->cfg.features)->reach)
+        irc__kind_of(c->cfg.features)->reach(&c->cfg, &c->reach_a, &c->w_inner);
 }
 
 int irc_init(const irc_config *cfg, uint32_t max_records, irc_cache **out)

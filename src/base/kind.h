@@ -167,6 +167,10 @@ typedef struct irc__kind {
      * already holds, of total weight w > 0 (lookups that reach past a R:
      * cfg.irr.blend); NULL for a kind whose lookups never do */
     void (*blend)(const irc_cache *c, const void *rec, void *out, float w);
+    /* Its lookups' reach over R and the weight a record at a R gets, from
+     * the resolved config (cfg.irr.blend); NULL: a, and Ward's weights
+     * (w_inner 0) */
+    void (*reach)(const irc_config *cfg, float *reach_a, float *w_inner);
     const irc__acc *lookup; /* its plain lookup's accumulator */
 } irc__kind;
 

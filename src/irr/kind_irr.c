@@ -561,6 +561,16 @@ static const irc__acc irc__irr_plain = {.weigh = irc__irr_weigh,
 #define IRC__IRR_UNBUILT 0u
 #endif
 
+/* Lookups reach blend a R when they blend wider (weight.c), and a record
+ * at a R weighs what the biweight gives it there. */
+static void irc__irr_reach(const irc_config *cfg, float *reach_a, float *w_inner)
+{
+    if (cfg->irr.blend > 1.0f) {
+        *reach_a = cfg->accuracy * cfg->irr.blend;
+        *w_inner = irc__blend_weight(1.0f / cfg->irr.blend);
+    }
+}
+
 const irc__kind irc__kind_irr = {
     .id = IRC__KIND_IRR_ID,
     .features = IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION | IRC_FEATURE_VISIBILITY |
@@ -578,4 +588,5 @@ const irc__kind irc__kind_irr = {
     .unpack = irc__irr_unpack,
     .answer = irc__irr_answer,
     .blend = irc__irr_blend,
+    .reach = irc__irr_reach,
     .lookup = &irc__irr_lookup};
