@@ -734,5 +734,53 @@ TEST(test_insert_range_overflow)
     CHECK(irc_cache_lookup(c, q, n, rgb, &w) == IRC_ERR_NONFINITE, "overflow");
     q[0] = -0.15f;
     CHECK(irc_cache_lookup(c, q, n, rgb, &w) == IRC_OK && rgb[0] <= 3.4028235e38f, "below");
+    /* irc_cache_lookup_gradient: "IRC_ERR_NONFINITE also for a gradient
+     * that overflows float" (the gradient at the record grows past float
+     * where the value does not) */
     block_free(&cfg);
+    {
+        irc_gradient g;
+        const float tilted[3] = {0.0f, 0.70710678f, 0.70710678f};
+        cfg = scene_config(&s, IRC_FEATURE_ROTATION, 4, 8);
+        c = block_cache(&cfg, 4, 0);
+        memset(&r, 0, sizeof r);
+        r.n[1] = r.n[2] = 0.70710678f;
+        r.radius = 1.0f;
+        r.e[0] = 1e38f;
+        r.grad_r[0][1] = 3e38f;
+        r.grad_r[0][2] = -3e38f;
+        r.features = IRC_FEATURE_ROTATION;
+        q[0] = 0.0f;
+        /* finite, but past float in the record's tangent frame, where it
+         * is stored: refused, not stored as another gradient */
+        CHECK(c && irc_cache_insert(c, &r) == IRC_ERR_NONFINITE, "a gradient past float stored");
+        CHECK(c && irc_cache_lookup_gradient(c, q, tilted, rgb, &g, &w) == IRC_MISS, "stored");
+        r.grad_r[0][1] = 1.7e38f;
+        r.grad_r[0][2] = -1.7e38f;
+        CHECK(c && irc_cache_insert(c, &r) == IRC_OK, "a gradient within float refused");
+        CHECK(c && irc_cache_lookup_gradient(c, q, tilted, rgb, &g, &w) == IRC_OK &&
+                  fabsf(g.dn[0][0] / 2.4041630e38f - 1.0f) < 1e-3f,
+              "stored as %g, not 2.404e38", (double)g.dn[0][0]);
+        block_free(&cfg);
+    }
+    {
+        /* irc_sh_lookup: "IRC_ERR_NONFINITE when an extrapolation
+         * overflows float" */
+        irc_sh sr;
+        irc_sh out;
+        cfg = scene_config(&s, IRC_FEATURE_SH_GRADIENT, 4, 8);
+        cfg.sh.bands = 2;
+        c = block_cache(&cfg, 4, 0);
+        memset(&sr, 0, sizeof sr);
+        sr.n[2] = 1.0f;
+        sr.radius = 1.0f;
+        sr.bands = 2;
+        sr.channels = 3;
+        sr.c[0][0] = 3e38f;
+        sr.grad[0][0][0] = 3e38f;
+        q[0] = 0.15f;
+        CHECK(c && irc_sh_insert(c, &sr) == IRC_OK, "SH insert");
+        CHECK(c && irc_sh_lookup(c, q, n, &out, &w) == IRC_ERR_NONFINITE, "SH overflow");
+        block_free(&cfg);
+    }
 }

@@ -93,7 +93,7 @@ static int irc__ellipse(const irc_record *r, const float un[3], float *q, float 
 static int irc__irr_check(const irc_cache *c, const void *rec, float un[3])
 {
     const irc_record *r = (const irc_record *)rec;
-    float q, axis[3];
+    float q, axis[3], t1[3], t2[3];
     int st, ch;
     (void)c;
     if ((st = irc__check_vec(r->p)) < 0 || (st = irc__check_normal(r->n, un)) < 0)
@@ -101,8 +101,15 @@ static int irc__irr_check(const irc_cache *c, const void *rec, float un[3])
     if (!irc__finite3(r->e) || !irc__finite(r->radius) || !irc__finite(r->minor_radius) ||
         !irc__finite3(r->axis))
         return IRC_ERR_NONFINITE;
+    /* Gradients are stored in the normal's tangent frame (irc__grad_pack):
+     * a finite one whose components there pass float would be stored as
+     * another. */
+    irc__oct_frame(irc__oct_encode(un), t1, t2);
     for (ch = 0; ch < 3; ch++)
-        if (!irc__finite3(r->grad_t[ch]) || !irc__finite3(r->grad_r[ch]))
+        if (!irc__finite3(r->grad_t[ch]) || !irc__finite3(r->grad_r[ch]) ||
+            !irc__finite(irc__dot3(r->grad_t[ch], t1)) ||
+            !irc__finite(irc__dot3(r->grad_t[ch], t2)) ||
+            !irc__finite(irc__dot3(r->grad_r[ch], t1)) || !irc__finite(irc__dot3(r->grad_r[ch], t2)))
             return IRC_ERR_NONFINITE;
     if (!(r->radius > 0.0f) || r->minor_radius < 0.0f || r->e[0] < 0.0f || r->e[1] < 0.0f ||
         r->e[2] < 0.0f || irc__ellipse(r, un, &q, axis) < 0)
