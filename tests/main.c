@@ -17,7 +17,7 @@
     X(test_sh_irradiance_convolution) X(test_sh_glossy_zonal) X(test_sh_radiance_closed_form) \
     X(test_sh_surface_record) X(test_sh_surface_record_horizon) X(test_sh_lookup_by_hand) X(test_sh_bad_input) X(test_sh_footprint) \
     X(test_insert_range_overflow) \
-    X(test_hard_scale_invariance) X(test_hard_hemispheres) X(test_hard_lookups) X(test_hard_full_cache) \
+    X(test_hard_scale_invariance) X(test_hard_hemispheres) X(test_hit_normal_any_length) X(test_hard_lookups) X(test_hard_full_cache) \
     X(test_footprint_bounds) X(test_footprint_size_t) X(test_radius_limits) X(test_gradient_channels) \
     X(test_index_origin) X(test_relocate) X(test_host_context) X(test_busy_waits) X(test_not_stored_counted) \
     X(test_hessian_closed_forms) X(test_hessian_reference) X(test_eigen2) X(test_hessian_radius) X(test_gradient_within_reach) X(test_ellipse_records) X(test_ellipse_axis_range) X(test_screen_bound) X(test_leak_guard_by_hand) \

@@ -160,6 +160,59 @@ static irc_config hard_config(hhost *h, uint32_t features, uint32_t m, uint32_t 
  * row of strata exactly, so E is pi (1e-6 + (1e6 - 1e-6)/16) up to
  * rounding: within 1e-5), denormal distances, normals and
  * radiance (a finite record), one stratum, and the largest grid. */
+/* irc_hit.normal: "any nonzero length, either orientation".  The host's
+ * hit normals turned over and made 2^60 long give the same record as the
+ * scene's own, for the estimators that read them (visibility gradients,
+ * the Hessian, the leak guard). */
+static int turned_trace(const irc_trace_args *a)
+{
+    const int st = scene_trace(a);
+    uint32_t i;
+    int k;
+    for (i = 0; i < a->count; i++)
+        if (a->hits[i].status == IRC_RAY_HIT)
+            for (k = 0; k < 3; k++)
+                a->hits[i].normal[k] *= -0x1p60f;
+    return st;
+}
+
+TEST(test_hit_normal_any_length)
+{
+    static const uint32_t feats[2] = {IRC_FEATURE_VISIBILITY | IRC_FEATURE_ROTATION,
+                                      IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION |
+                                          IRC_FEATURE_HESSIAN};
+    const float p[3] = {0.5f, 0.25f, 0.0f}, n[3] = {0, 0, 1};
+    tscene s;
+    int f, k, ch;
+    scene_sphere_plane(&s); /* the sphere fills much of the hemisphere */
+    for (f = 0; f < 2; f++) {
+        irc_record r[2];
+        int t, same = 1;
+        for (t = 0; t < 2; t++) {
+            irc_config cfg = scene_config(&s, feats[f], 8, 32);
+            irc_cache *c;
+            cfg.irr.leak_guard = IRC_ON;
+            if (t)
+                cfg.trace = turned_trace;
+            c = block_cache(&cfg, 4, 0);
+            CHECK(c && irc_record_compute(c, p, n, &r[t], NULL) == IRC_OK, "features %u, %s", feats[f],
+                  t ? "turned" : "as given");
+            block_free(&cfg);
+        }
+        same = r[0].radius == r[1].radius && r[0].minor_radius == r[1].minor_radius &&
+               r[0].leak_guard == r[1].leak_guard;
+        for (k = 0; k < 3; k++) {
+            same &= r[0].e[k] == r[1].e[k];
+            for (ch = 0; ch < 3; ch++)
+                same &= r[0].grad_t[ch][k] == r[1].grad_t[ch][k];
+        }
+        CHECK(same, "features %u: turned normals changed the record (R %g against %g, "
+                    "grad_t %g against %g)",
+              feats[f], (double)r[1].radius, (double)r[0].radius, (double)r[1].grad_t[0][0],
+              (double)r[0].grad_t[0][0]);
+    }
+}
+
 TEST(test_hard_hemispheres)
 {
     static const uint32_t feats[] = {IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION,

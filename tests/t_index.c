@@ -563,6 +563,13 @@ TEST(test_index_root_refused)
         ac = cfg;
         CHECK(irc_attach(&ac, &a) == IRC_ERR_CORRUPT, "root %d attached", k);
         CHECK(memcmp(copy, cfg.buffer, cfg.buffer_size) == 0, "root %d: block changed", k);
+        {
+            /* irc_join checks a block as irc_attach does (irrcache.h) */
+            static double view[IRC_VIEW_BYTES / sizeof(double)];
+            irc_cache *v;
+            ac = cfg;
+            CHECK(irc_join(&ac, view, sizeof view, &v) == IRC_ERR_CORRUPT, "root %d joined", k);
+        }
         irc__st(c)->root_c[0] = was;
         free(copy);
     }
