@@ -5,9 +5,12 @@
  * computes only where none serves, so the frame's records hardly grow
  * with its samples.  The scene is
  * minimal.c's (a black unit ball at (0, 0, 2) over the floor z = 0 under a
- * uniform sky of radiance 1) seen by a pinhole camera; on the floor at
- * distance r from below the ball's centre E = pi (1 - 2 / (r^2 + 4)^1.5),
- * which it checks at every pixel. */
+ * uniform sky of radiance 1) seen by a pinhole camera, with a mirror in
+ * the plane y = 3 that only the camera sees (its rays reflect there; the
+ * cache's rays pass it), so the image's top rows show the floor through
+ * it, and their footprint is the unfolded path's (irrcache.h,
+ * irc_pixel_footprint); on the floor at distance r from below the ball's
+ * centre E = pi (1 - 2 / (r^2 + 4)^1.5), which it checks at every pixel. */
 #include <math.h>
 #include <pthread.h>
 #include <stdio.h>
@@ -59,15 +62,30 @@ static int trace(const irc_trace_args *a)
     return 0;
 }
 
+#define MIRROR_Y 3.0f
+
+/* Whether the ray from o along unit d meets the ball before distance t. */
+static int ball_before(const float o[3], const float d[3], float t)
+{
+    float oc[3] = {o[0], o[1], o[2] - 2.0f};
+    float b = oc[0] * d[0] + oc[1] * d[1] + oc[2] * d[2];
+    float disc = b * b - (oc[0] * oc[0] + oc[1] * oc[1] + oc[2] * oc[2] - 1.0f);
+    return disc > 0.0f && -b - sqrtf(disc) > 0.0f && -b - sqrtf(disc) < t;
+}
+
 /* The camera ray through (x, y) of the image, in pixels; its hit on the
- * floor (0 if it misses the floor or meets the ball first) and the
- * footprint there (irc_pixel_footprint: the square root of the area a
- * pixel covers on the floor). */
+ * floor, directly or after the mirror (0 if it misses the floor or meets
+ * the ball first), and the footprint there (irc_pixel_footprint: the
+ * square root of the area a pixel covers on the floor).  Through the
+ * mirror the pixel's cone goes on unfolded: the footprint is that of a
+ * camera at p - L d (L the path's length, d its last direction) looking
+ * along the reflected forward. */
 static int floor_hit(float x, float y, float p[3], float *footprint)
 {
     static const float up[3] = {0.0f, 0.0f, 1.0f}; /* the floor's normal */
     const float th = tanf(0.5f * fov), pix = 2.0f * th / H;
-    float f[3] = {0.0f, 5.0f, -4.0f}, r[3] = {1.0f, 0.0f, 0.0f}, u[3], d[3], l, t;
+    float f[3] = {0.0f, 5.0f, -4.0f}, r[3] = {1.0f, 0.0f, 0.0f}, u[3], d[3], o[3], at[3], l, t,
+          path = 0.0f;
     int k;
     l = sqrtf(f[1] * f[1] + f[2] * f[2]);
     f[1] /= l;
@@ -78,21 +96,33 @@ static int floor_hit(float x, float y, float p[3], float *footprint)
     for (k = 0; k < 3; k++)
         d[k] = f[k] + (2.0f * x / W - 1.0f) * th * W / H * r[k] + (1.0f - 2.0f * y / H) * th * u[k];
     l = sqrtf(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-    for (k = 0; k < 3; k++)
+    for (k = 0; k < 3; k++) {
         d[k] /= l;
+        o[k] = eye[k];
+    }
+    if (d[1] > 0.0f) { /* the mirror before the floor? */
+        const float tm = (MIRROR_Y - eye[1]) / d[1];
+        if (d[2] >= 0.0f || tm < -eye[2] / d[2]) {
+            if (ball_before(eye, d, tm))
+                return 0;
+            for (k = 0; k < 3; k++)
+                o[k] = eye[k] + tm * d[k];
+            path = tm;
+            d[1] = -d[1]; /* reflected, and the camera's forward with it */
+            f[1] = -f[1];
+        }
+    }
     if (d[2] >= 0.0f)
         return 0;
-    t = -eye[2] / d[2];
-    for (k = 0; k < 3; k++)
-        p[k] = eye[k] + t * d[k];
-    { /* the ball in front? */
-        float oc[3] = {eye[0], eye[1], eye[2] - 2.0f};
-        float b = oc[0] * d[0] + oc[1] * d[1] + oc[2] * d[2];
-        float disc = b * b - (oc[0] * oc[0] + oc[1] * oc[1] + oc[2] * oc[2] - 1.0f);
-        if (disc > 0.0f && -b - sqrtf(disc) < t)
-            return 0;
+    t = -o[2] / d[2];
+    if (ball_before(o, d, t))
+        return 0;
+    path += t;
+    for (k = 0; k < 3; k++) {
+        p[k] = o[k] + t * d[k];
+        at[k] = p[k] - path * d[k]; /* the eye itself without the mirror */
     }
-    return irc_pixel_footprint(eye, f, pix, p, up, footprint) == IRC_OK;
+    return irc_pixel_footprint(at, f, pix, p, up, footprint) == IRC_OK;
 }
 
 /* Pixel offset of pass k of 4^BITS: each pair of k's bits, lowest first,
