@@ -7,7 +7,7 @@
 #include "../block/form.h"
 #include "../block/check.h"
 #include "../block/octa.h"
-#include "../irr/weight.h"
+#include "../irr/estimator.h"
 #include "../store/walk.h"
 #include "shrec.h"
 
@@ -124,6 +124,10 @@ static void irc__sh_unpack(const irc_cache *c, const void *rec, void *dst)
         }
 }
 
+/* What lets SH borrow the irradiance kind's weight: its parts are
+ * numbered below the ellipse's and the guard's. */
+typedef char irc__sh_parts_below[(int)IRC__P_SH_GRAD < (int)IRC__P_ELLIPSE ? 1 : -1];
+
 /* Surface records: Ward-Heckbert (weight.c).  Free points: (R_j/d)^b
  * within a R_j (Eq. 16 made scale-free). */
 static int irc__sh_weigh(const irc_cache *c, const irc__rec *r, const irc__query *q,
@@ -132,7 +136,10 @@ static int irc__sh_weigh(const irc_cache *c, const irc__rec *r, const irc__query
     float dx = q->p[0] - r->p[0], dy = q->p[1] - r->p[1],
            dz = q->p[2] - r->p[2], d, ra = irc__reach(c, r->r);
     if (!q->free)
-        return irc__weigh(c, r, q->p, q->n, 0, w, ni);
+        /* the irradiance kind's weight, through its table: its ellipse
+         * and guard parts (2 and 3) are none in an SH block, whose kind
+         * numbers two parts (shrec.h) */
+        return irc__kind_irr.lookup->weigh(c, r, q, w, ni);
     if (r->n != IRC__FREE)
         return 0;
     d = IRC_SQRTF(dx * dx + dy * dy + dz * dz);
