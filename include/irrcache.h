@@ -478,11 +478,10 @@ typedef struct irc_cache irc_cache; /* lives inside cfg.buffer; opaque */
  * IRC_OK and writes *bytes, IRC_ERR_CONFIG when that would not fit a
  * size_t, or a negative error code.  Sizing: a lookup-or-compute makes at
  * most one record, so a frame of one lookup a pixel needs max_records =
- * pixels at most, at every setting (the corpus's views made 0.14-0.57 a
- * pixel at a = 0.1-0.4: bench/README.md, "The corpus"); a host that looks
- * up at several points a pixel (one a sample) can make up to one a
- * lookup (a path tracer at a = 0.1: 2.0 a pixel), so size it by the
- * distinct points or evict.  A full pool computes every later miss again
+ * pixels at most, at every setting (what views make: bench/README.md,
+ * "The corpus"); a host that looks up at several points a pixel (one a
+ * sample) can make up to one a lookup, so size it by the distinct points
+ * or evict.  A full pool computes every later miss again
  * (IRC_NOT_STORED, a positive status, counted in irc_stats.not_stored):
  * keep that counter 0, or IRC_EVICT_CLOCK.
  */

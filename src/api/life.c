@@ -197,6 +197,7 @@ static void irc__port_name(const irc_port *port, char out[16])
 
 static void irc__set_parts(irc_cache *c, const irc__layout *l)
 {
+    const irc__kind *kind = irc__kind_of(c->cfg.features);
     int i;
     c->rec_size = l->rec_size;
     IRC_MEMCPY(c->off, l->off, sizeof c->off);
@@ -227,8 +228,8 @@ static void irc__set_parts(irc_cache *c, const irc__layout *l)
      * handle has one) */
     c->reach_a = c->cfg.accuracy;
     c->w_inner = 0.0f;
-    if (irc__kind_of(c->cfg.features)->reach)
-        irc__kind_of(c->cfg.features)->reach(&c->cfg, &c->reach_a, &c->w_inner);
+    if (kind->reach)
+        kind->reach(&c->cfg, &c->reach_a, &c->w_inner);
 }
 
 int irc_init(const irc_config *cfg, uint32_t max_records, irc_cache **out)

@@ -3,6 +3,7 @@
  * at a camera ray's hit, from what a pinhole camera knows, so that every
  * host bounds records by the same rule (the _px call's footprint).
  */
+#include "../block/check.h"
 #include "../util.h"
 #include "irrcache.h"
 
@@ -10,28 +11,6 @@
  * growing: at grazing angles 1/sqrt(|cos|) is unbounded, and a record a
  * pixel's stretch wide there would reach far past what the pixel sees. */
 #define IRC__GRAZE 0.05f
-
-/* v over its length, for any finite v not zero: scaled by its largest
- * component first, so that no square underflows or overflows (lengths
- * from denormals to FLT_MAX).  Returns the length over that component's
- * magnitude m (in [1, sqrt 3]) and writes m, or 0 for a zero vector. */
-static float irc__unit(const float v[3], float u[3], float *m)
-{
-    float big = IRC_FABSF(v[0]), l;
-    int i;
-    for (i = 1; i < 3; i++)
-        if (IRC_FABSF(v[i]) > big)
-            big = IRC_FABSF(v[i]);
-    *m = big;
-    if (!(big > 0.0f))
-        return 0.0f;
-    for (i = 0; i < 3; i++)
-        u[i] = v[i] / big;
-    l = IRC_SQRTF(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
-    for (i = 0; i < 3; i++)
-        u[i] /= l;
-    return l;
-}
 
 int irc_pixel_footprint(const float eye[3], const float forward[3], float pixel_angle,
                         const float p[3], const float n[3], float *footprint)
@@ -49,10 +28,10 @@ int irc_pixel_footprint(const float eye[3], const float forward[3], float pixel_
      * it cannot. */
     for (i = 0; i < 3; i++)
         half[i] = 0.5f * p[i] - 0.5f * eye[i];
-    t = irc__unit(half, d, &m);
-    if (!(pixel_angle > 0.0f) || !(t > 0.0f) || !(irc__unit(forward, f, &fm) > 0.0f))
+    t = irc__unit3(half, d, &m);
+    if (!(pixel_angle > 0.0f) || !(t > 0.0f) || !(irc__unit3(forward, f, &fm) > 0.0f))
         return IRC_ERR_RANGE;
-    (void)irc__unit(n, un, &nm);
+    (void)irc__unit3(n, un, &nm);
     df = d[0] * f[0] + d[1] * f[1] + d[2] * f[2];
     dn = IRC_FABSF(d[0] * un[0] + d[1] * un[1] + d[2] * un[2]);
     if (!(df > 0.0f))

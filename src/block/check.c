@@ -13,24 +13,31 @@ int irc__check_vec(const float v[3])
 
 /* Normalises in float after dividing by the largest component, so that a
  * normal made of denormals is still a direction and not a zero. */
-int irc__check_normal(const float n[3], float unit[3])
+float irc__unit3(const float v[3], float unit[3], float *big)
 {
     float m, len;
     int i;
-    if (!n)
-        return IRC_ERR_NULL;
-    if (!irc__finite3(n))
-        return IRC_ERR_NORMAL;
-    m = IRC_FABSF(n[0]);
-    if (IRC_FABSF(n[1]) > m) m = IRC_FABSF(n[1]);
-    if (IRC_FABSF(n[2]) > m) m = IRC_FABSF(n[2]);
+    m = IRC_FABSF(v[0]);
+    if (IRC_FABSF(v[1]) > m) m = IRC_FABSF(v[1]);
+    if (IRC_FABSF(v[2]) > m) m = IRC_FABSF(v[2]);
+    *big = m;
     if (m == 0.0f)
-        return IRC_ERR_NORMAL;
+        return 0.0f;
     for (i = 0; i < 3; i++)
-        unit[i] = n[i] / m;
+        unit[i] = v[i] / m;
     len = IRC_SQRTF(irc__dot3(unit, unit));
     for (i = 0; i < 3; i++)
         unit[i] /= len;
+    return len;
+}
+
+int irc__check_normal(const float n[3], float unit[3])
+{
+    float m;
+    if (!n)
+        return IRC_ERR_NULL;
+    if (!irc__finite3(n) || irc__unit3(n, unit, &m) == 0.0f)
+        return IRC_ERR_NORMAL;
     return IRC_OK;
 }
 
