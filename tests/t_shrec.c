@@ -762,6 +762,30 @@ TEST(test_insert_range_overflow)
                   fabsf(g.dn[0][0] / 2.4041630e38f - 1.0f) < 1e-3f,
               "stored as %g, not 2.404e38", (double)g.dn[0][0]);
         block_free(&cfg);
+        /* Two records at one point with opposite gradients near FLT_MAX:
+         * each is finite, and the blend's running mean steps past float
+         * (3e38 - -3e38): the answer is IRC_ERR_NONFINITE, not an
+         * infinite gradient with IRC_OK.  (E is as large: a stored
+         * gradient is bounded by E over the radius.) */
+        cfg = scene_config(&s, IRC_FEATURE_TRANSLATION, 4, 8);
+        c = block_cache(&cfg, 4, 0);
+        memset(&r, 0, sizeof r);
+        r.n[2] = 1.0f;
+        r.radius = 1.0f;
+        r.e[0] = 3e38f;
+        r.features = IRC_FEATURE_TRANSLATION;
+        r.grad_t[0][0] = 3e38f;
+        CHECK(c && irc_cache_insert(c, &r) == IRC_OK, "first record");
+        CHECK(c && irc_cache_lookup_gradient(c, r.p, n, rgb, &g, &w) == IRC_OK &&
+                  rgb[0] == 3e38f && fabsf(g.dp[0][0] / 3e38f - 1.0f) < 1e-3f,
+              "one record: its own gradient %g", (double)g.dp[0][0]);
+        r.grad_t[0][0] = -3e38f;
+        CHECK(c && irc_cache_insert(c, &r) == IRC_OK, "second record");
+        CHECK(c && irc_cache_lookup_gradient(c, r.p, n, rgb, &g, &w) == IRC_ERR_NONFINITE,
+              "a blended gradient past float");
+        CHECK(c && irc_cache_lookup(c, r.p, n, rgb, &w) == IRC_OK && rgb[0] == 3e38f,
+              "the value alone is finite");
+        block_free(&cfg);
     }
     {
         /* irc_sh_lookup: "IRC_ERR_NONFINITE when an extrapolation
