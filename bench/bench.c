@@ -276,7 +276,7 @@ static int reference(ctx *c, const bscene *b)
         char bn[16] = ""; /* one bounce: the name references always had */
         if (c->bounces > 1)
             snprintf(bn, sizeof bn, "-b%d", c->bounces);
-        snprintf(path, sizeof path, OUT "/ref-%s-%dx%d-s%d-o%d-r%d-l%d%s-seed%d.exr", b->name,
+        snprintf(path, sizeof path, OUT "/ref-%s-%dx%d-s%d-o%d-r%d-l%d%s-u-seed%d.exr", b->name,
                  c->w, c->h, c->stride, lattice_offset(c), c->ref_rays, c->secondary, bn, k + 1);
         if (exr_read(path, &rw, &rh, &one[k], err, sizeof err) == 0 && rw == c->w && rh == c->h) {
             printf("  reference %d: %s (cached)\n", k + 1, path);

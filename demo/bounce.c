@@ -87,10 +87,15 @@ void cast(const renderer *r, const irc_ray *rays, irc_hit *hits, uint32_t count,
 {
     int was = clock_enter(ts, CLOCK_TRACE);
     uint32_t i;
+    const float *g = level >= 1 && level <= MAX_BOUNCES ? ts->under[level] : NULL;
     for (i = 0; i < count; i++) {
         const float *o = rays[i].org, *d = rays[i].dir;
         irc_hit *h = &hits[i];
         bvh_hit bh;
+        if (g && d[0] * g[0] + d[1] * g[1] + d[2] * g[2] <= 0.0f) {
+            h->status = IRC_RAY_FAILED;
+            continue;
+        }
         ts->rays++;
         if (!bvh_intersect(&r->b, o, d, ray_offset(o), FLT_MAX, &bh)) {
             h->status = IRC_RAY_ESCAPED;
@@ -127,7 +132,17 @@ int host_trace(const irc_trace_args *a)
 {
     const level_ctx *l = (const level_ctx *)a->context;
     /* The thread's counters come as the call's host pointer. */
-    cast(l->r, a->rays, a->hits, a->count, !a->visibility_only, l->level, (tstate *)a->host);
+    tstate *ts = (tstate *)a->host;
+    const float *g = NULL;
+    /* Confirming rays run from the query toward records on its surface,
+     * along it: they are not the hemisphere's. */
+    if (a->visibility_only == IRC_VISIBILITY_CONFIRM && l->level <= MAX_BOUNCES) {
+        g = ts->under[l->level];
+        ts->under[l->level] = NULL;
+    }
+    cast(l->r, a->rays, a->hits, a->count, !a->visibility_only, l->level, ts);
+    if (g)
+        ts->under[l->level] = g;
     return 0;
 }
 

@@ -22,6 +22,9 @@ typedef struct tstate {
     int final;                /* render.c: the final sweep's lookups */
     int detail;               /* render.c: the last _px call answered per
                                  pixel (a detail estimate) */
+    const float *under[MAX_BOUNCES + 1]; /* level k's hit while its E is
+                                 gathered: the geometric normal below which
+                                 its rays fail (cast), or NULL */
 } tstate;
 
 enum { CLOCK_HOST, CLOCK_TRACE, CLOCK_CACHE };
@@ -32,7 +35,12 @@ int clock_enter(tstate *ts, int region);
 
 /* Casts count rays from the hits of bounce `level` (1: the camera's hit)
  * and writes what comes back along them: shade 0, the distances only (the
- * cache's confirming rays). */
+ * cache's confirming rays).  While ts->under[level] is set, a ray that
+ * leaves below that geometric normal is not cast but IRC_RAY_FAILED: the
+ * E sampled around a shading normal is that of the directions above the
+ * surface (the library and reference_e leave failed rays out), not the
+ * surface itself seen from 0 away, which made every such point a
+ * per-pixel estimate and its records tiny. */
 void cast(const renderer *r, const irc_ray *rays, irc_hit *hits, uint32_t count, int shade,
           int level, tstate *ts);
 

@@ -75,7 +75,8 @@ static const char usage2[] =
     "                          0.4 L^2), else from N samples of the lobe\n"
     "  --sh-bands L            SH records' bands, 1..5 (default 3)\n"
     "  --seed S                random seed (default 1)\n"
-    "  --out PREFIX            write PREFIX.exr, PREFIX.png (+ PREFIX-records.png)\n"
+    "  --out PREFIX            write PREFIX.exr, PREFIX.png (+ PREFIX-records.png and\n"
+    "                          PREFIX-detail.png: red where a pixel paid its own estimate)\n"
     "  --half                  write the EXR as half floats\n"
     "  --exposure X            PNG exposure (default 1)\n"
     "  --raw FILE              also dump the image as raw little-endian floats\n"
@@ -353,6 +354,22 @@ static int write_outputs(const cli *c, renderer *r, const float *img, int w, int
         return fprintf(stderr, "%s\n", err), -1;
     }
     printf("  wrote %s (records: colour = the record of largest weight, white = centres)\n", path);
+    if (r->detail_map) { /* the image in grey, red where a pixel paid its own estimate */
+        size_t i, n = 0;
+        for (i = 0; i < (size_t)w * h; i++) {
+            const float y = 0.25f * (img[3 * i] + img[3 * i + 1] + img[3 * i + 2]) / 3.0f;
+            n += r->detail_map[i];
+            rec[3 * i] = r->detail_map[i] ? 1.0f : y;
+            rec[3 * i + 1] = rec[3 * i + 2] = r->detail_map[i] ? 0.0f : y;
+        }
+        snprintf(path, sizeof path, "%s-detail.png", c->out);
+        if (png_write(path, w, h, rec, c->exposure, err, sizeof err) < 0) {
+            free(rec);
+            return fprintf(stderr, "%s\n", err), -1;
+        }
+        printf("  wrote %s (red: the %zu pixels answered by a per-pixel estimate, IRC_DETAIL)\n",
+               path, n);
+    }
     free(rec);
     return 0;
 }
@@ -434,7 +451,10 @@ int main(int argc, char **argv)
         }
         free(pts);
     } else if ((img = malloc(sizeof(float) * 3 * (size_t)w * h))) {
-        int e = render_image(&r, img, &st);
+        int e;
+        if (c.out && r.cache)
+            r.detail_map = calloc((size_t)w * h, 1); /* optional: no map without it */
+        e = render_image(&r, img, &st);
         if (e < 0) {
             fprintf(stderr, "irc_demo: render failed: %s\n", irc_strerror(e));
         } else {
@@ -443,6 +463,8 @@ int main(int argc, char **argv)
                  cache_files(&c, &r, 1) < 0;
         }
         free(img);
+        free(r.detail_map);
+        r.detail_map = NULL;
     }
     renderer_free(&r);
     scene_free(&s);

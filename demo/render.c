@@ -172,6 +172,7 @@ static void reference_e(const renderer *r, const float p[3], const float n[3], u
     int total = r->o.ref_rays, m = (int)sqrt((double)total), k = total / (m > 0 ? m : 1);
     int i, c, nb = 0;
     double sum[3] = {0, 0, 0};
+    int used = 0;
     for (i = 0; i < total; i++) {
         double u1 = rnd(key, 2u * i), u2 = rnd(key, 2u * i + 1);
         if (i < m * k) {
@@ -183,14 +184,18 @@ static void reference_e(const renderer *r, const float p[3], const float n[3], u
         if (++nb == 64 || i == total - 1) {
             int j;
             cast(r, rays, hits, (uint32_t)nb, 1, 1, ts);
-            for (j = 0; j < nb; j++)
+            for (j = 0; j < nb; j++) {
+                if (hits[j].status == IRC_RAY_FAILED)
+                    continue; /* below the surface: left out, as the cache does */
+                used++;
                 for (c = 0; c < 3; c++)
                     sum[c] += hits[j].radiance[c];
+            }
             nb = 0;
         }
     }
     for (c = 0; c < 3; c++)
-        e[c] = (float)(PI * sum[c] / total);
+        e[c] = used ? (float)(PI * sum[c] / used) : 0.0f;
 }
 
 int render_hidden(const renderer *r, const float p[3], const float q[3])
@@ -284,6 +289,11 @@ static void glossy_indirect(const renderer *r, const surface *sf, const float p[
         out[c] += (float)(sum[c] / n);
 }
 
+static float dot3(const float a[3], const float b[3])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
 static int shade_pixel(renderer *r, const cam_frame *cf, int x, int y, float out[3],
                        tstate *ts)
 {
@@ -308,8 +318,17 @@ static int shade_pixel(renderer *r, const cam_frame *cf, int x, int y, float out
     }
     surface_at(r->s, cf->eye, d, &bh, &sf);
     cache_point(&sf, p);
-    if ((st = irradiance(r, p, sf.nsm, camera_footprint(cf, c, d, bh.t, sf.ng), key, e, &sh,
-                         ts)) != 0)
+    {
+        /* E around the smooth shading normal over the directions above
+         * the surface (ts->under, bounce.h); past 60 degrees from the
+         * geometric normal, where a quarter of its hemisphere is below,
+         * around the geometric normal itself. */
+        const float *n = dot3(sf.nsm, sf.ng) >= 0.5f ? sf.nsm : sf.ng;
+        ts->under[1] = sf.ng;
+        st = irradiance(r, p, n, camera_footprint(cf, c, d, bh.t, sf.ng), key, e, &sh, ts);
+        ts->under[1] = NULL;
+    }
+    if (st != 0)
         return st;
     for (i = 0; i < 3; i++)
         out[i] = sf.m->kd[i] / (float)PI * e[i];
@@ -411,6 +430,8 @@ static int shade_pass(job *j, tstate *ts, int id)
                 memcpy(&j->rgb[at * 3], v, sizeof v);
                 if (j->detail)
                     j->detail[at] = (unsigned char)ts->detail;
+                if (j->r->detail_map && !ts->final)
+                    j->r->detail_map[at] = (unsigned char)ts->detail;
             }
         }
         done = __atomic_add_fetch(&j->done, 8, __ATOMIC_RELAXED);

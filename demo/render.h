@@ -127,6 +127,8 @@ typedef struct renderer {
     irc_cache *deeper[MAX_BOUNCES];  /* levels 2 .. bounces (GATHER_CACHE) */
     void *deeper_block[MAX_BOUNCES];
     level_ctx ctx[MAX_BOUNCES];
+    unsigned char *detail_map; /* optional, w x h: 1 where render_image's
+                                  pixel was answered per pixel (IRC_DETAIL) */
 } renderer;
 
 /* irc_demo's defaults: the cache with the library's defaults (every cache

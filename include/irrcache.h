@@ -220,6 +220,15 @@ enum irc_visibility {
  * a negative code of the host's own to abort the record (the library
  * returns it unchanged and keeps nothing of the record).
  *
+ * A host that passes a shading normal as n (smooth or interpolated
+ * normals) has part of that hemisphere below its geometric surface; a ray
+ * sent there finds the surface itself at a distance near 0, which the
+ * library cannot tell from geometry within reach: tiny records and a
+ * per-pixel estimate at each such point (on the Sponza atrium, 80% of
+ * them).  Answer such rays IRC_RAY_FAILED (left out of every estimate),
+ * with the geometric normal reaching the callback through args->host
+ * (demo/bounce.c), or pass the geometric normal as n.
+ *
  * Several bounces take one cache per level: level k's callback shades its
  * hits with level k+1's lookup, passing args->host on (examples/levels.c;
  * docs/DESIGN.md, "Threads and memory"); fill deeper levels outside

@@ -361,6 +361,59 @@ TEST(test_deterministic_fill)
     scene_free(&s);
 }
 
+/* irc_demo's PREFIX-detail.png reads renderer.detail_map: one mark a
+ * pixel answered IRC_DETAIL, so the marks must count what irc_stats
+ * counts (each pixel is shaded once in the fill passes; the final sweep
+ * skips the marked ones), with 2 threads, and none with detail off. */
+TEST(test_detail_map)
+{
+    scene s;
+    render_opts o;
+    renderer r;
+    render_stats st;
+    char err[512];
+    const int w = 96, h = 96, n = w * h;
+    float *img = calloc((size_t)n * 3, sizeof(float));
+    int run;
+    if (!img || scene_load("demo/scenes/cornell.scene", &s, err, sizeof err) < 0) {
+        CHECK(0, "%s", img ? err : "no memory");
+        free(img);
+        return;
+    }
+    s.cam.width = w;
+    s.cam.height = h;
+    render_opts_defaults(&o);
+    o.mode = MODE_CACHE;
+    o.show = SHOW_INDIRECT;
+    o.accuracy = 0.3f;
+    o.strata_m = 8;
+    o.strata_n = 32;
+    o.light_samples = 1;
+    o.threads = 2;
+    for (run = 0; run < 3; run++) {
+        size_t i, marks = 0;
+        o.final_sweep = run == 1;
+        o.detail_pixels = run == 2 ? -1.0f : 0.0f;
+        if (renderer_init(&r, &s, &o, err, sizeof err) < 0) {
+            CHECK(0, "%s", err);
+            break;
+        }
+        r.detail_map = calloc((size_t)n, 1);
+        CHECK(r.detail_map && render_image(&r, img, &st) == 0, "run %d: render", run);
+        for (i = 0; r.detail_map && i < (size_t)n; i++)
+            marks += r.detail_map[i];
+        CHECK(marks == st.details, "run %d: %zu marks, %llu detail estimates", run, marks,
+              (unsigned long long)st.details);
+        CHECK(run == 2 ? marks == 0 : marks > 0 && marks < (size_t)n / 4,
+              "run %d: %zu of %d pixels marked", run, marks, n);
+        free(r.detail_map);
+        r.detail_map = NULL;
+        renderer_free(&r);
+    }
+    scene_free(&s);
+    free(img);
+}
+
 /* The image gradient (experiments/imgrad.c) against central differences of the
  * image it belongs to, on the Fig. 5 scene at 128 x 96: shaded with one set
  * of light samples everywhere, the direct part of the image is smooth
@@ -576,7 +629,7 @@ TEST(test_cache_save_killed)
     block_free(&cr);
 }
 
-#define TESTS(X) X(test_cache_save_killed) X(test_sun) X(test_bvh_soup) X(test_bvh_shipped_scenes) X(test_reference_sphere_plane) X(test_leak_scene) X(test_deterministic_fill) \
+#define TESTS(X) X(test_cache_save_killed) X(test_sun) X(test_bvh_soup) X(test_bvh_shipped_scenes) X(test_reference_sphere_plane) X(test_leak_scene) X(test_deterministic_fill) X(test_detail_map) \
     X(test_image_gradient) X(test_glossy_lobe) X(test_bounces_furnace)
 TESTS(TEST_DECL)
 
