@@ -594,3 +594,5 @@ $(BUILD)/outliers: experiments/outliers.c $(DEMO_LIBA) demo/*.h $(LIBA)
 # How many pixels the records serve (bench/README.md: "Where the records go").
 $(BUILD)/reach: experiments/reach.c $(DEMO_LIBA) demo/*.h $(LIBA)
 	$(CC) $(DEMO_CFLAGS) experiments/reach.c $(DEMO_LIBA) $(LIBA) -o $@ -lm -lpthread
+$(BUILD)/probes: experiments/probes.c $(DEMO_LIBA) demo/*.h $(LIBA)
+	$(CC) $(DEMO_CFLAGS) experiments/probes.c $(DEMO_LIBA) $(LIBA) -o $@ -lm -lpthread

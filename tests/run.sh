@@ -194,12 +194,13 @@ suite suite ./build/irc_tests
 # make bench-core, make bench-host, make bench-lookups and make bench-records, not from
 # here).
 check build-bench $MAKE -s BUILD=build build/bench_core build/bench_lookups build/bench_records \
-    build/bench_run build/outliers build/reach build/bench_host build/bench_anchor
+    build/bench_run build/outliers build/reach build/probes build/bench_host build/bench_anchor
 check bench-lookups ./build/bench_lookups scanline 1000 2000 count
 check bench-anchor ./build/bench_anchor random 1000 2000 pass
 check bench-host ./build/bench_host 16 12 4 16
 check bench-records ./build/bench_records shgrad 3
 check reach ./build/reach demo/scenes/cornell.scene 32x32 0.4 --step 4
+check probes ./build/probes demo/scenes/cornell.scene 32x32 --fail-under
 
 stage "stage 2c: suite at 32 bits"
 check build-m32 $MAKE -s CC="gcc -m32" BUILD=build-m32 build-m32/irc_tests
