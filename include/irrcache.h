@@ -225,8 +225,9 @@ enum irc_visibility {
  * sent there finds the surface itself at a distance near 0, which the
  * library cannot tell from geometry within reach: tiny records and a
  * per-pixel estimate at each such point (on the Sponza atrium, 3 in 4 of
- * them).  Answer such rays IRC_RAY_FAILED (left out of every estimate),
- * with the geometric normal reaching the callback through args->host
+ * them).  Answer such rays IRC_RAY_FAILED (left out of every estimate;
+ * confirming rays, which run along the surface, excepted), with the
+ * geometric normal reaching the callback through args->host
  * (demo/bounce.c), or pass the geometric normal as n.
  *
  * Several bounces take one cache per level: level k's callback shades its
