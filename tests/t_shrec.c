@@ -786,16 +786,14 @@ TEST(test_insert_range_overflow)
         CHECK(c && irc_cache_insert(c, &r) == IRC_OK, "second record");
         {
             const int st = c ? irc_cache_lookup_gradient(c, r.p, n, rgb, &g, &w) : IRC_ERR_NULL;
+            /* 0: float arithmetic in float, where the step overflows */
+            const int wide = FLT_EVAL_METHOD != 0;
             int ch, k, finite = 1;
             for (ch = 0; ch < 3; ch++)
                 for (k = 0; k < 3; k++)
                     finite &= isfinite(g.dp[ch][k]) && isfinite(g.dn[ch][k]);
-#if FLT_EVAL_METHOD == 0
-            CHECK(st == IRC_ERR_NONFINITE, "a blended gradient past float: %d", st);
-#else
-            CHECK(st == IRC_ERR_NONFINITE || (st == IRC_OK && finite),
+            CHECK(st == IRC_ERR_NONFINITE || (wide && st == IRC_OK && finite),
                   "a blended gradient past float: %d", st);
-#endif
         }
         CHECK(c && irc_cache_lookup(c, r.p, n, rgb, &w) == IRC_OK &&
                   fabsf(rgb[0] / 3e38f - 1.0f) < 1e-5f,
