@@ -92,7 +92,7 @@ void cast(const renderer *r, const irc_ray *rays, irc_hit *hits, uint32_t count,
         const float *o = rays[i].org, *d = rays[i].dir;
         irc_hit *h = &hits[i];
         bvh_hit bh;
-        if (g && d[0] * g[0] + d[1] * g[1] + d[2] * g[2] <= 0.0f) {
+        if (g && dot3(d, g) <= 0.0f) {
             h->status = IRC_RAY_FAILED;
             continue;
         }

@@ -289,11 +289,6 @@ static void glossy_indirect(const renderer *r, const surface *sf, const float p[
         out[c] += (float)(sum[c] / n);
 }
 
-static float dot3(const float a[3], const float b[3])
-{
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
 static int shade_pixel(renderer *r, const cam_frame *cf, int x, int y, float out[3],
                        tstate *ts)
 {

@@ -22,7 +22,7 @@ double rnd(uint64_t key, uint32_t i)
     return (double)(hash64(key + 0x9e3779b97f4a7c15ull * (i + 1)) >> 11) * (1.0 / 9007199254740992.0);
 }
 
-static float dot3(const float a[3], const float b[3])
+float dot3(const float a[3], const float b[3])
 {
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }

@@ -63,6 +63,9 @@ int direct_samples(const bvh *b, const lights *l, const surface *sf, int k0, int
 void direct_eval(const light_sample *ls, int n, int samples, const surface *sf, const float d[3],
                  float out[3]);
 
+/* a . b */
+float dot3(const float a[3], const float b[3]);
+
 /* How far rays leaving p start from it: relative to p's magnitude, the
  * scale of float rounding in p, not to the scene's size (a huge floor must
  * not push rays off small objects). */

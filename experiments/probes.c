@@ -24,11 +24,6 @@
 #include "render.h"
 #include "shade.h"
 
-static float dot3(const float a[3], const float b[3])
-{
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
 /* Any orthonormal tangent pair: the probes' azimuths are the library's up
  * to a rotation, which does not change what is near. */
 static void tangents(const float n[3], float t1[3], float t2[3])
