@@ -224,10 +224,10 @@ enum irc_visibility {
  * normals) has part of that hemisphere below its geometric surface; a ray
  * sent there finds the surface itself at a distance near 0, which the
  * library cannot tell from geometry within reach: tiny records and a
- * per-pixel estimate at each such point (on the Sponza atrium, 3 in 4 of
- * them).  Answer such rays IRC_RAY_FAILED (left out of every estimate;
- * confirming rays, which run along the surface, excepted), with the
- * geometric normal reaching the callback through args->host
+ * per-pixel estimate at each such point (bench/README.md, "Rays under
+ * the surface").  Answer such rays IRC_RAY_FAILED (left out of every
+ * estimate; confirming rays, which run along the surface, excepted), with
+ * the geometric normal reaching the callback through args->host
  * (demo/bounce.c), or pass the geometric normal as n.
  *
  * Several bounces take one cache per level: level k's callback shades its
