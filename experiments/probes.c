@@ -24,24 +24,6 @@
 #include "render.h"
 #include "shade.h"
 
-/* Any orthonormal tangent pair: the probes' azimuths are the library's up
- * to a rotation, which does not change what is near. */
-static void tangents(const float n[3], float t1[3], float t2[3])
-{
-    float a[3] = {0.0f, 0.0f, 0.0f}, d, l;
-    int i;
-    a[fabsf(n[0]) < 0.6f ? 0 : fabsf(n[1]) < 0.6f ? 1 : 2] = 1.0f;
-    d = dot3(a, n);
-    for (i = 0; i < 3; i++)
-        t1[i] = a[i] - d * n[i];
-    l = sqrtf(dot3(t1, t1));
-    for (i = 0; i < 3; i++)
-        t1[i] /= l;
-    t2[0] = n[1] * t1[2] - n[2] * t1[1];
-    t2[1] = n[2] * t1[0] - n[0] * t1[2];
-    t2[2] = n[0] * t1[1] - n[1] * t1[0];
-}
-
 typedef struct tally {
     long pixels, detail, below, tilted, hist[8];
 } tally;
@@ -51,18 +33,15 @@ typedef struct tally {
 static float probe(const bvh *b, const surface *sf, const float p[3], const float n[3],
                    float reach, int fail_under, int *below)
 {
-    static const float cs[8] = {1.0f, 0.70710678f, 0.0f, -0.70710678f,
-                                -1.0f, -0.70710678f, 0.0f, 0.70710678f};
-    float t1[3], t2[3], nearest = FLT_MAX;
-    int i, a;
-    tangents(n, t1, t2);
+    float nearest = FLT_MAX;
+    int i;
     *below = 0;
     for (i = 0; i < 8; i++) {
-        const float x = 0.8660254f * cs[i], y = 0.8660254f * cs[(i + 6) % 8];
         float d[3];
         bvh_hit h;
-        for (a = 0; a < 3; a++)
-            d[a] = x * t1[a] + y * t2[a] + 0.5f * n[a];
+        /* sin^2 theta = 3/4: 60 degrees from n; the azimuths are the
+         * library's up to a rotation, which does not change what is near */
+        cosine_dir(n, 0.75, i / 8.0, d);
         if (fail_under && dot3(d, sf->ng) <= 0.0f)
             continue;
         if (!bvh_intersect(b, p, d, ray_offset(p), FLT_MAX, &h) || h.t > reach)
