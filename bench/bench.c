@@ -274,8 +274,10 @@ static int reference(ctx *c, const bscene *b)
         char path[256], err[256];
         int rw, rh;
         char bn[16] = ""; /* one bounce: the name references always had */
+        /* "-ua": rays below the surface left out at every bounce, not
+         * only at the camera's hits ("-u"; bench/README.md) */
         if (c->bounces > 1)
-            snprintf(bn, sizeof bn, "-b%d", c->bounces);
+            snprintf(bn, sizeof bn, "-b%d-ua", c->bounces);
         snprintf(path, sizeof path, OUT "/ref-%s-%dx%d-s%d-o%d-r%d-l%d%s-u-seed%d.exr", b->name,
                  c->w, c->h, c->stride, lattice_offset(c), c->ref_rays, c->secondary, bn, k + 1);
         if (exr_read(path, &rw, &rh, &one[k], err, sizeof err) == 0 && rw == c->w && rh == c->h) {

@@ -10,6 +10,8 @@
  * length, no Russian roulette; pbrt-v2's irradiance cache gathers so).
  * The last bounce has direct light only.  Indirect light at secondary
  * hits is Lambertian (kd): their Phong lobe reflects direct light only.
+ * At every bounce E is gathered over the directions above the hit's
+ * geometric surface (gather_normal, shade.h; cast, bounce.h).
  */
 #include "bounce.h"
 
@@ -33,12 +35,28 @@ static uint64_t ray_key(const float o[3], const float d[3], uint64_t seed)
     return h;
 }
 
-/* E at a hit of bounce `level` from the bounces beyond it. */
+/* A path's next direction from sf: cosine-distributed around n and
+ * above the geometric surface, by rejection (the distribution the cache's
+ * E at level + 1 averages over: its rays below fail and are left out). */
+static void path_dir(const surface *sf, const float n[3], uint64_t key, float d[3])
+{
+    uint32_t t;
+    for (t = 0; t < 8; t++) {
+        cosine_dir(n, rnd(key, 2 * t), rnd(key, 2 * t + 1), d);
+        if (dot3(d, sf->ng) > 0.0f)
+            return;
+    }
+    cosine_dir(sf->ng, rnd(key, 2 * t), rnd(key, 2 * t + 1), d);
+}
+
+/* E at a hit of bounce `level` from the bounces beyond it, over the
+ * directions above its surface, as at the camera's hits (render.c). */
 static void beyond(const renderer *r, const surface *sf, int level, uint64_t key, float e[3],
                    tstate *ts)
 {
-    const float *n = sf->nsm;
+    const float *n = gather_normal(sf), *outer = ts->under[level + 1];
     e[0] = e[1] = e[2] = 0.0f;
+    ts->under[level + 1] = sf->ng;
     if (r->o.gather == GATHER_CACHE) {
         int was = clock_enter(ts, CLOCK_CACHE);
         /* The next level's record at the hit: a failure there (its own
@@ -51,11 +69,12 @@ static void beyond(const renderer *r, const surface *sf, int level, uint64_t key
         irc_hit hit;
         int c;
         memcpy(ray.org, sf->p, sizeof ray.org);
-        cosine_dir(n, rnd(key, 0), rnd(key, 1), ray.dir);
+        path_dir(sf, n, key, ray.dir);
         cast(r, &ray, &hit, 1, 1, level + 1, ts);
         for (c = 0; c < 3; c++)
             e[c] = (float)PI * hit.radiance[c];
     }
+    ts->under[level + 1] = outer;
 }
 
 /* Radiance leaving a hit of bounce `level` toward the ray's origin:

@@ -314,13 +314,9 @@ static int shade_pixel(renderer *r, const cam_frame *cf, int x, int y, float out
     surface_at(r->s, cf->eye, d, &bh, &sf);
     cache_point(&sf, p);
     {
-        /* E around the smooth shading normal over the directions above
-         * the surface (ts->under, bounce.h); past 60 degrees from the
-         * geometric normal, where a quarter of its hemisphere is below,
-         * around the geometric normal itself. */
-        const float *n = dot3(sf.nsm, sf.ng) >= 0.5f ? sf.nsm : sf.ng;
+        /* E over the directions above the surface (ts->under, bounce.h). */
         ts->under[1] = sf.ng;
-        st = irradiance(r, p, n, camera_footprint(cf, c, d, bh.t, sf.ng), key, e, &sh, ts);
+        st = irradiance(r, p, gather_normal(&sf), camera_footprint(cf, c, d, bh.t, sf.ng), key, e, &sh, ts);
         ts->under[1] = NULL;
     }
     if (st != 0)

@@ -138,6 +138,11 @@ void surface_at(const scene *s, const float o[3], const float d[3], const bvh_hi
         bump(out->m, out->p, out->ns);
 }
 
+const float *gather_normal(const surface *sf)
+{
+    return dot3(sf->nsm, sf->ng) >= 0.5f ? sf->nsm : sf->ng;
+}
+
 float ray_offset(const float p[3])
 {
     float m = fabsf(p[0]);

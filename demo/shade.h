@@ -66,6 +66,13 @@ void direct_eval(const light_sample *ls, int n, int samples, const surface *sf, 
 /* a . b */
 float dot3(const float a[3], const float b[3]);
 
+/* The normal a hit's E is gathered around: the smooth shading normal, or
+ * the geometric one where the two are more than 60 degrees apart (a
+ * quarter of the shading normal's hemisphere would be below the surface).
+ * The directions below the geometric surface are left out either way
+ * (bounce.h, cast). */
+const float *gather_normal(const surface *sf);
+
 /* How far rays leaving p start from it: relative to p's magnitude, the
  * scale of float rounding in p, not to the scene's size (a huge floor must
  * not push rays off small objects). */

@@ -16,6 +16,30 @@
 
 #define RHO 0.5f
 #define LE 2.0f
+#define PI_D 3.14159265358979323846
+
+/* The angle between the walls' shading and geometric normals (radians;
+ * 0: no vertex normals). */
+static float tilt_angle;
+
+/* Gives a wall's triangle (facing inward along axis ax) vertex normals
+ * tilt_angle off its geometric normal, toward the next axis. */
+static void tilt(triangle *tr, int ax)
+{
+    float g[3] = {0, 0, 0}, c = 0.0f;
+    int k;
+    if (tilt_angle == 0.0f)
+        return;
+    for (k = 0; k < 3; k++)
+        c += tr->v[k][ax];
+    g[ax] = c > 0.0f ? -1.0f : 1.0f; /* the wall at +1 faces -ax */
+    tr->has_n = 1;
+    for (k = 0; k < 3; k++) {
+        tr->n[k][ax] = cosf(tilt_angle) * g[ax];
+        tr->n[k][(ax + 1) % 3] = sinf(tilt_angle);
+        tr->n[k][(ax + 2) % 3] = 0.0f;
+    }
+}
 
 /* 12 triangles of the cube [-1, 1]^3, each wound to face inward. */
 static void furnace(scene *s, material *m, triangle tris[12])
@@ -56,6 +80,7 @@ static void furnace(scene *s, material *m, triangle tris[12])
                     tr->v[1][k] = tr->v[2][k];
                     tr->v[2][k] = v;
                 }
+            tilt(tr, 2 - f / 2); /* faces 0-1: z, 2-3: y, 4-5: x */
         }
     s->tris = tris;
     s->ntris = 12;
@@ -95,9 +120,19 @@ static double furnace_render(scene *s, const render_opts *o, double v, double *w
     return sum / 256.0;
 }
 
-TEST(test_bounces_furnace)
+/* Every gather against the closed form for 1 .. 3 bounces, with the
+ * walls' shading normals tilt_angle off their geometric ones and
+ * `secondary` light samples at every hit beyond the camera's. */
+static void furnace_all(int secondary)
 {
     static const char *const names[3] = {"path tracing", "first level + paths", "every level"};
+    /* Direct light at a hit is rho / pi x the integral of Le cos(ns, w)
+     * over the directions above both normals: pi minus the lune below
+     * the geometric plane, whose vector integral is (pi / 2)(ns - ng)
+     * (half a great circle an edge), so Le pi (1 + cos a) / 2.  Gathers
+     * average over the directions above the surface only, where every
+     * ray meets the same radiance: E = pi L, untilted. */
+    const double c = (1.0 + cos(tilt_angle)) / 2.0;
     material m;
     triangle tris[12];
     scene s;
@@ -108,7 +143,7 @@ TEST(test_bounces_furnace)
         int k;
         for (k = 1; k <= n; k++)
             want += (p *= RHO);
-        want *= RHO * LE;
+        want *= RHO * LE * c;
         for (w = 0; w < 3; w++) {
             render_opts o;
             double mean, worst;
@@ -116,7 +151,7 @@ TEST(test_bounces_furnace)
             o.show = SHOW_INDIRECT;
             o.threads = 1; /* deeper levels fill freely: one thread, one answer */
             o.bounces = n;
-            o.secondary_samples = 4;
+            o.secondary_samples = secondary;
             o.mode = w == 0 ? MODE_REFERENCE : MODE_CACHE;
             o.ref_rays = 256;
             o.strata_m = 8;
@@ -124,15 +159,39 @@ TEST(test_bounces_furnace)
             o.gather = w == 2 ? GATHER_CACHE : GATHER_PATH;
             o.max_radius = -1.0f;
             mean = furnace_render(&s, &o, want, &worst);
-            printf("  %d bounce%s, %s: mean %.4f, closed form %.4f (%+.2f%%), worst pixel %.1f%%\n",
-                   n, n > 1 ? "s" : "", names[w], mean, want, 100.0 * (mean / want - 1.0),
-                   100.0 * worst);
+            printf("  tilt %.0f deg, %d bounce%s, %s: mean %.4f, closed form %.4f (%+.2f%%), "
+                   "worst pixel %.1f%%\n",
+                   tilt_angle * 180.0 / PI_D, n, n > 1 ? "s" : "", names[w], mean, want,
+                   100.0 * (mean / want - 1.0), 100.0 * worst);
             /* the mean only: next-event estimation from a wall a point
              * nearly touches (1 / r^2) leaves single pixels far off, and
              * a few hundred records of such heavy-tailed means fall short
              * of the expectation by ~1.6% (a missing bounce: 14%) */
-            CHECK(fabs(mean / want - 1.0) < 0.04, "%d bounces, %s: mean %g, closed form %g", n,
-                  names[w], mean, want);
+            CHECK(fabs(mean / want - 1.0) < 0.04,
+                  "tilt %g, %d bounces, %s: mean %g, closed form %g", tilt_angle, n, names[w],
+                  mean, want);
         }
     }
+}
+
+TEST(test_bounces_furnace)
+{
+    tilt_angle = 0.0f;
+    furnace_all(4);
+}
+
+/* Shading normals 55 degrees off (the demo still gathers around them:
+ * within 60): a ray of a gather leaving below a wall passes through it
+ * and out of the cube, dark; at every bounce, not only the camera's hit,
+ * it must be left out (bounce.h, cast).  Left in at the deeper bounces
+ * only, 2 and 3 bounces come out 7% and 12% dark (E there is pi L (1 +
+ * cos a) / 2); at every bounce, 21% to 33%.  A shading normal leaning
+ * toward the next wall makes the light samples of points near an edge
+ * heavy-tailed (cos at the point stays ~sin a as the distance goes to
+ * 0): 64 a hit hold the means within 2.1% here, 4 did not (+6%). */
+TEST(test_bounces_tilted_normals)
+{
+    tilt_angle = (float)(55.0 * PI_D / 180.0);
+    furnace_all(64);
+    tilt_angle = 0.0f;
 }
