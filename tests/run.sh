@@ -56,6 +56,8 @@ command -v cmake >/dev/null 2>&1 || need="$need cmake"
 [ -e /usr/lib32/crt1.o ] || [ -e /usr/lib/i386-linux-gnu/crt1.o ] || need="$need gcc-multilib"
 ls /usr/lib/llvm-*/lib/clang/*/lib/linux/libclang_rt.tsan-x86_64.a >/dev/null 2>&1 ||
     need="$need libclang-rt-14-dev"
+# the corpus's converter (tests/corpus.sh)
+command -v python3 >/dev/null 2>&1 || need="$need python3"
 # OpenEXR's C library reads the demo's images back (tests only).
 command -v pkg-config >/dev/null 2>&1 || need="$need pkg-config"
 pkg-config --exists OpenEXR 2>/dev/null || need="$need libopenexr-dev"
@@ -201,6 +203,8 @@ check bench-host ./build/bench_host 16 12 4 16
 check bench-records ./build/bench_records shgrad 3
 check reach ./build/reach demo/scenes/cornell.scene 32x32 0.4 --step 4
 check probes ./build/probes demo/scenes/cornell.scene 32x32 --fail-under
+# the corpus's converter (bench/corpus/bitterli-rooms.py) on a room of its own
+check corpus-converter sh tests/corpus.sh
 
 stage "stage 2c: suite at 32 bits"
 check build-m32 $MAKE -s CC="gcc -m32" BUILD=build-m32 build-m32/irc_tests

@@ -1,32 +1,38 @@
 #!/usr/bin/env python3
-# country-kitchen.py -- "Country Kitchen" (Bitterli's Mitsuba version) to plain OBJ + MTL.
+# bitterli-rooms.py -- three of Bitterli's Mitsuba scenes to plain OBJ + MTL, for the
+# benchmark's corpus (bench/README.md, "The corpus").
 #
 # Source: public GitHub repository jgarciapueyo/mitsuba2-transient-scenes,
-#   commit ab67c4caa9228aa9d4115aeb90c3d3bab0aaf7b5, folder kitchen/:
-#   kitchen/scene.xml, kitchen/models/Mesh*.obj, kitchen/textures/*.{jpg,png},
-#   kitchen/LICENSE.txt.
-# Model: "Country Kitchen" by Jay-Artist (Blend Swap, http://www.blendswap.com/blends/view/42851),
-#   Mitsuba version by Benedikt Bitterli (https://benedikt-bitterli.me/resources/).
-# Licence: CC BY 3.0 (https://creativecommons.org/licenses/by/3.0/), as kitchen/LICENSE.txt says.
-# Credit: "Country Kitchen" by Jay-Artist (Blend Swap), Mitsuba version by Benedikt Bitterli,
-#   CC BY 3.0, https://creativecommons.org/licenses/by/3.0/ -- reduced to geometry and
-#   diffuse colours.
+#   commit ab67c4caa9228aa9d4115aeb90c3d3bab0aaf7b5, one folder a room (scene.xml,
+#   models/Mesh*.obj, textures/, LICENSE.txt):
+#   kitchen/      -> country-kitchen: "Country Kitchen" by Jay-Artist
+#                    (Blend Swap, http://www.blendswap.com/blends/view/42851);
+#   dining-room/  -> breakfast-room:  "The Breakfast Room" by Wig42 (Blend Swap);
+#   living-room/  -> grey-white-room: "The Grey & White Room" by Wig42 (Blend Swap);
+#   Mitsuba versions by Benedikt Bitterli (https://benedikt-bitterli.me/resources/).
+# Licence: CC BY 3.0 (https://creativecommons.org/licenses/by/3.0/), as each folder's
+#   LICENSE.txt says.  Credit: the model's author (above), Mitsuba version by Benedikt
+#   Bitterli, CC BY 3.0 -- reduced to geometry and diffuse colours.
 #
-# Usage: python3 bench/corpus/country-kitchen.py SRC_DIR OUT_DIR
-#   SRC_DIR: the kitchen/ folder (scene.xml, models/, textures/).
-#   OUT_DIR: gets country-kitchen.obj.gz and country-kitchen.mtl.
+# Usage: python3 bench/corpus/bitterli-rooms.py ROOM SRC_DIR OUT_DIR
+#   ROOM: kitchen, dining-room or living-room.
+#   SRC_DIR: that folder of the repository.
+#   OUT_DIR: gets NAME.obj.gz and NAME.mtl (NAME as above).
 #
 # What it does (deterministic: same input, same bytes out):
 #   * every <shape type="obj"> of scene.xml is read, its vertices moved by its toWorld
 #     matrix (row-major 4x4, Mitsuba's order), and its faces kept as they are (all
-#     triangles in this model), grouped by the shape's bsdf id (usemtl ID);
-#   * left out: the four emitter rectangles (lights, not geometry: one behind the window,
-#     three strip lights under the wall cupboards); shapes
-#     whose bsdf is glass (dielectric / thindielectric: WineGlasses, CookerGlass,
-#     MicrowaveGlass, MicrowaveDigital, RadioGlass); the rolled-up blind at the top of the
-#     window (Blinds, a "mask" bsdf of opacity 0.61) is kept, as an opaque surface;
-#   * the six meshes in ABSENT (files of 4 MiB and more that the public copies of the repository lack)
-#     are skipped with a note on stderr if they are not there (used when present);
+#     triangles or quads in these models), grouped by the shape's bsdf id (usemtl ID);
+#   * left out: emitters (lights, not geometry: the kitchen's rectangle behind the window
+#     and three strip lights under the wall cupboards); shapes whose bsdf is glass
+#     (dielectric / thindielectric: the kitchen's WineGlasses, CookerGlass, MicrowaveGlass,
+#     MicrowaveDigital, RadioGlass; the grey-white room's Glass); alpha-cut shapes (a "mask"
+#     bsdf whose opacity is a texture: the grey-white room's Leaves); the breakfast room's
+#     one "rectangle" (a Walls patch at x = -6.3, outside the room's obj walls); a "mask" of
+#     constant opacity (the kitchen's rolled-up blind, 0.61) is kept, as an opaque surface;
+#   * the kitchen's six meshes in ROOMS (files of 4 MiB and more that the public copies of
+#     the repository lack) are skipped with a note on stderr if they are not there (used
+#     when present);
 #   * vertices are written with %.6g and welded where the written text is equal; a face
 #     that welding leaves with a repeated corner is dropped (counted on stderr);
 #   * Kd: the bsdf's diffuse colour (diffuse: reflectance; plastic/roughplastic:
@@ -43,9 +49,14 @@ import sys
 import xml.etree.ElementTree as ET
 import zlib
 
-NAME = "country-kitchen"
-ABSENT = {"models/Mesh054.obj", "models/Mesh090.obj", "models/Mesh145.obj",
-          "models/Mesh273.obj", "models/Mesh275.obj", "models/Mesh294.obj"}
+# ROOM: (output name, the model's title and author, meshes the public copies lack)
+ROOMS = {
+    "kitchen": ("country-kitchen", "'Country Kitchen' by Jay-Artist",
+                {"models/Mesh054.obj", "models/Mesh090.obj", "models/Mesh145.obj",
+                 "models/Mesh273.obj", "models/Mesh275.obj", "models/Mesh294.obj"}),
+    "dining-room": ("breakfast-room", "'The Breakfast Room' by Wig42", set()),
+    "living-room": ("grey-white-room", "'The Grey & White Room' by Wig42", set()),
+}
 GLASS = ("dielectric", "thindielectric", "roughdielectric")
 METAL = ("conductor", "roughconductor")
 KD_MAX = 0.9
@@ -369,7 +380,11 @@ def material_kd(b, src, cache):
     t = b.get("type")
     if t in GLASS:
         return "glass", None, t
-    if t == "mask":     # the roller blind: kept, opaque, with the colour under the mask
+    if t == "mask":
+        op = b.find("*[@name='opacity']")
+        if op.tag == "texture":     # alpha-cut leaves: left out
+            return "alpha", None, "mask of opacity %s" % op.find("string").get("value")
+        # the kitchen's roller blind: kept, opaque, with the colour under the mask
         kind, kd, how = material_kd(b.find("bsdf"), src, cache)
         return kind, kd, "mask of opacity %s, kept opaque: %s" % (
             b.find("*[@name='opacity']").get("value"), how)
@@ -423,9 +438,10 @@ def read_obj(path):
 
 
 def main():
-    if len(sys.argv) != 3:
-        sys.exit("usage: python3 convert.py SRC_DIR OUT_DIR")
-    src, out = sys.argv[1], sys.argv[2]
+    if len(sys.argv) != 4 or sys.argv[1] not in ROOMS:
+        sys.exit("usage: python3 bitterli-rooms.py kitchen|dining-room|living-room SRC_DIR OUT_DIR")
+    name, title, absent = ROOMS[sys.argv[1]]
+    src, out = sys.argv[2], sys.argv[3]
     os.makedirs(out, exist_ok=True)
     root = ET.parse(os.path.join(src, "scene.xml")).getroot()
     cache = {}
@@ -444,6 +460,10 @@ def main():
             stats["left_out"].setdefault("emitter rectangles", 0)
             stats["left_out"]["emitter rectangles"] += 1
             continue
+        if shape.get("type") == "rectangle":
+            stats["left_out"].setdefault("rectangles", 0)
+            stats["left_out"]["rectangles"] += 1
+            continue
         if shape.get("type") != "obj":
             raise ValueError("unexpected shape type %s" % shape.get("type"))
         fn = shape.find("string[@name='filename']").get("value")
@@ -458,7 +478,7 @@ def main():
             continue
         path = os.path.join(src, fn)
         if not os.path.exists(path):
-            if fn in ABSENT:
+            if fn in absent:
                 stats["skipped_absent"].append((fn, mid))
                 note("absent, skipped: %s (%s)" % (fn, mid))
                 continue
@@ -491,19 +511,19 @@ def main():
             stats["tris"] += len(idx) - 2
 
     # materials: only those used, in first-use order
-    with open(os.path.join(out, NAME + ".mtl"), "w", newline="\n") as f:
-        f.write("# %s.mtl -- diffuse albedo per Mitsuba bsdf of Bitterli's 'Country Kitchen'\n" % NAME)
-        f.write("# (Jay-Artist, CC BY 3.0); made by convert.py\n")
+    with open(os.path.join(out, name + ".mtl"), "w", newline="\n") as f:
+        f.write("# %s.mtl -- diffuse albedo per Mitsuba bsdf of Bitterli's version of\n" % name)
+        f.write("# %s (CC BY 3.0); made by bitterli-rooms.py\n" % title)
         for mid in order:
             kd = [min(KD_MAX, max(0.0, c)) for c in mats[mid][1]]
             f.write("\n# %s\nnewmtl %s\nKd %.4f %.4f %.4f\n" % (mats[mid][2], mid, kd[0], kd[1], kd[2]))
-    objpath = os.path.join(out, NAME + ".obj.gz")
+    objpath = os.path.join(out, name + ".obj.gz")
     with open(objpath, "wb") as raw:
         with gzip.GzipFile(filename="", mode="wb", fileobj=raw, compresslevel=9, mtime=0) as gz:
             w = []
-            w.append("# %s.obj -- 'Country Kitchen' by Jay-Artist (Blend Swap), Mitsuba version by\n" % NAME)
+            w.append("# %s.obj -- %s (Blend Swap), Mitsuba version by\n" % (name, title))
             w.append("# Benedikt Bitterli; CC BY 3.0 https://creativecommons.org/licenses/by/3.0/\n")
-            w.append("# geometry only (materials: %s.mtl), made by convert.py; metres, +y up\n" % NAME)
+            w.append("# geometry only (materials: %s.mtl), made by bitterli-rooms.py; +y up\n" % name)
             gz.write("".join(w).encode())
             buf = []
             for t in vtext:
