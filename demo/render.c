@@ -316,7 +316,8 @@ static int shade_pixel(renderer *r, const cam_frame *cf, int x, int y, float out
     {
         /* E over the directions above the surface (ts->under, bounce.h). */
         ts->under[1] = sf.ng;
-        st = irradiance(r, p, gather_normal(&sf), camera_footprint(cf, c, d, bh.t, sf.ng), key, e, &sh, ts);
+        st = irradiance(r, p, gather_normal(&sf), camera_footprint(cf, c, d, bh.t, sf.ng), key,
+                        e, &sh, ts);
         ts->under[1] = NULL;
     }
     if (st != 0)
