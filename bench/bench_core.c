@@ -296,7 +296,7 @@ static void placement(void)
 }
 
 /* ------------------------------------------------------------ the Cornell box
- * The issue's render rows: demo/scenes/cornell.scene at 256 x 256, indirect
+ * The render rows: demo/scenes/cornell.scene at 256 x 256, indirect
  * light only, a = 0.2, 16x64 strata, trans + rot, fill passes, one thread
  * (as make bench renders it, smaller): the cache's share of the thread's
  * time (library time in cache calls, the host's tracing excluded, over the
@@ -445,7 +445,7 @@ int main(void)
                strata[k][1],
                record_cost(IRC_FEATURE_SH | IRC_FEATURE_SH_GRADIENT, strata[k][0], strata[k][1],
                            0.5));
-        /* The issue's ratios: trans + rot gradients over a bare record; an
+        /* The ratios asked of it: trans + rot gradients over a bare record; an
          * L = 3 SH record with gradients over one without. */
         printf("gradient_cost_over_bare,trans+rot,,,%ux%u,%.3f,x\n", strata[k][0],
                strata[k][1],

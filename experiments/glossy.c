@@ -1,6 +1,6 @@
 /*
  * glossy.c -- glossy indirect light from SH records against sampling the
- * lobe (issue: SH records where they matter).  For one glossy material of
+ * lobe (SH records where they matter).  For one glossy material of
  * a scene, its diffuse part set to 0 so that its pixels show only the
  * glossy bounce (--indirect image: kd/pi E elsewhere), and its Phong
  * exponent s set in turn to each value below, renders:

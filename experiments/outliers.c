@@ -1,6 +1,6 @@
 /*
  * outliers.c -- which records answer a cache render's worst pixels, and
- * why (the real-scenes issue's question).  Renders SCENE's indirect term
+ * why.  Renders SCENE's indirect term
  * kd/pi E with the demo's defaults at a, takes the reference that make
  * bench cached for it (build/bench/ref-...: two seeds, averaged, on its
  * lattice), and for the worst 1% of lattice pixels by squared error looks

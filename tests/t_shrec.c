@@ -184,7 +184,7 @@ static void emitter_errors(double dr, uint32_t m, uint32_t n, int seeds, double 
     *eg /= gbig;
 }
 
-/* The issue's test: L = 3, D/r from 3 to 50, coefficients and gradient
+/* The test asked for: L = 3, D/r from 3 to 50, coefficients and gradient
  * within 1% of their largest magnitude.  Sample counts: 512 x 2048 strata
  * a hemisphere (2.1 M rays) up to D/r = 10; at 20 and 50 the emitter covers
  * ~1700 and ~270 strata of 1024 x 4096, and one record's own sampling noise
