@@ -53,16 +53,18 @@ static void look(renderer *r, const cam_frame *cf, int x, int y, float a, double
     bvh_hit bh;
     surface sf;
     int hidden = 0, below = 0, far = 0;
+    const float *n3;
     camera_ray(cf, c, x, y, d);
     if (!bvh_intersect(&r->b, cf->eye, d, 0.0f, 1e30f, &bh))
         return;
     surface_at(r->s, cf->eye, d, &bh, &sf);
     cache_point(&sf, p);
+    n3 = gather_normal(&sf); /* the normal the render's lookup took */
     fp = camera_footprint(cf, c, d, bh.t, sf.ng);
     if (verbose)
         printf("    at (%.4g, %.4g, %.4g), normal (%.3f, %.3f, %.3f), footprint %.3g\n", p[0], p[1],
-               p[2], sf.nsm[0], sf.nsm[1], sf.nsm[2], fp);
-    irc_cache_neighbours(r->cache, p, sf.nsm, ids, 64, &n);
+               p[2], n3[0], n3[1], n3[2], fp);
+    irc_cache_neighbours(r->cache, p, n3, ids, 64, &n);
     for (i = 0; i < n && i < 64; i++) {
         irc_record rec;
         float len, off;
@@ -80,7 +82,7 @@ static void look(renderer *r, const cam_frame *cf, int x, int y, float a, double
             printf("      record %u: %.1f px away, reach %.1f px, n.n_i %.3f, E_i %.3f (%+.0f%% of "
                    "the reference)%s%s%s\n",
                    ids[i], len / fp, a * rec.radius / fp,
-                   rec.n[0] * sf.nsm[0] + rec.n[1] * sf.nsm[1] + rec.n[2] * sf.nsm[2],
+                   rec.n[0] * n3[0] + rec.n[1] * n3[1] + rec.n[2] * n3[2],
                    (double)rec.e[0], 100.0 * (rec.e[0] - ref) / (ref > 0.0 ? ref : 1.0),
                    h ? ", hidden" : "", b ? ", below" : "", f ? ", far" : "");
     }
@@ -170,7 +172,7 @@ int main(int argc, char **argv)
             if (bvh_intersect(&r.b, cf.eye, d, 0.0f, 1e30f, &bh)) {
                 surface_at(&s, cf.eye, d, &bh, &sf);
                 cache_point(&sf, q);
-                if (irc_cache_lookup(r.cache, q, sf.nsm, e, NULL) == IRC_OK)
+                if (irc_cache_lookup(r.cache, q, gather_normal(&sf), e, NULL) == IRC_OK)
                     v = sf.m->kd[0] / PI * e[0];
                 else
                     misses++;
