@@ -53,6 +53,8 @@ typedef struct run {
                                      RMSE, from a second run with another
                                      seed (sqrt(sum (T1 - T2)^2 / 2 / sum
                                      R^2)); -1: not measured (BENCH_NOISE=0) */
+    double noise_top1;            /* the share of that noise's square in the
+                                     1% of pixels where the runs differ most */
 } run;
 
 typedef struct ctx {

@@ -70,6 +70,9 @@ void experiment_opts(render_opts *o)
         else if (!strcmp(name, "blend")) o->blend = (float)v;
         else if (!strcmp(name, "seed")) o->seed = (uint64_t)v;
         else if (!strcmp(name, "final")) o->final_sweep = v != 0.0;
+        else if (!strcmp(name, "filter")) o->filter = (float)v;
+        else if (!strcmp(name, "gfilter")) o->gfilter = (float)v;
+        else if (!strcmp(name, "place")) o->place_seed = (uint64_t)v;
         else if (!strcmp(name, "vis")) o->check_visibility = v != 0.0 ? IRC_ON : IRC_OFF;
         else if (!strcmp(name, "sm")) o->strata_m = (uint32_t)v;
         else if (!strcmp(name, "sn")) o->strata_n = (uint32_t)v;
