@@ -47,6 +47,9 @@ typedef struct render_opts {
                               seed, then every record's E and gradients are
                               computed again with seed (placement fixed,
                               values not) */
+    float boost;           /* final_sweep, > 0: records serving at least
+                              this many pixels computed again with 4x the
+                              rays before it */
     uint32_t max_records;
     float min_radius, max_radius; /* max < 0: 0.1 x the diagonal of what
                                      the camera sees; 0: the library's */
@@ -177,7 +180,8 @@ int render_hidden(const renderer *r, const float p[3], const float q[3]);
 int render_records(renderer *r, float *rgb);
 
 /* Between the fill and the final sweep (rework.c): the records revalued
- * with another seed (o.place_seed), then filtered (o.filter, o.gfilter);
+ * with another seed (o.place_seed), those serving many pixels computed
+ * again with more rays (o.boost), then filtered (o.filter, o.gfilter);
  * nothing when those are 0.  Called by one thread while the others wait;
  * ts is its state.  Returns 0 or a negative code. */
 struct tstate;

@@ -1,6 +1,6 @@
 /*
  * rework.c -- experiments on the records between the fill and the final
- * sweep (render_opts.filter, gfilter, place_seed): each reads every record
+ * sweep (render_opts.place_seed, boost, filter, gfilter): each reads every record
  * back, changes its E or gradients, and puts the records back in, their
  * points, normals and reaches as they were.
  */
@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "bounce.h"
+#include "camera.h"
 #include "render.h"
 
 /* Every record of c, into a new array (*n of them); NULL when out of
@@ -147,11 +148,82 @@ static int revalue_records(renderer *r, tstate *ts)
     return put_back(r->cache, rec, n);
 }
 
+/* The pixels record rec serves alone: pi (a R / f)^2, f the pixel's
+ * footprint at its point (surface normal ng) as the camera sees it. */
+static double pixels_served(const renderer *r, const cam_frame *cf, const irc_record *rec,
+                            const float ng[3])
+{
+    float d[3], t = 0.0f, f;
+    int k;
+    for (k = 0; k < 3; k++) {
+        d[k] = rec->p[k] - cf->eye[k];
+        t += d[k] * d[k];
+    }
+    t = sqrtf(t);
+    for (k = 0; k < 3; k++)
+        d[k] /= t > 0.0f ? t : 1.0f;
+    f = camera_footprint(cf, &r->s->cam, d, t, ng);
+    return f > 0.0f ? 3.14159265 * pow(r->cfg.accuracy * rec->radius / f, 2.0) : 0.0;
+}
+
+/* Records that serve at least o.boost pixels computed again with twice
+ * the strata each way (four times the rays), their E and gradients
+ * replacing the fill's: rays that follow the pixels a record serves once
+ * neighbour clamping has set its reach.  The strata are the library's for
+ * the accuracy when the config leaves them 0 (irrcache.h, strata_theta). */
+static int boost_records(renderer *r, tstate *ts)
+{
+    irc_config cfg = r->cfg;
+    irc_cache *c2 = NULL;
+    irc_record *rec;
+    cam_frame cf;
+    size_t bytes;
+    uint32_t n, i;
+    const float a = cfg.accuracy > 0.0f ? cfg.accuracy : 0.2f;
+    const uint32_t m = cfg.strata_theta ? cfg.strata_theta : a < 0.25f ? 32u : a < 0.375f ? 16u : 8u;
+    int st;
+    cfg.strata_theta = 2u * m;
+    cfg.strata_phi = 2u * (cfg.strata_phi ? cfg.strata_phi : 4u * m);
+    cfg.seed = r->cfg.seed ^ 0x626f6f7374ull;
+    if ((st = irc_footprint(&cfg, 16, &bytes)) < 0)
+        return st;
+    if (!(rec = read_all(r->cache, &n)))
+        return -1;
+    cfg.buffer = malloc(bytes);
+    cfg.buffer_size = bytes;
+    if (!cfg.buffer || (st = irc_init(&cfg, 16, &c2)) < 0) {
+        free(cfg.buffer);
+        free(rec);
+        return st < 0 ? st : -1;
+    }
+    camera_frame(&r->s->cam, &cf);
+    for (i = 0; i < n; i++) {
+        float ng[3];
+        irc_record f;
+        normal_under(r, rec[i].p, rec[i].n, ng);
+        if (pixels_served(r, &cf, &rec[i], ng) < r->o.boost)
+            continue;
+        ts->under[1] = ng;
+        st = irc_record_compute(c2, rec[i].p, rec[i].n, &f, ts);
+        ts->under[1] = NULL;
+        if (st < 0)
+            continue;
+        memcpy(rec[i].e, f.e, sizeof f.e);
+        memcpy(rec[i].grad_t, f.grad_t, sizeof f.grad_t);
+        memcpy(rec[i].grad_r, f.grad_r, sizeof f.grad_r);
+    }
+    irc_fini(c2);
+    free(cfg.buffer);
+    return put_back(r->cache, rec, n);
+}
+
 int rework_records(renderer *r, tstate *ts)
 {
     int st = 0;
     if (r->o.place_seed)
         st = revalue_records(r, ts);
+    if (st >= 0 && r->o.boost > 0.0f)
+        st = boost_records(r, ts);
     if (st >= 0 && (r->o.filter > 0.0f || r->o.gfilter > 0.0f))
         st = filter_records(r->cache, r->o.filter, r->o.gfilter);
     return st;

@@ -13,6 +13,8 @@
 #define W 64
 #define H 64
 
+static render_stats last; /* render_and_read's last render */
+
 static int by_place(const void *a, const void *b)
 {
     const irc_record *x = a, *y = b;
@@ -29,7 +31,6 @@ static irc_record *render_and_read(const scene *s, const render_opts *o, rendere
                                    uint32_t *n)
 {
     static float img[W * H * 3];
-    render_stats st;
     irc_stats cs;
     irc_record *rec;
     char err[256];
@@ -39,7 +40,7 @@ static irc_record *render_and_read(const scene *s, const render_opts *o, rendere
         CHECK(0, "%s", err);
         return NULL;
     }
-    if (render_image(r, img, &st) != 0 || irc_cache_stats(r->cache, &cs) != IRC_OK ||
+    if (render_image(r, img, &last) != 0 || irc_cache_stats(r->cache, &cs) != IRC_OK ||
         !(rec = malloc(sizeof *rec * (size_t)(cs.records + 1)))) {
         CHECK(0, "render");
         return NULL;
@@ -154,5 +155,55 @@ TEST(test_rework_place)
     free(b);
     renderer_free(&ra);
     renderer_free(&rb);
+    scene_free(&s);
+}
+
+/* boost: records serving at least that many pixels computed again with
+ * twice the strata each way (16 x 64 -> 32 x 128, 4,096 rays each), so a
+ * threshold no record meets changes nothing and one every record meets
+ * casts 4,096 more hemisphere rays a record, each with at most one shadow
+ * ray where it hits (the demo counts both), and moves every E by about a
+ * record's noise. */
+TEST(test_rework_boost)
+{
+    scene s;
+    render_opts o;
+    renderer ra, rb, rc;
+    irc_record *a, *b, *c;
+    uint32_t na, nb, nc, i, differ = 0;
+    unsigned long long ra_rays, rb_rays;
+    double sum = 0.0;
+    char err[256];
+    CHECK(scene_load("demo/scenes/cornell.scene", &s, err, sizeof err) == 0, "%s", err);
+    s.cam.width = W;
+    s.cam.height = H;
+    box_opts(&o);
+    a = render_and_read(&s, &o, &ra, &na);
+    ra_rays = (unsigned long long)last.rays;
+    o.boost = 1e9f;
+    b = render_and_read(&s, &o, &rb, &nb);
+    rb_rays = (unsigned long long)last.rays;
+    o.boost = 1e-6f;
+    c = render_and_read(&s, &o, &rc, &nc);
+    CHECK(a && b && c && na > 50 && na == nb && na == nc, "records %u %u %u", na, nb, nc);
+    CHECK(a && c && same_places(a, c, na), "places kept");
+    for (i = 0; a && b && c && i < na && na == nb && na == nc; i++) {
+        const double ea = a[i].e[0] + a[i].e[1] + a[i].e[2], ec = c[i].e[0] + c[i].e[1] + c[i].e[2];
+        CHECK(memcmp(a[i].e, b[i].e, sizeof a[i].e) == 0, "record %u moved, none boosted", i);
+        differ += ea != ec;
+        sum += fabs(ea - ec) / (0.5 * (ea + ec) + 1e-6);
+    }
+    CHECK(rb_rays == ra_rays, "rays %llu against %llu with nothing boosted", rb_rays, ra_rays);
+    CHECK((double)last.rays - (double)ra_rays > 0.95 * 4096.0 * na &&
+              (double)last.rays - (double)ra_rays <= 2.0 * 4096.0 * na,
+          "%.0f more rays for %u records", (double)last.rays - (double)ra_rays, na);
+    CHECK(differ > na * 9 / 10, "%u of %u records boosted", differ, na);
+    CHECK(na && sum / na < 0.08, "mean relative difference %.4f", na ? sum / na : 0.0);
+    free(a);
+    free(b);
+    free(c);
+    renderer_free(&ra);
+    renderer_free(&rb);
+    renderer_free(&rc);
     scene_free(&s);
 }
