@@ -104,55 +104,12 @@ static void normal_under(const renderer *r, const float p[3], const float n[3], 
     }
 }
 
-/* Every record's E and gradients computed again at its point with the
- * value seed (render_opts.place_seed): the same records with values
- * independent of the fill's, so that two renders with different seeds
- * differ by the records' values alone, not by where they were put. */
-static int revalue_records(renderer *r, tstate *ts)
-{
-    irc_config cfg = r->cfg;
-    irc_cache *c2 = NULL;
-    irc_record *rec;
-    size_t bytes;
-    uint32_t n, i;
-    int st;
-    cfg.seed = r->value_seed;
-    if ((st = irc_footprint(&cfg, 16, &bytes)) < 0)
-        return st;
-    if (!(rec = read_all(r->cache, &n)))
-        return -1;
-    cfg.buffer = malloc(bytes);
-    cfg.buffer_size = bytes;
-    if (!cfg.buffer || (st = irc_init(&cfg, 16, &c2)) < 0) {
-        free(cfg.buffer);
-        free(rec);
-        return st < 0 ? st : -1;
-    }
-    r->o.seed = r->value_seed; /* the demo's own random numbers too */
-    for (i = 0; i < n; i++) {
-        float ng[3];
-        irc_record f;
-        normal_under(r, rec[i].p, rec[i].n, ng);
-        ts->under[1] = ng;
-        st = irc_record_compute(c2, rec[i].p, rec[i].n, &f, ts);
-        ts->under[1] = NULL;
-        if (st < 0)
-            continue;
-        memcpy(rec[i].e, f.e, sizeof f.e);
-        memcpy(rec[i].grad_t, f.grad_t, sizeof f.grad_t);
-        memcpy(rec[i].grad_r, f.grad_r, sizeof f.grad_r);
-    }
-    r->o.seed = r->cfg.seed;
-    irc_fini(c2);
-    free(cfg.buffer);
-    return put_back(r->cache, rec, n);
-}
-
 /* The pixels record rec serves alone: pi (a R / f)^2, f the pixel's
  * footprint at its point (surface normal ng) as the camera sees it. */
 static double pixels_served(const renderer *r, const cam_frame *cf, const irc_record *rec,
                             const float ng[3])
 {
+    const float a = r->cfg.accuracy > 0.0f ? r->cfg.accuracy : 0.2f; /* 0: the library's */
     float d[3], t = 0.0f, f;
     int k;
     for (k = 0; k < 3; k++) {
@@ -163,28 +120,20 @@ static double pixels_served(const renderer *r, const cam_frame *cf, const irc_re
     for (k = 0; k < 3; k++)
         d[k] /= t > 0.0f ? t : 1.0f;
     f = camera_footprint(cf, &r->s->cam, d, t, ng);
-    return f > 0.0f ? 3.14159265 * pow(r->cfg.accuracy * rec->radius / f, 2.0) : 0.0;
+    return f > 0.0f ? 3.14159265 * pow(a * rec->radius / f, 2.0) : 0.0;
 }
 
-/* Records that serve at least o.boost pixels computed again with twice
- * the strata each way (four times the rays), their E and gradients
- * replacing the fill's: rays that follow the pixels a record serves once
- * neighbour clamping has set its reach.  The strata are the library's for
- * the accuracy when the config leaves them 0 (irrcache.h, strata_theta). */
-static int boost_records(renderer *r, tstate *ts)
+/* Every record serving at least min_pixels (0: every record) computed
+ * again at its point by a cache of config cfg, its E and gradients
+ * replacing the fill's; its point, normal and reach kept. */
+static int recompute(renderer *r, tstate *ts, irc_config cfg, float min_pixels)
 {
-    irc_config cfg = r->cfg;
     irc_cache *c2 = NULL;
     irc_record *rec;
     cam_frame cf;
     size_t bytes;
     uint32_t n, i;
-    const float a = cfg.accuracy > 0.0f ? cfg.accuracy : 0.2f;
-    const uint32_t m = cfg.strata_theta ? cfg.strata_theta : a < 0.25f ? 32u : a < 0.375f ? 16u : 8u;
     int st;
-    cfg.strata_theta = 2u * m;
-    cfg.strata_phi = 2u * (cfg.strata_phi ? cfg.strata_phi : 4u * m);
-    cfg.seed = r->cfg.seed ^ 0x626f6f7374ull;
     if ((st = irc_footprint(&cfg, 16, &bytes)) < 0)
         return st;
     if (!(rec = read_all(r->cache, &n)))
@@ -201,7 +150,7 @@ static int boost_records(renderer *r, tstate *ts)
         float ng[3];
         irc_record f;
         normal_under(r, rec[i].p, rec[i].n, ng);
-        if (pixels_served(r, &cf, &rec[i], ng) < r->o.boost)
+        if (min_pixels > 0.0f && pixels_served(r, &cf, &rec[i], ng) < min_pixels)
             continue;
         ts->under[1] = ng;
         st = irc_record_compute(c2, rec[i].p, rec[i].n, &f, ts);
@@ -215,6 +164,37 @@ static int boost_records(renderer *r, tstate *ts)
     irc_fini(c2);
     free(cfg.buffer);
     return put_back(r->cache, rec, n);
+}
+
+/* Every record's E and gradients computed again with the value seed
+ * (render_opts.place_seed), the demo's own random numbers too: the same
+ * records with values independent of the fill's, so that two renders
+ * with different seeds differ by the records' values alone, not by where
+ * they were put. */
+static int revalue_records(renderer *r, tstate *ts)
+{
+    irc_config cfg = r->cfg;
+    int st;
+    cfg.seed = r->o.seed = r->value_seed;
+    st = recompute(r, ts, cfg, 0.0f);
+    r->o.seed = r->cfg.seed;
+    return st;
+}
+
+/* Records that serve at least o.boost pixels computed again with twice
+ * the strata each way (four times the rays): rays that follow the pixels
+ * a record serves once neighbour clamping has set its reach.  The strata
+ * are the library's for the accuracy when the config leaves them 0
+ * (irrcache.h, strata_theta). */
+static int boost_records(renderer *r, tstate *ts)
+{
+    irc_config cfg = r->cfg;
+    const float a = cfg.accuracy > 0.0f ? cfg.accuracy : 0.2f;
+    const uint32_t m = cfg.strata_theta ? cfg.strata_theta : a < 0.25f ? 32u : a < 0.375f ? 16u : 8u;
+    cfg.strata_theta = 2u * m;
+    cfg.strata_phi = 2u * (cfg.strata_phi ? cfg.strata_phi : 4u * m);
+    cfg.seed = r->cfg.seed ^ 0x626f6f7374ull;
+    return recompute(r, ts, cfg, r->o.boost);
 }
 
 int rework_records(renderer *r, tstate *ts)
