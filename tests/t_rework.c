@@ -13,7 +13,15 @@
 #define W 64
 #define H 64
 
-static render_stats last; /* render_and_read's last render */
+/* One render of the box: its renderer (open for lookups), its records
+ * sorted by place, and the rays it cast. */
+typedef struct box_run {
+    renderer r;
+    int open;
+    irc_record *rec;
+    uint32_t n;
+    double rays;
+} box_run;
 
 static int by_place(const void *a, const void *b)
 {
@@ -25,35 +33,51 @@ static int by_place(const void *a, const void *b)
     return 0;
 }
 
-/* Renders the box with o and returns its records sorted by place (*n of
- * them); *r stays open for lookups (renderer_free by the caller). */
-static irc_record *render_and_read(const scene *s, const render_opts *o, renderer *r,
-                                   uint32_t *n)
+/* Renders the box with o into *b; 0, or -1 (checked) when it failed. */
+static int render_and_read(const scene *s, const render_opts *o, box_run *b)
 {
     static float img[W * H * 3];
+    render_stats st;
     irc_stats cs;
-    irc_record *rec;
     char err[256];
     uint32_t id;
-    *n = 0;
-    if (renderer_init(r, s, o, err, sizeof err) < 0) {
+    memset(b, 0, sizeof *b);
+    if (renderer_init(&b->r, s, o, err, sizeof err) < 0) {
         CHECK(0, "%s", err);
-        return NULL;
+        return -1;
     }
-    if (render_image(r, img, &last) != 0 || irc_cache_stats(r->cache, &cs) != IRC_OK ||
-        !(rec = malloc(sizeof *rec * (size_t)(cs.records + 1)))) {
+    b->open = 1;
+    if (render_image(&b->r, img, &st) != 0 || irc_cache_stats(b->r.cache, &cs) != IRC_OK ||
+        !(b->rec = malloc(sizeof *b->rec * (size_t)(cs.records + 1)))) {
         CHECK(0, "render");
-        return NULL;
+        return -1;
     }
-    for (id = 0; id < cs.capacity && *n < cs.records; id++)
-        if (irc_cache_record(r->cache, id, &rec[*n]) == IRC_OK)
-            (*n)++;
-    qsort(rec, *n, sizeof *rec, by_place);
-    return rec;
+    b->rays = (double)st.rays;
+    for (id = 0; id < cs.capacity && b->n < cs.records; id++)
+        if (irc_cache_record(b->r.cache, id, &b->rec[b->n]) == IRC_OK)
+            b->n++;
+    qsort(b->rec, b->n, sizeof *b->rec, by_place);
+    return 0;
 }
 
-static void box_opts(render_opts *o)
+static void box_run_free(box_run *b)
 {
+    free(b->rec);
+    if (b->open)
+        renderer_free(&b->r);
+    memset(b, 0, sizeof *b);
+}
+
+/* The Cornell box at W x H and the options every test starts from. */
+static int load_box(scene *s, render_opts *o)
+{
+    char err[256];
+    if (scene_load("demo/scenes/cornell.scene", s, err, sizeof err) != 0) {
+        CHECK(0, "%s", err);
+        return -1;
+    }
+    s->cam.width = W;
+    s->cam.height = H;
     render_opts_defaults(o);
     o->mode = MODE_CACHE;
     o->show = SHOW_INDIRECT;
@@ -63,15 +87,37 @@ static void box_opts(render_opts *o)
     o->light_samples = 1;
     o->threads = 1;
     o->final_sweep = 1;
+    return 0;
 }
 
-static int same_places(const irc_record *a, const irc_record *b, uint32_t n)
+/* Whether a's and b's records (as many) have the same points and reaches
+ * (to the clamp's rounding on the way back in). */
+static int same_places(const box_run *a, const box_run *b)
 {
     uint32_t i;
-    for (i = 0; i < n; i++)
-        if (by_place(&a[i], &b[i]) || fabsf(a[i].radius - b[i].radius) > 1e-6f * a[i].radius)
+    if (a->n != b->n || a->n <= 50)
+        return 0;
+    for (i = 0; i < a->n; i++)
+        if (by_place(&a->rec[i], &b->rec[i]) ||
+            fabsf(a->rec[i].radius - b->rec[i].radius) > 1e-6f * a->rec[i].radius)
             return 0;
     return 1;
+}
+
+/* Over records of the same places: how many have another E (summed over
+ * the channels), in *differ, and the mean relative difference. */
+static double values_apart(const box_run *a, const box_run *b, uint32_t *differ)
+{
+    double sum = 0.0;
+    uint32_t i;
+    *differ = 0;
+    for (i = 0; i < a->n; i++) {
+        const irc_record *x = &a->rec[i], *y = &b->rec[i];
+        const double ex = x->e[0] + x->e[1] + x->e[2], ey = y->e[0] + y->e[1] + y->e[2];
+        *differ += ex != ey;
+        sum += fabs(ex - ey) / (0.5 * (ex + ey) + 1e-6);
+    }
+    return a->n ? sum / a->n : 0.0;
 }
 
 /* filter = 1: each record's E is what the unfiltered cache (the same
@@ -82,44 +128,38 @@ TEST(test_rework_filter)
 {
     scene s;
     render_opts o;
-    renderer ra, rb, rc;
-    irc_record *a, *b, *c;
-    uint32_t na, nb, nc, i, moved = 0, grads = 0;
+    box_run a, b, c;
+    uint32_t i, moved = 0, grads = 0;
     double worst = 0.0;
-    char err[256];
-    CHECK(scene_load("demo/scenes/cornell.scene", &s, err, sizeof err) == 0, "%s", err);
-    s.cam.width = W;
-    s.cam.height = H;
-    box_opts(&o);
-    a = render_and_read(&s, &o, &ra, &na);
+    if (load_box(&s, &o) < 0)
+        return;
+    render_and_read(&s, &o, &a);
     o.filter = 1.0f;
-    b = render_and_read(&s, &o, &rb, &nb);
+    render_and_read(&s, &o, &b);
     o.gfilter = 1.0f;
-    c = render_and_read(&s, &o, &rc, &nc);
-    CHECK(a && b && c && na > 50 && na == nb && na == nc, "records %u %u %u", na, nb, nc);
-    CHECK(a && b && c && same_places(a, b, na) && same_places(a, c, na), "places kept");
-    for (i = 0; a && b && c && i < na && na == nb && na == nc; i++) {
+    render_and_read(&s, &o, &c);
+    CHECK(same_places(&a, &b) && same_places(&a, &c), "records %u %u %u, places kept", a.n, b.n,
+          c.n);
+    for (i = 0; same_places(&a, &b) && same_places(&a, &c) && i < a.n; i++) {
         float v[3];
         int k;
-        CHECK(irc_cache_lookup(ra.cache, a[i].p, a[i].n, v, NULL) == IRC_OK, "lookup %u", i);
+        CHECK(irc_cache_lookup(a.r.cache, a.rec[i].p, a.rec[i].n, v, NULL) == IRC_OK, "lookup %u",
+              i);
         for (k = 0; k < 3; k++) {
-            const double d = fabs(b[i].e[k] - v[k]) / (v[k] + 1e-6);
+            const double d = fabs(b.rec[i].e[k] - v[k]) / (v[k] + 1e-6);
             worst = d > worst ? d : worst;
-            moved += fabsf(b[i].e[k] - a[i].e[k]) > 1e-4f * a[i].e[k];
-            CHECK(memcmp(c[i].e, b[i].e, sizeof b[i].e) == 0, "record %u: E with gfilter", i);
+            moved += fabsf(b.rec[i].e[k] - a.rec[i].e[k]) > 1e-4f * a.rec[i].e[k];
         }
+        CHECK(memcmp(c.rec[i].e, b.rec[i].e, sizeof b.rec[i].e) == 0, "record %u: E with gfilter",
+              i);
+        grads += memcmp(c.rec[i].grad_t, b.rec[i].grad_t, sizeof b.rec[i].grad_t) != 0;
     }
     CHECK(worst < 1e-5, "filtered E off the lookup by %.2e", worst);
-    CHECK(moved > na, "%u of %u channels moved", moved, 3 * na);
-    for (i = 0; b && c && i < na && na == nc; i++)
-        grads += memcmp(c[i].grad_t, b[i].grad_t, sizeof b[i].grad_t) != 0;
-    CHECK(grads > na / 2, "gfilter moved %u of %u records' gradients", grads, na);
-    free(a);
-    free(b);
-    free(c);
-    renderer_free(&ra);
-    renderer_free(&rb);
-    renderer_free(&rc);
+    CHECK(moved > a.n, "%u of %u channels moved", moved, 3 * a.n);
+    CHECK(grads > a.n / 2, "gfilter moved %u of %u records' gradients", grads, a.n);
+    box_run_free(&a);
+    box_run_free(&b);
+    box_run_free(&c);
     scene_free(&s);
 }
 
@@ -130,31 +170,22 @@ TEST(test_rework_place)
 {
     scene s;
     render_opts o;
-    renderer ra, rb;
-    irc_record *a, *b;
-    uint32_t na, nb, i, differ = 0;
-    double sum = 0.0;
-    char err[256];
-    CHECK(scene_load("demo/scenes/cornell.scene", &s, err, sizeof err) == 0, "%s", err);
-    s.cam.width = W;
-    s.cam.height = H;
-    box_opts(&o);
+    box_run a, b;
+    uint32_t differ = 0;
+    double apart = 0.0;
+    if (load_box(&s, &o) < 0)
+        return;
     o.place_seed = 7;
-    a = render_and_read(&s, &o, &ra, &na);
+    render_and_read(&s, &o, &a);
     o.seed = 2;
-    b = render_and_read(&s, &o, &rb, &nb);
-    CHECK(a && b && na > 50 && na == nb && same_places(a, b, na), "records %u %u", na, nb);
-    for (i = 0; a && b && i < na && na == nb; i++) {
-        const double ea = a[i].e[0] + a[i].e[1] + a[i].e[2], eb = b[i].e[0] + b[i].e[1] + b[i].e[2];
-        differ += ea != eb;
-        sum += fabs(ea - eb) / (0.5 * (ea + eb) + 1e-6);
-    }
-    CHECK(differ > na * 9 / 10, "%u of %u records revalued", differ, na);
-    CHECK(na && sum / na < 0.08, "mean relative difference %.4f", na ? sum / na : 0.0);
-    free(a);
-    free(b);
-    renderer_free(&ra);
-    renderer_free(&rb);
+    render_and_read(&s, &o, &b);
+    CHECK(same_places(&a, &b), "records %u %u, places kept", a.n, b.n);
+    if (same_places(&a, &b))
+        apart = values_apart(&a, &b, &differ);
+    CHECK(differ > a.n * 9 / 10, "%u of %u records revalued", differ, a.n);
+    CHECK(a.n && apart < 0.08, "mean relative difference %.4f", apart);
+    box_run_free(&a);
+    box_run_free(&b);
     scene_free(&s);
 }
 
@@ -168,42 +199,31 @@ TEST(test_rework_boost)
 {
     scene s;
     render_opts o;
-    renderer ra, rb, rc;
-    irc_record *a, *b, *c;
-    uint32_t na, nb, nc, i, differ = 0;
-    unsigned long long ra_rays, rb_rays;
-    double sum = 0.0;
-    char err[256];
-    CHECK(scene_load("demo/scenes/cornell.scene", &s, err, sizeof err) == 0, "%s", err);
-    s.cam.width = W;
-    s.cam.height = H;
-    box_opts(&o);
-    a = render_and_read(&s, &o, &ra, &na);
-    ra_rays = (unsigned long long)last.rays;
+    box_run a, b, c;
+    uint32_t i, differ = 0;
+    double apart = 0.0, more;
+    if (load_box(&s, &o) < 0)
+        return;
+    render_and_read(&s, &o, &a);
     o.boost = 1e9f;
-    b = render_and_read(&s, &o, &rb, &nb);
-    rb_rays = (unsigned long long)last.rays;
+    render_and_read(&s, &o, &b);
     o.boost = 1e-6f;
-    c = render_and_read(&s, &o, &rc, &nc);
-    CHECK(a && b && c && na > 50 && na == nb && na == nc, "records %u %u %u", na, nb, nc);
-    CHECK(a && c && same_places(a, c, na), "places kept");
-    for (i = 0; a && b && c && i < na && na == nb && na == nc; i++) {
-        const double ea = a[i].e[0] + a[i].e[1] + a[i].e[2], ec = c[i].e[0] + c[i].e[1] + c[i].e[2];
-        CHECK(memcmp(a[i].e, b[i].e, sizeof a[i].e) == 0, "record %u moved, none boosted", i);
-        differ += ea != ec;
-        sum += fabs(ea - ec) / (0.5 * (ea + ec) + 1e-6);
-    }
-    CHECK(rb_rays == ra_rays, "rays %llu against %llu with nothing boosted", rb_rays, ra_rays);
-    CHECK((double)last.rays - (double)ra_rays > 0.95 * 4096.0 * na &&
-              (double)last.rays - (double)ra_rays <= 2.0 * 4096.0 * na,
-          "%.0f more rays for %u records", (double)last.rays - (double)ra_rays, na);
-    CHECK(differ > na * 9 / 10, "%u of %u records boosted", differ, na);
-    CHECK(na && sum / na < 0.08, "mean relative difference %.4f", na ? sum / na : 0.0);
-    free(a);
-    free(b);
-    free(c);
-    renderer_free(&ra);
-    renderer_free(&rb);
-    renderer_free(&rc);
+    render_and_read(&s, &o, &c);
+    CHECK(same_places(&a, &b) && same_places(&a, &c), "records %u %u %u, places kept", a.n, b.n,
+          c.n);
+    for (i = 0; same_places(&a, &b) && i < a.n; i++)
+        CHECK(memcmp(a.rec[i].e, b.rec[i].e, sizeof a.rec[i].e) == 0,
+              "record %u moved, none boosted", i);
+    if (same_places(&a, &c))
+        apart = values_apart(&a, &c, &differ);
+    more = c.rays - a.rays;
+    CHECK(b.rays == a.rays, "rays %.0f against %.0f with nothing boosted", b.rays, a.rays);
+    CHECK(more > 0.95 * 4096.0 * a.n && more <= 2.0 * 4096.0 * a.n,
+          "%.0f more rays for %u records", more, a.n);
+    CHECK(differ > a.n * 9 / 10, "%u of %u records boosted", differ, a.n);
+    CHECK(a.n && apart < 0.08, "mean relative difference %.4f", apart);
+    box_run_free(&a);
+    box_run_free(&b);
+    box_run_free(&c);
     scene_free(&s);
 }
