@@ -346,7 +346,8 @@ static int irc__state_sane(const irc_cache *c, const irc__state *h)
            (h->ref_free == IRC__NIL || h->ref_free < h->refs_used) && h->indexed <= h->count &&
            (uint64_t)h->refs_live + (c->capacity - h->indexed) <= c->ref_cap &&
            h->hand < c->capacity && h->depth <= IRC__LEVELS && h->root_set <= 1u &&
-           h->pass_open <= 1u && h->pass_base <= c->capacity && h->pending <= c->capacity - h->pass_base &&
+           h->pass_open <= 1u && h->pass_base <= c->capacity && h->compacted <= c->capacity &&
+           h->spare == 0u && h->pending <= c->capacity - h->pass_base &&
            h->packed <= h->pending &&
            (uint32_t)h->torn <= c->capacity && (uint32_t)(h->torn >> 32) <= c->capacity &&
            h->writing <= 1u &&

@@ -3,8 +3,16 @@
  * the index, so every lookup of the pass sees the same frozen cache, and
  * join it at the end in the canonical order of merges.  The records a
  * pass adds then depend only on the cache it began with and the queries
- * made, not on how many threads made them or in what order.  The end of a
- * pass also renumbers every record in the index's order (compact.c).
+ * made, not on how many threads made them or in what order.
+ *
+ * The end of a pass costs what its records cost: they are inserted into
+ * the live index one by one in that order, so the index after a pass is a
+ * function of the passes before it and their records' sets, never of the
+ * threads.  Rebuilding the index every pass instead cost passes x records
+ * (a host's 1,024 passes at 640 x 480 spent 54-81% of its render there).
+ * The records are renumbered in the index's order (compact.c: lookups
+ * unchanged, faster) only when the cache has grown by a quarter since they
+ * last were, so over a fill each record moves about five times in all.
  */
 #include "../block/cache.h"
 #include "../block/check.h"
@@ -33,10 +41,22 @@ int irc_pass_begin(irc_cache *c)
     return st;
 }
 
+/* The pass's records [base, base + n), sorted and unique, joined one at a
+ * time: each is counted in, then clamped (when on) by those before it and
+ * indexed, as a free fill's insert does. */
+static void irc__pass_join(irc_cache *c, uint32_t base, uint32_t n)
+{
+    uint32_t i;
+    for (i = 0; i < n; i++) {
+        irc__st(c)->count = base + i + 1;
+        irc__commit_locked(c, base + i);
+    }
+}
+
 int irc_pass_end(irc_cache *c, uint32_t *added)
 {
     uint64_t pend;
-    uint32_t n, kept, i, room;
+    uint32_t n, kept, room, base;
     int st = irc__enter(c, NULL);
     if (st < 0)
         return st;
@@ -46,8 +66,9 @@ int irc_pass_end(irc_cache *c, uint32_t *added)
         irc__write_unlock(c);
         return IRC_ERR_STATE;
     }
+    base = irc__st(c)->pass_base;
     pend = c->port->load(&irc__st(c)->pending);
-    room = c->capacity - irc__st(c)->pass_base;
+    room = c->capacity - base;
     n = pend < (uint64_t)room ? (uint32_t)pend : room;
     /* Fewer whole than reserved: a process died while it packed one, and
      * which is torn cannot be told; the pass's records are dropped (their
@@ -57,25 +78,12 @@ int irc_pass_end(irc_cache *c, uint32_t *added)
     /* Slot order is the order threads happened to finish in; the
      * canonical order is not.  Two queries that made the same record made
      * it once as far as the cache is concerned. */
-    irc__sort(c, irc__st(c)->pass_base, n);
-    kept = irc__unique(c, irc__st(c)->pass_base, n);
-    irc__zero_slots(c, irc__st(c)->pass_base + kept, n - kept);
-    /* Committed in canonical order (each one clamped by those before,
-     * found through the index), indexed in a scattered one (compact.c):
-     * without clamping only the scattered order indexes them. */
-    for (i = 0; i < kept && c->cfg.clamp_neighbours; i++) {
-        irc__st(c)->count = irc__st(c)->pass_base + i + 1;
-        irc__commit_locked(c, irc__st(c)->pass_base + i);
-    }
-    if (!c->cfg.clamp_neighbours) {
-        irc__st(c)->count = irc__st(c)->pass_base + kept;
-        irc__count(c, IRC__C_INSERTS, kept);
-    }
-    if (kept) {
-        irc__index_clear(c);
-        irc__index_rebuild(c);
-    }
-    irc__index_compact(c);
+    irc__sort(c, base, n);
+    kept = irc__unique(c, base, n);
+    irc__zero_slots(c, base + kept, n - kept);
+    irc__pass_join(c, base, kept);
+    if (4u * (uint64_t)irc__st(c)->count > 5u * (uint64_t)irc__st(c)->compacted)
+        irc__index_compact(c);
     irc__st(c)->pass_open = 0;
     c->port->store(&irc__st(c)->pending, 0);
     c->port->store(&irc__st(c)->packed, 0);

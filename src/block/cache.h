@@ -26,6 +26,9 @@ typedef struct irc__state {
     uint32_t pass_open;      /* a fill pass is open (irc_pass_begin) */
     uint32_t pass_base;      /* count when it opened: its records go to
                                 slots [pass_base, capacity) */
+    uint32_t compacted;      /* count when the records were last renumbered
+                                in the index's order (compact.c) */
+    uint32_t spare;          /* 0 */
     double root_c[3];        /* the root cube: centre exact in double */
     double root_h;           /* half its edge, a power of two */
     /* Atomic. */

@@ -197,6 +197,7 @@ void irc__index_compact(irc_cache *c)
     irc__permute_refs(c, live);
     irc__permute(c, count, live);
     irc__st(c)->refs_taken = 0;
+    irc__st(c)->compacted = count;
 }
 
 /* Filled freely, references are taken in the order records arrive, so a

@@ -68,6 +68,7 @@ void irc__index_reset(irc_cache *c)
     irc__st(c)->refs_live = 0;
     irc__st(c)->indexed = 0;
     irc__st(c)->refs_taken = 0;
+    irc__st(c)->compacted = 0;
     irc__st(c)->root_set = 0;
     irc__st(c)->depth = 0;
 }
