@@ -734,9 +734,12 @@ IRC_API int irc_pass_begin(irc_cache *cache);
 
 /*
  * Closes the open pass: its records, in merge's canonical order with exact
- * duplicates kept once, are inserted (and clamped, when on); then every
- * record is renumbered in the order lookups visit the index (answers bit
- * for bit as before, faster; ids change).  *added (optional) gets how many
+ * duplicates kept once, are inserted into the index (and clamped, when
+ * on), at a cost in proportion to the pass's records, not the cache's.
+ * When the cache has grown by a quarter since they last were, every
+ * record is then renumbered in the order lookups visit the index (answers
+ * bit for bit as before, faster; ids change); else earlier records keep
+ * their ids and the pass's follow them.  *added (optional) gets how many
  * were added.  Not concurrent with other calls: every thread of the pass
  * must be done.  Returns IRC_OK, IRC_ERR_STATE when no pass is open, or a
  * negative code.  In a pass, irc_cache_clear, irc_snapshot_read and

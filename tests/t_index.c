@@ -12,6 +12,7 @@
 #include "irr/weight.h"
 #include "scenes.h"
 #include "test.h"
+#include "index_check.h"
 #include "block/check.h"
 #include "index/verify.h"
 #include "util.h"
@@ -38,9 +39,8 @@ static void rand_normal(unsigned long long *st, float n[3])
         n[k] = (float)(n[k] / len);
 }
 
-/* Fills the cache with `count` random records: positions in clusters whose
- * scales range over `decades` decades, radii log-uniform. */
-static void fill(irc_cache *c, uint32_t count, int decades, unsigned long long *st)
+/* index_check.h */
+void index_fill(irc_cache *c, uint32_t count, int decades, unsigned long long *st)
 {
     uint32_t i;
     for (i = 0; i < count; i++) {
@@ -59,10 +59,8 @@ static void fill(irc_cache *c, uint32_t count, int decades, unsigned long long *
     }
 }
 
-/* Queries the index and a scan of all records; compares ids exactly and
- * values to float rounding.  Returns the number of queries that found any
- * record. */
-static uint32_t compare(irc_cache *c, uint32_t queries, int decades, unsigned long long *st)
+/* index_check.h */
+uint32_t index_compare(irc_cache *c, uint32_t queries, int decades, unsigned long long *st)
 {
     uint32_t *ids = malloc(sizeof(uint32_t) * 4096), *scan = malloc(sizeof(uint32_t) * 4096);
     uint32_t q, found = 0, bad = 0, m = irc__st(c)->count, i0;
@@ -176,10 +174,10 @@ TEST(test_index_exact)
     irc_stats s;
     CHECK(c != NULL, "init");
     if (!c) return;
-    fill(c, 100000, 0, &st);
+    index_fill(c, 100000, 0, &st);
     irc_cache_stats(c, &s);
     CHECK(s.records == 100000, "records %llu", (unsigned long long)s.records);
-    found = compare(c, queries, 0, &st);
+    found = index_compare(c, queries, 0, &st);
     printf("  %u queries, %u found records; %llu of %llu index nodes used\n", queries, found,
            (unsigned long long)s.index_nodes, (unsigned long long)s.index_nodes_max);
     CHECK(found > queries / 10, "too few queries find anything (%u): the test would prove little", found);
@@ -196,8 +194,8 @@ TEST(test_index_scales)
     uint32_t found;
     CHECK(c != NULL, "init");
     if (!c) return;
-    fill(c, 20000, 8, &st);
-    found = compare(c, irc_t_quick ? 2000u : 20000u, 8, &st);
+    index_fill(c, 20000, 8, &st);
+    found = index_compare(c, irc_t_quick ? 2000u : 20000u, 8, &st);
     CHECK(found > 100, "found %u", found);
     /* Exhaust the node pool: many records at one point split to the
      * depth limit, then lists grow. */
@@ -213,7 +211,7 @@ TEST(test_index_scales)
             CHECK(irc_cache_insert(c, &r) == IRC_OK, "insert");
         }
     }
-    found = compare(c, 200, 0, &st);
+    found = index_compare(c, 200, 0, &st);
     CHECK(found > 50, "found %u", found);
     block_free(&cfg);
 }
@@ -253,8 +251,8 @@ TEST(test_index_clamped)
         }
     }
     irc_cache_clear(c);
-    fill(c, 20000, 2, &st);
-    found = compare(c, irc_t_quick ? 2000u : 20000u, 2, &st);
+    index_fill(c, 20000, 2, &st);
+    found = index_compare(c, irc_t_quick ? 2000u : 20000u, 2, &st);
     CHECK(found > 100, "found %u", found);
     block_free(&cfg);
     /* eviction after clamping: every victim is found in the tree */
@@ -264,48 +262,17 @@ TEST(test_index_clamped)
     c = block_cache(&cfg, 300, 0);
     CHECK(c != NULL, "init");
     if (!c) return;
-    fill(c, 5000, 1, &st);
-    found = compare(c, 500, 1, &st);
+    index_fill(c, 5000, 1, &st);
+    found = index_compare(c, 500, 1, &st);
     CHECK(found > 20, "found %u", found);
     block_free(&cfg);
-}
-
-/* A record's bytes and CLOCK bit, to follow it across renumbering. */
-typedef struct held {
-    unsigned char b[32u + 25u * 3u * 4u * 4u]; /* the largest: SH, L = 5, RGB, gradients */
-    int used;
-} held;
-
-static size_t held_size;
-
-static int cmp_held(const void *a, const void *b)
-{
-    int d = memcmp(((const held *)a)->b, ((const held *)b)->b, held_size);
-    return d ? d : ((const held *)a)->used - ((const held *)b)->used;
-}
-
-static held *hold_all(const irc_cache *c)
-{
-    held *h = calloc(irc__st(c)->count, sizeof *h);
-    uint32_t i;
-    for (i = 0; i < irc__st(c)->count; i++) {
-        memcpy(h[i].b, irc__rec_at(c, i), c->rec_size);
-        h[i].used = (int)(irc__used(c)[i >> 6] >> (i & 63u) & 1u);
-    }
-    held_size = c->rec_size;
-    qsort(h, irc__st(c)->count, sizeof *h, cmp_held);
-    return h;
 }
 
 /* Depth first, as queries visit: each list must be the run of references
  * that follows the previous list's, and each record's id the order of its
  * home reference.  Returns the references seen; *bad counts references
  * and homes out of order. */
-typedef struct runs {
-    uint32_t ref, home, bad;
-} runs;
-
-static uint32_t runs_check(const irc_cache *c, const irc__node *n, runs *k)
+uint32_t index_runs_check(const irc_cache *c, const irc__node *n, index_runs *k)
 {
     uint32_t r, o;
     for (r = n->head; r != IRC__NIL; r = irc__refs(c)[r].next) {
@@ -314,58 +281,8 @@ static uint32_t runs_check(const irc_cache *c, const irc__node *n, runs *k)
             k->bad += (irc__refs(c)[r].id & ~IRC__REF_HOME) != k->home++;
     }
     for (o = 0; n->child && o < 8; o++)
-        runs_check(c, &irc__nodes(c)[n->child + o], k);
+        index_runs_check(c, &irc__nodes(c)[n->child + o], k);
     return k->ref;
-}
-
-/* An empty pass's end compacts: records renumbered in the index's walk
- * order (lists become runs of ids), each moved with its CLOCK bit, every
- * lookup bit for bit as before, and the index still exact afterwards,
- * eviction included. */
-TEST(test_index_compact)
-{
-    irc_config cfg = scene_config(&dummy, IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION, 4, 4);
-    unsigned long long st = 777;
-    enum { N = 6000, Q = 3000 };
-    static float before[Q][5], after[Q][5], qp[Q][3], qn[Q][3];
-    uint32_t i, added = 1, seen;
-    runs rk = {0, 0, 0};
-    held *h0, *h1;
-    irc_cache *c;
-    cfg.evict = IRC_EVICT_CLOCK;
-    c = block_cache(&cfg, N, 0);
-    CHECK(c != NULL, "init");
-    if (!c) return;
-    fill(c, N, 2, &st);
-    for (i = 0; i < Q; i++) {
-        const irc__rec *r = irc__rec_at(c, (uint32_t)(xrand(&st) * N));
-        int k;
-        irc__oct_decode(r->n, qn[i]);
-        for (k = 0; k < 3; k++)
-            qp[i][k] = r->p[k] + (float)((xrand(&st) - 0.5) * 0.2 * r->r);
-        before[i][4] = (float)irc_cache_lookup(c, qp[i], qn[i], before[i], &before[i][3]);
-    }
-    seen = runs_check(c, &irc__nodes(c)[0], &rk);
-    CHECK(seen == irc__st(c)->refs_live && rk.home == N && rk.bad > N / 2,
-          "filled freely, lists are scattered (%u of %u out of run)", rk.bad, seen);
-    h0 = hold_all(c);
-    CHECK(irc_pass_begin(c) == IRC_OK && irc_pass_end(c, &added) == IRC_OK && added == 0,
-          "empty pass");
-    memset(&rk, 0, sizeof rk);
-    seen = runs_check(c, &irc__nodes(c)[0], &rk);
-    CHECK(seen == irc__st(c)->refs_live && rk.home == N && rk.bad == 0,
-          "after the pass: %u of %u references or homes out of run", rk.bad, seen);
-    h1 = hold_all(c);
-    CHECK(memcmp(h0, h1, sizeof *h0 * N) == 0, "records or CLOCK bits changed in the move");
-    for (i = 0; i < Q; i++)
-        after[i][4] = (float)irc_cache_lookup(c, qp[i], qn[i], after[i], &after[i][3]);
-    CHECK(memcmp(before, after, sizeof before) == 0, "lookups changed");
-    compare(c, 1000, 2, &st);
-    fill(c, 2000, 2, &st); /* evicts a third */
-    compare(c, 1000, 2, &st);
-    free(h0);
-    free(h1);
-    block_free(&cfg);
 }
 
 /* A root that grows becomes a child of the new root, and every record of
@@ -385,7 +302,7 @@ TEST(test_index_grow_faces)
     irc_stats st;
     irc_cache *c;
     uint32_t i, seen, lost = 0;
-    runs k = {0, 0, 0};
+    index_runs k = {0, 0, 0};
     cfg.evict = IRC_EVICT_CLOCK;
     c = block_cache(&cfg, 40, 0);
     CHECK(c != NULL, "init");
@@ -411,7 +328,7 @@ TEST(test_index_grow_faces)
         CHECK(irc_cache_insert(c, &r) == IRC_OK, "insert %u", i);
         lost += irc_cache_neighbours(c, r.p, up, ids, 4, &n) != IRC_OK || n != 1;
     }
-    seen = runs_check(c, &irc__nodes(c)[0], &k);
+    seen = index_runs_check(c, &irc__nodes(c)[0], &k);
     CHECK(irc_cache_stats(c, &st) == IRC_OK && st.records == 40 && k.home == 40 &&
               seen == irc__st(c)->refs_live && irc__block_sane(c) &&
               st.evictions == 27 + 6 + 80 - 40 && lost == 0,
@@ -536,7 +453,7 @@ TEST(test_index_far_scales)
         frexp(irc__st(c)->root_h, &e);
         CHECK((e - 1 == 99) == (k == 0), "scene %d: root half edge 2^%d", k, e - 1);
         CHECK(k == 0 || irc__st(c)->depth >= 30, "scene %d: depth %u", k, (unsigned)irc__st(c)->depth);
-        found = compare(c, irc_t_quick ? 1000u : 4000u, 0, &st);
+        found = index_compare(c, irc_t_quick ? 1000u : 4000u, 0, &st);
         CHECK(found > 100, "scene %d: found %u", k, found);
         block_free(&cfg);
     }
@@ -553,7 +470,7 @@ TEST(test_index_root_refused)
     int k;
     CHECK(c != NULL, "init");
     if (!c) return;
-    fill(c, 1000, 0, &st);
+    index_fill(c, 1000, 0, &st);
     CHECK(irc__index_root_sane(c), "the root a fill makes");
     for (k = 0; k < 3; k++) {
         const double was = irc__st(c)->root_c[0];

@@ -226,11 +226,11 @@ void irc__index_tidy(irc_cache *c)
 /* Inserted one after another, records split the leaves they land in
  * while the node pool lasts (about a quarter of a node a record), and the
  * lists of those that come after grow instead.  Records that arrive in
- * space order (a pass or a merge, sorted) spent the pool on the
- * first part of the scene: on bench-core's box, in order of x, a third
- * of the records sat in lists at depths 3 and 4 and a lookup scanned 306
- * entries, against 38 when the same records arrived in random order.  So
- * the bulk paths build the index in a scattered order, which spreads the
+ * space order (a merge, sorted) spent the pool on the first part of the
+ * scene: on bench-core's box, in order of x, a third of the records sat
+ * in lists at depths 3 and 4 and a lookup scanned 306 entries, against 38
+ * when the same records arrived in random order.  So the bulk paths
+ * (merges, repairs) build the index in a scattered order, which spreads the
  * splits over the scene: record k * 2654435761 mod n for k = 0 .. n - 1
  * (a prime above IRC_MAX_RECORDS, so every record once), the same order
  * for the same records whatever the threads. */
