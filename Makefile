@@ -235,8 +235,9 @@ embedded-host: $(BUILD)/embedded_host
 	$(BUILD)/embedded_host
 
 # ---------------------------------------------------------------- demo
-# The demo tracer: every demo/*.c but the two stand-alone programs.
-DEMO_LIB_SRC = $(filter-out demo/main.c,$(wildcard demo/*.c))
+# The demo tracer: every demo/*.c but the stand-alone program and the
+# bench's Embree backend (built into the bench alone, where Embree is).
+DEMO_LIB_SRC = $(filter-out demo/main.c demo/embree_rays.c,$(wildcard demo/*.c))
 DEMO_CFLAGS = -std=c99 $(WARN) -Iinclude -Idemo $(OPT) $(CFLAGS)
 # An archive, so that each program links the demo's parts it uses.
 DEMO_OBJ = $(DEMO_LIB_SRC:demo/%.c=$(BUILD)/demo-lib/%.o)
@@ -525,10 +526,21 @@ bench-records: $(BUILD)/bench_records
 # Speed against error on every shipped scene (bench/README.md: "Speed against
 # error").  BENCH_QUICK=1: small images, fewer runs (over 12 minutes).
 BENCH_RUN_SRC = bench/bench.c bench/report.c bench/bounces.c bench/select.c
-$(BUILD)/bench_run: $(BENCH_RUN_SRC) bench/bench.h $(DEMO_LIBA) demo/*.h $(LIBA)
-	$(CC) $(DEMO_CFLAGS) $(BENCH_RUN_SRC) $(DEMO_LIBA) $(LIBA) -o $@ -lm -lpthread
+# Its rays come from Embree where Embree is installed (make bench installs
+# libembree-dev as root; BENCH_RAYS=bvh picks the demo's BVH at run time),
+# else from the demo's BVH; the stamp rebuilds it when that changes.
+EMBREE_H = $(wildcard /usr/include/embree3/rtcore.h)
+BENCH_RAYS_BUILD = $(if $(EMBREE_H),embree,bvh)
+$(BUILD)/rays-%.stamp:
+	@mkdir -p $(BUILD) && rm -f $(BUILD)/rays-*.stamp && touch $@
+$(BUILD)/bench_run: $(BENCH_RUN_SRC) bench/bench.h $(DEMO_LIBA) demo/*.h demo/embree_rays.c $(LIBA) \
+                    $(BUILD)/rays-$(BENCH_RAYS_BUILD).stamp
+	$(CC) $(DEMO_CFLAGS) $(if $(EMBREE_H),-DBENCH_EMBREE demo/embree_rays.c) $(BENCH_RUN_SRC) \
+	      $(DEMO_LIBA) $(LIBA) -o $@ -lm -lpthread $(if $(EMBREE_H),-lembree3)
 
-bench: $(BUILD)/bench_run $(BUILD)/glossy real-scenes
+bench: real-scenes
+	@sh examples/need-embree.sh || echo "bench: Embree not installed: rays from the demo's BVH"
+	$(MAKE) -s $(BUILD)/bench_run $(BUILD)/glossy
 	sh bench/bench.sh $(BUILD)/bench_run
 
 # Several bounces (bench/README.md, "Several bounces"): path tracing, the

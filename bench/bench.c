@@ -227,6 +227,18 @@ static void save_images(const ctx *c, const bscene *b, const run *r, const float
     free(err);
 }
 
+/* Which tracer casts the rays: Embree where the bench was built with it
+ * (the Makefile does where Embree is installed), unless BENCH_RAYS=bvh. */
+const char *bench_rays(void)
+{
+#ifdef BENCH_EMBREE
+    const char *v = getenv("BENCH_RAYS");
+    if (!(v && !strcmp(v, "bvh")))
+        return "Embree";
+#endif
+    return "the demo's BVH";
+}
+
 static int render(ctx *c, const render_opts *o, float *img, render_stats *st)
 {
     renderer r;
@@ -236,6 +248,13 @@ static int render(ctx *c, const render_opts *o, float *img, render_stats *st)
         fprintf(stderr, "bench: %s\n", err);
         return -1;
     }
+#ifdef BENCH_EMBREE
+    if (!strcmp(bench_rays(), "Embree") && bvh_embree(&r.b, err, sizeof err) < 0) {
+        fprintf(stderr, "bench: %s\n", err);
+        renderer_free(&r);
+        return -1;
+    }
+#endif
     memset(img, 0, sizeof(float) * 3 * (size_t)c->w * c->h);
     e = render_image(&r, img, st);
     renderer_free(&r);
@@ -355,6 +374,11 @@ static int record_noise(ctx *c, const render_opts *o, const float *img, run *r)
     return 0;
 }
 
+static double pct(double part, double whole)
+{
+    return whole > 0.0 ? 100.0 * part / whole : 0.0;
+}
+
 int add_run(ctx *c, const char *method, double param, const render_opts *o, const bscene *b,
             FILE *csv)
 {
@@ -385,12 +409,12 @@ int add_run(ctx *c, const char *method, double param, const render_opts *o, cons
     free(img);
     c->nruns++;
     fprintf(csv, "%s,%s,%g,%ux%u,%.4f,%.4f,%.4f,%llu,%llu,%zu,%zu,%.5f,%.5f,%.5f,%.5f,%.5f,%d,"
-                 "%.4f,%d,%.5f,%.4f,%.5f\n",
+                 "%.4f,%d,%.5f,%.4f,%.5f,%.4f,%.4f,%.4f\n",
             b->name, method, param, r->m, r->n, r->st.wall, r->st.trace_s, r->st.cache_s,
             (unsigned long long)r->st.rays, (unsigned long long)r->st.records,
             (size_t)r->st.records * r->st.record_bytes, r->st.cache_bytes, r->rmse, r->p99,
             c->ref_noise, r->p999, r->maxe, r->over10, r->worst1, r->leaks, r->bias, r->st.cpu,
-            r->noise);
+            r->noise, r->st.lookup_s, r->st.gather_s, r->st.pass_s);
     fflush(csv);
     printf("  %-10s %5g %4ux%-4u %7.2f CPU s, rel RMSE %.4f", method, param, r->m, r->n,
            r->st.cpu, r->rmse);
@@ -405,6 +429,12 @@ int add_run(ctx *c, const char *method, double param, const render_opts *o, cons
            r->p99, r->p999, r->maxe, r->over10,
            100.0 * r->worst1, r->leaks, 100.0 * r->bias, (unsigned long long)r->st.records,
            100.0 * r->st.cache_s / r->st.cpu);
+    if (o->mode == MODE_CACHE)
+        printf("  %-10s the library's own CPU (outside the callback) %.1f%% of the render: "
+               "lookups %.1f%%, record and detail sampling with inserts %.1f%%, pass ends "
+               "%.1f%% (%s)\n",
+               method, pct(r->st.cache_s, r->st.cpu), pct(r->st.lookup_s, r->st.cpu),
+               pct(r->st.gather_s, r->st.cpu), pct(r->st.pass_s, r->st.cpu), bench_rays());
     if (o->mode == MODE_CACHE && !(o->features & IRC_FEATURE_SH))
         printf("  %-10s rays %llu, lookups %llu, hits %llu, records %llu, per-pixel detail "
                "estimates %llu\n",
@@ -623,13 +653,15 @@ int main(int argc, char **argv)
     }
     fprintf(csv, "scene,method,param,strata,wall_s,trace_thread_s,cache_thread_s,rays,records,"
                  "record_bytes_used,block_bytes,rel_rmse,p99_rel_err,ref_noise,p999_rel_err,max_rel_err,"
-                 "pixels_over_10pct,worst1_share,leaks,bias,cpu_s,record_noise\n");
-    fprintf(md, "`make bench%s` on %s (%d threads), %s. Indirect light kd/pi E (one bounce but in bounce scenes) "
+                 "pixels_over_10pct,worst1_share,leaks,bias,cpu_s,record_noise,lookup_thread_s,"
+                 "gather_thread_s,pass_thread_s\n");
+    printf("rays: %s\n", bench_rays());
+    fprintf(md, "`make bench%s` on %s (%d threads), %s; rays from %s. Indirect light kd/pi E (one bounce but in bounce scenes) "
                 "only. Speedups are brute force's time to the same error over the method's: brute "
                 "force's from a power law fitted over its runs (its exponent in each scene's "
                 "title; \"ext\": extrapolated, at most 2x in error beyond its runs), the "
                 "method's interpolated along its curve (log-log); plots in `" OUT "/SCENE.png`.\n",
-            c.quick ? " BENCH_QUICK=1" : "", host, c.threads, date);
+            c.quick ? " BENCH_QUICK=1" : "", host, c.threads, date, bench_rays());
     fprintf(gp, "set terminal pngcairo size 900,600\nset logscale xy\nset xlabel 'CPU "
                 "seconds'\nset ylabel 'relative RMSE'\nset key top right\n");
     for (k = 0; k < sizeof scenes / sizeof scenes[0]; k++) {

@@ -77,6 +77,9 @@ typedef struct ctx {
 #define NLEVELS 4
 extern const double levels[NLEVELS];
 
+/* bench.c: "Embree" or "the demo's BVH" (BENCH_RAYS) */
+const char *bench_rays(void);
+
 #define NMETHODS 8
 extern const char *const methods[NMETHODS];      /* short names (CSV, BENCH_METHODS) */
 extern const char *const method_names[NMETHODS]; /* the table's */

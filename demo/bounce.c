@@ -159,6 +159,7 @@ int host_trace(const irc_trace_args *a)
         g = ts->under[l->level];
         ts->under[l->level] = NULL;
     }
+    ts->gathers += !a->visibility_only;
     cast(l->r, a->rays, a->hits, a->count, !a->visibility_only, l->level, ts);
     if (g)
         ts->under[l->level] = g;

@@ -16,7 +16,15 @@ typedef struct tstate {
     double trace_s, cache_s;  /* exclusive: a cache call's time inside a
                                  ray's shading, or a callback's inside a
                                  cache call, is counted once, where spent */
+    double lookup_s, gather_s, pass_s; /* cache_s split: the camera hits'
+                                 calls that sampled no hemisphere (lookups,
+                                 with probes and confirming rays), those
+                                 that did (records and detail estimates,
+                                 inserts), and pass ends and begins */
     uint64_t rays, dropped;
+    uint64_t gathers;         /* callbacks of hemisphere rays (not probes
+                                 nor confirming rays): a record or detail
+                                 estimate being sampled */
     double mark;              /* when the thread entered region */
     int region;               /* CLOCK_* */
     int final;                /* render.c: the final sweep's lookups */

@@ -208,6 +208,8 @@ int bvh_build(bvh *b, const scene *s)
 
 void bvh_free(bvh *b)
 {
+    if (b->rays.release)
+        b->rays.release(b->rays.ctx);
     free(b->nodes);
     free(b->prims);
     memset(b, 0, sizeof *b);
@@ -363,16 +365,38 @@ static int traverse(const bvh *b, const float o[3], const float d[3], float tmin
     }
 }
 
+/* The spheres by a loop, behind another tracer's triangles (few, if any). */
+static int spheres(const scene *s, const float o[3], const float d[3], float tmin, float tmax,
+                   bvh_hit *h, int any)
+{
+    int i, found = 0;
+    for (i = 1; i <= s->nspheres; i++)
+        if (hit_prim(s, -i, o, d, tmin, tmax, h, 0)) {
+            found = 1;
+            if (any)
+                return 1;
+            tmax = h->t;
+        }
+    return found;
+}
+
 int bvh_intersect(const bvh *b, const float o[3], const float d[3], float tmin,
                   float tmax, bvh_hit *h)
 {
-    return traverse(b, o, d, tmin, tmax, h, 0);
+    int found;
+    if (!b->rays.intersect)
+        return traverse(b, o, d, tmin, tmax, h, 0);
+    found = b->rays.intersect(b->rays.ctx, o, d, tmin, tmax, h);
+    return spheres(b->s, o, d, tmin, found ? h->t : tmax, h, 0) || found;
 }
 
 int bvh_occluded(const bvh *b, const float o[3], const float d[3], float tmin, float tmax)
 {
     bvh_hit h;
-    return traverse(b, o, d, tmin, tmax, &h, 1);
+    if (!b->rays.occluded)
+        return traverse(b, o, d, tmin, tmax, &h, 1);
+    return b->rays.occluded(b->rays.ctx, o, d, tmin, tmax) ||
+           spheres(b->s, o, d, tmin, tmax, &h, 1);
 }
 
 int brute_intersect(const scene *s, const float o[3], const float d[3], float tmin,

@@ -13,22 +13,41 @@ typedef struct bvh_node {
     int count;  /* leaf: number of prims (> 0); inner: 0 (right = left + 1) */
 } bvh_node;
 
+typedef struct bvh_hit bvh_hit;
+
+/* Another tracer behind bvh_intersect and bvh_occluded for the scene's
+ * triangles (the bench's Embree backend, demo/embree_rays.c); spheres stay
+ * this BVH's.  intersect NULL: this BVH alone.  release frees ctx (at
+ * bvh_free). */
+typedef struct bvh_rays {
+    int (*intersect)(void *ctx, const float o[3], const float d[3], float tmin, float tmax,
+                     bvh_hit *h);
+    int (*occluded)(void *ctx, const float o[3], const float d[3], float tmin, float tmax);
+    void (*release)(void *ctx);
+    void *ctx;
+    const char *name;
+} bvh_rays;
+
 typedef struct bvh {
     const scene *s;
+    bvh_rays rays;
     bvh_node *nodes;
     int nnodes;
     int *prims;  /* >= 0: triangle index; < 0: sphere -(i + 1) */
     int nprims;
 } bvh;
 
-typedef struct bvh_hit {
+struct bvh_hit {
     float t;
     int prim;    /* as in bvh.prims */
     float u, v;  /* triangle barycentrics (of v[1], v[2]) */
-} bvh_hit;
+};
 
 int bvh_build(bvh *b, const scene *s); /* 0, or -1 out of memory */
 void bvh_free(bvh *b);
+/* Hands the scene's triangles to Embree (demo/embree_rays.c, built into
+ * the bench when Embree is installed): 0, or -1 with err set. */
+int bvh_embree(bvh *b, char *err, size_t n);
 
 /* Nearest hit with t in (tmin, tmax).  Returns 1 and fills h, else 0. */
 int bvh_intersect(const bvh *b, const float o[3], const float d[3], float tmin,

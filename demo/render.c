@@ -226,6 +226,8 @@ static int irradiance(renderer *r, const float p[3], const float n[3], float fp,
 {
     sh->bands = 0;
     if (r->o.mode == MODE_CACHE) {
+        const double c0 = ts->cache_s;
+        const uint64_t gathers0 = ts->gathers;
         int st, was = clock_enter(ts, CLOCK_CACHE);
         if (r->o.features & IRC_FEATURE_SH) {
             st = irc_sh_lookup_or_compute(r->cache, p, n, sh, NULL, ts);
@@ -248,6 +250,10 @@ static int irradiance(renderer *r, const float p[3], const float n[3], float fp,
             ts->detail = st == IRC_DETAIL;
         }
         clock_enter(ts, was);
+        if (ts->gathers != gathers0)
+            ts->gather_s += ts->cache_s - c0;
+        else
+            ts->lookup_s += ts->cache_s - c0;
         return st < 0 ? st : ts->final && st == IRC_MISS ? IRC_MISS : 0;
     }
     reference_e(r, p, n, key, e, ts);
@@ -449,6 +455,9 @@ static void *worker(void *arg)
             __atomic_store_n(&j->error, st, __ATOMIC_RELAXED);
         pthread_barrier_wait(&j->wall);
         if (id == 0) {
+            tstate *ts = &j->ts[0];
+            const double c0 = ts->cache_s;
+            const int was = clock_enter(ts, CLOCK_CACHE);
             if (j->open && (st = irc_pass_end(j->r->cache, NULL)) < 0 && !j->error)
                 j->error = st;
             j->open = 0;
@@ -457,6 +466,8 @@ static void *worker(void *arg)
                     j->error = st;
                 j->open = st == IRC_OK;
             }
+            clock_enter(ts, was);
+            ts->pass_s += ts->cache_s - c0;
             j->next = 0;
             j->level = level + 1;
         }
@@ -487,6 +498,9 @@ static void collect(renderer *r, const tstate *ts, int n, double wall, double cp
     for (i = 0; i < n; i++) {
         st->trace_s += ts[i].trace_s;
         st->cache_s += ts[i].cache_s;
+        st->lookup_s += ts[i].lookup_s;
+        st->gather_s += ts[i].gather_s;
+        st->pass_s += ts[i].pass_s;
         st->rays += ts[i].rays;
         st->dropped += ts[i].dropped;
     }

@@ -111,7 +111,14 @@ typedef struct render_stats {
     double trace_s;       /* thread-seconds in the host's ray casting + shading
                              of secondary hits (inside the trace callback and
                              for the reference's rays) */
-    double cache_s;       /* thread-seconds in cache calls, callback excluded */
+    double cache_s;       /* thread-seconds in cache calls, callback excluded
+                             (pass ends included) */
+    double lookup_s;      /* of which: camera hits' calls that sampled no
+                             hemisphere (lookups, with their probes) */
+    double gather_s;      /* ... calls that did: the library's part of
+                             sampling records and detail estimates, and
+                             inserting them */
+    double pass_s;        /* ... irc_pass_end and irc_pass_begin */
     uint64_t rays;        /* every ray cast: camera, hemisphere, shadow */
     uint64_t dropped;     /* frozen: misses whose record was not kept */
     uint64_t records;
