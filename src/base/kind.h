@@ -49,6 +49,11 @@ typedef struct irc__query {
     const uint32_t *hidden; /* records the lookup leaves out (cfg.
                                check_visibility): n_hidden ids, ascending */
     uint32_t n_hidden;
+    const uint32_t *among;  /* non-NULL: the walk visits these n_among ids,
+                               in order, instead of the index's lists (a
+                               confirmed lookup's second walk: the ids its
+                               first walk accepted, in its order) */
+    uint32_t n_among;
     irc__marks *marks;      /* NULL: a lookup that cannot fail after it reads */
     int place;              /* a lookup-or-compute's, in a cache whose
                                lookups reach past a R: a miss unless a

@@ -36,6 +36,8 @@ static int irc__query_make(const irc_cache *c, const float p[3], const float n[3
         q->p[k] = p[k];
     q->hidden = NULL;
     q->n_hidden = 0;
+    q->among = NULL;
+    q->n_among = 0;
     q->marks = NULL;
     q->place = 0;
     return IRC_OK;
@@ -176,25 +178,36 @@ static int irc__offer_computed(irc_cache *c, const void *rec, void *out, float *
 static int irc__find_confirmed(irc__call *k, void *out, float *weight)
 {
     irc_cache *c = k->c;
-    uint32_t ids[IRC__SIGHT_CAP], nrm[IRC__SIGHT_BATCH], found, i, n, batch;
+    uint32_t ids[IRC__SIGHT_CAP], order[IRC__SIGHT_CAP], nrm[IRC__SIGHT_BATCH], found, i, n,
+        batch;
     float pos[IRC__SIGHT_BATCH][3];
     int st;
     if ((st = irc__collect(c, &k->q, ids, IRC__SIGHT_CAP, &found)) < 0)
         return st;
-    if (found > IRC__SIGHT_CAP)
+    /* All of them collected: the second walk takes them, in the first
+     * walk's order, rather than the index again (the same records weighed
+     * in the same order, so the same answer at half the walking). */
+    if (found <= IRC__SIGHT_CAP) {
+        IRC_MEMCPY(order, ids, found * sizeof *ids);
+        k->q.among = order;
+        k->q.n_among = found;
+    } else {
         found = IRC__SIGHT_CAP;
+    }
     batch = c->cfg.max_batch < IRC__SIGHT_BATCH ? c->cfg.max_batch : IRC__SIGHT_BATCH;
     for (i = 0; i < found && st >= 0; i += batch) {
         n = found - i < batch ? found - i : batch;
         if ((st = irc__positions(c, ids + i, n, pos, nrm)) >= 0)
             st = irc__confirm_batch(k, ids, i, n, (const float(*)[3])pos, nrm);
     }
-    if (st < 0)
-        return st;
-    irc__confirm_hide(k, ids);
-    st = c->kind->lookup->find(c, &k->q, out, weight);
+    if (st >= 0) {
+        irc__confirm_hide(k, ids);
+        st = c->kind->lookup->find(c, &k->q, out, weight);
+    }
     k->q.hidden = NULL;
     k->q.n_hidden = 0;
+    k->q.among = NULL;
+    k->q.n_among = 0;
     return st;
 }
 #endif

@@ -110,10 +110,16 @@ static void irc__visit_take(void *ud, uint32_t id)
 static int irc__walk_index(irc_cache *c, irc__walk *v)
 {
     int lock = !irc__st(c)->pass_open;
+    const irc__visit_fn fn =
+        v->acc && v->ops->take && !v->q->n_hidden ? irc__visit_take : irc__visit;
+    uint32_t i;
     if (lock && irc__read_lock(c) < 0)
         return IRC_ERR_PORT;
-    irc__index_query(c, v->q->p,
-                     v->acc && v->ops->take && !v->q->n_hidden ? irc__visit_take : irc__visit, v);
+    if (v->q->among)
+        for (i = 0; i < v->q->n_among; i++)
+            fn(v, v->q->among[i]);
+    else
+        irc__index_query(c, v->q->p, fn, v);
     if (lock)
         irc__read_unlock(c);
     return IRC_OK;
