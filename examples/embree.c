@@ -32,6 +32,9 @@
 
 typedef struct host { /* one a thread */
     struct RTCIntersectContext ctx;
+    double in_calls, in_trace, in_passes; /* seconds: inside the _px calls,
+                                             inside the callback within
+                                             them, in pass ends */
 } host;
 
 typedef struct world {
@@ -44,6 +47,8 @@ typedef struct world {
     pthread_barrier_t wall;
     float *img;
     int failed;
+    double lib_s, pass_s; /* the cache's render: the library's own seconds
+                             (outside the callback), and its pass ends */
 } world;
 
 /* The process's CPU time over every thread: what one thread would take,
@@ -52,6 +57,15 @@ static double now(void)
 {
     struct timespec t;
     clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+/* A thread's time on a monotonic clock, for the split of the cache's
+ * render (cheap enough to read at every callback). */
+static double tick(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
     return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
@@ -113,6 +127,7 @@ static int trace(const irc_trace_args *a)
 {
     const world *w = (const world *)a->context;
     host *hs = (host *)a->host;
+    const double t0 = w->rays ? 0.0 : tick();
     uint32_t i;
     for (i = 0; i < a->count; i++) {
         irc_hit *h = &a->hits[i];
@@ -128,6 +143,8 @@ static int trace(const irc_trace_args *a)
                                   : w->s->env.kind == ENV_CONSTANT ? w->s->env.base[0] : 0.0f;
         h->radiance[1] = h->radiance[2] = h->radiance[0];
     }
+    if (!w->rays)
+        hs->in_trace += tick() - t0;
     return 0;
 }
 
@@ -178,9 +195,11 @@ static void pixel(world *w, host *hs, int x, int y)
     } else {
         /* the footprint: sqrt of the area the pixel covers there */
         float fp = 0.0f;
+        const double t0 = tick();
         if (irc_pixel_footprint(w->eye, w->f, 2.0f * w->ty / w->h, p, n, &fp) < 0 ||
             irc_cache_lookup_or_compute_px(w->cache, p, n, fp, e, NULL, hs) < 0)
             w->failed = 1;
+        hs->in_calls += tick() - t0;
     }
     w->img[y * w->w + x] = kd / PI * e[0];
 }
@@ -210,6 +229,7 @@ static void *work(void *arg)
     const int id = ((job *)arg)->id, bits = pass_bits(w->w), P = 1 << bits;
     host hs;
     int x, y, k, i, ox, oy, at = 0;
+    memset(&hs, 0, sizeof hs);
     rtcInitIntersectContext(&hs.ctx);
     if (w->rays) {
         for (y = 1 + STRIDE * id; y < w->h; y += STRIDE * THREADS)
@@ -227,9 +247,21 @@ static void *work(void *arg)
                 if (at++ % THREADS == id)
                     pixel(w, &hs, x, y);
         pthread_barrier_wait(&w->wall);
-        if (id == 0 && (irc_pass_end(w->cache, NULL) < 0 ||
-                        (k + 1 < P * P && irc_pass_begin(w->cache) < 0)))
-            w->failed = 1;
+        if (id == 0) {
+            const double t0 = tick();
+            if (irc_pass_end(w->cache, NULL) < 0 ||
+                (k + 1 < P * P && irc_pass_begin(w->cache) < 0))
+                w->failed = 1;
+            hs.in_passes += tick() - t0;
+        }
+        pthread_barrier_wait(&w->wall);
+    }
+    /* each thread adds its share, between the barriers of the last pass */
+    for (i = 0; i < THREADS; i++) {
+        if (i == id) {
+            w->lib_s += hs.in_calls - hs.in_trace + hs.in_passes;
+            w->pass_s += hs.in_passes;
+        }
         pthread_barrier_wait(&w->wall);
     }
     return NULL;
@@ -352,7 +384,15 @@ int main(int argc, char **argv)
         printf("  brute force, %4d rays: relative RMSE %.4f in %6.2f s (the frame's)\n", counts[i],
                eb[i], tb[i]);
     }
-    tc = render(&w, 0, img);
+    {
+        const double wall0 = tick();
+        tc = render(&w, 0, img);
+        /* the library's share of the threads' time: its calls less the
+         * callback inside them, pass ends with them */
+        printf("  the library's own time (outside the callback): %.1f%% of the threads', pass "
+               "ends %.1f%%\n", 100.0 * w.lib_s / (THREADS * (tick() - wall0)),
+               100.0 * w.pass_s / (THREADS * (tick() - wall0)));
+    }
     ec = rel_rmse(&w, img, ref);
     {
         irc_stats st;
