@@ -367,7 +367,20 @@ sh-animation-small: $(BUILD)/shanim
 	$(BUILD)/shanim --frames 2 --size 32 --strata 8 16 --out $(BUILD)/sh-animation-small demo/scenes/sh.scene
 bench-bounces-small: $(BUILD)/bench_run
 	BENCH_SCENES=bounces2-cornell BENCH_A=0.4 $(BUILD)/bench_run quick
-SMALL_TARGETS = adaptive-small fig15-small glossy-small sh-experiments-small sh-animation-small bench-bounces-small
+# make bench's fast backend: Embree installed (as root with apt; else the
+# run says so and takes the demo's BVH), one small cache run on the Cornell
+# box, its line of the library's own CPU printed and naming the backend.
+bench-embree-small:
+	@sh examples/need-embree.sh || echo "bench-embree-small: Embree not installed: the demo's BVH"
+	@$(MAKE) -s $(BUILD)/bench_run
+	BENCH_THREADS=1 BENCH_SCENES=cornell BENCH_SIZE=64x64 BENCH_METHODS=trans+rot BENCH_A=0.4 \
+	  BENCH_NOISE=0 $(BUILD)/bench_run > $(BUILD)/bench-embree-small.log
+	@cat $(BUILD)/bench-embree-small.log
+	@want=$$([ -e /usr/include/embree3/rtcore.h ] && echo Embree || echo "the demo's BVH"); \
+	  grep -q "library's own CPU (outside the callback) .*pass ends .*($$want)" \
+	    $(BUILD)/bench-embree-small.log || { echo "bench-embree-small: no split line for $$want"; exit 1; }
+SMALL_TARGETS = adaptive-small fig15-small glossy-small sh-experiments-small sh-animation-small bench-bounces-small \
+                bench-embree-small
 small-targets:
 	@echo $(SMALL_TARGETS)
 
@@ -596,7 +609,7 @@ uninstall:
 clean:
 	rm -rf build build-*
 
-.PHONY: print-lists small-targets adaptive-small fig15-small glossy-small sh-experiments-small sh-animation-small bench-bounces-small cycles fingerprint amalgamation embree-example all lib cross embedded-test embedded-host size examples test check coverage demo real-scenes fig15 adaptive glossy sh-experiments sh-animation fuzz fuzz-long replay bench-core bench-host bench-anchor bench-lookups bench-records bench bench-bounces bench-fill farm-demo install uninstall clean
+.PHONY: print-lists small-targets bench-embree-small adaptive-small fig15-small glossy-small sh-experiments-small sh-animation-small bench-bounces-small cycles fingerprint amalgamation embree-example all lib cross embedded-test embedded-host size examples test check coverage demo real-scenes fig15 adaptive glossy sh-experiments sh-animation fuzz fuzz-long replay bench-core bench-host bench-anchor bench-lookups bench-records bench bench-bounces bench-fill farm-demo install uninstall clean
 
 # Which records answer the worst pixels of a Sponza render, and why
 # (bench/README.md, "On real geometry"); needs make bench's cached references.
