@@ -364,8 +364,9 @@ typedef struct irc_config {
     float max_radius;
     /* M rows in theta, 1..1024, and N columns in phi, 1..4096; M * N <=
      * IRC_MAX_STRATA.  Default: they follow a, so that one knob sets a
-     * record's cost: M = 32 below a = 0.25, 16 below 0.375, 8 above, and N
-     * = 4 M (SH records: 16 x 64).  Why: bench/README.md, "One knob". */
+     * record's cost: M = 8 from a = 0.375, 16 from 0.25, 32 from 0.125, 64
+     * below 0.125 and 128 below 0.0625 (and at any smaller a), and N = 4 M
+     * (SH records: 16 x 64).  Why: bench/README.md, "One knob". */
     uint32_t strata_theta;
     uint32_t strata_phi;
     /* Scratch slots: record computations at once, 1..64 (default 1), each

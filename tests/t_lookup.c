@@ -143,14 +143,19 @@ TEST(test_blend_mean)
 
 /* The strata follow a when left 0 (one knob for a record's cost): one
  * record's rays are M x N = 4096, 1024, 256 at a = 0.2, 0.3, 0.4 (and at
- * a = 0.24, 0.25, 0.37, 0.375 either side of the steps); strata given are
- * kept; SH records keep 16 x 64 whatever a. */
+ * a = 0.24, 0.25, 0.37, 0.375 either side of the steps), 16,384 below
+ * a = 0.125 and 65,536 below 0.0625 and at any smaller a; strata given
+ * are kept; SH records keep 16 x 64 whatever a. */
 TEST(test_strata_follow_accuracy)
 {
     static const struct { float a; uint32_t m, n, rays; } k[] = {
         {0.0f, 0, 0, 4096}, {0.2f, 0, 0, 4096}, {0.24f, 0, 0, 4096}, {0.25f, 0, 0, 1024},
         {0.3f, 0, 0, 1024}, {0.37f, 0, 0, 1024}, {0.375f, 0, 0, 256}, {0.4f, 0, 0, 256},
-        {0.8f, 0, 0, 256}, {0.4f, 32, 128, 4096}, {0.2f, 8, 0, 8 * 128}, {0.4f, 0, 64, 8 * 64}};
+        {0.8f, 0, 0, 256}, {0.4f, 32, 128, 4096}, {0.2f, 8, 0, 8 * 128}, {0.4f, 0, 64, 8 * 64},
+        /* below 0.125 the rows double as a halves, to 128 x 512 */
+        {0.15f, 0, 0, 4096}, {0.125f, 0, 0, 4096}, {0.124f, 0, 0, 64 * 256},
+        {0.1f, 0, 0, 64 * 256}, {0.0625f, 0, 0, 64 * 256}, {0.062f, 0, 0, 128 * 512},
+        {0.001f, 0, 0, 128 * 512}, {0.1f, 0, 64, 64 * 64}};
     tscene s;
     size_t i;
     scene_sphere_plane(&s);
