@@ -13,7 +13,9 @@
  * not depend on the neighbours; the cache's image is whole), and the
  * speedup at equal relative RMSE is brute force's time interpolated
  * (log-log) to the cache's error over the cache's time, both the
- * process's CPU seconds. */
+ * process's CPU seconds.  It also prints the library's own share of the
+ * cache's render, outside the callback: lookups (calls that sampled no
+ * hemisphere), record and detail sampling, and pass ends. */
 #define _POSIX_C_SOURCE 200809L
 #include <embree3/rtcore.h>
 #include <math.h>
@@ -35,6 +37,11 @@ typedef struct host { /* one a thread */
     double in_calls, in_trace, in_passes; /* seconds: inside the _px calls,
                                              inside the callback within
                                              them, in pass ends */
+    double in_lookups;   /* of in_calls less in_trace: the calls that
+                            sampled no hemisphere (lookups) */
+    unsigned long gathers; /* callbacks of hemisphere rays (records and
+                              per-pixel estimates), not probes or
+                              confirming rays */
 } host;
 
 typedef struct world {
@@ -47,8 +54,9 @@ typedef struct world {
     pthread_barrier_t wall;
     float *img;
     int failed;
-    double lib_s, pass_s; /* the cache's render: the library's own seconds
-                             (outside the callback), and its pass ends */
+    double lib_s, pass_s, lookup_s; /* the cache's render: the library's
+                                       own seconds (outside the callback),
+                                       its pass ends and its lookups */
 } world;
 
 /* The process's CPU time over every thread: what one thread would take,
@@ -129,6 +137,7 @@ static int trace(const irc_trace_args *a)
     host *hs = (host *)a->host;
     const double t0 = w->rays ? 0.0 : tick();
     uint32_t i;
+    hs->gathers += !a->visibility_only;
     for (i = 0; i < a->count; i++) {
         irc_hit *h = &a->hits[i];
         float kd = 0.0f, t = cast(w, hs, a->rays[i].org, a->rays[i].dir, h->normal, &kd), q[3];
@@ -195,11 +204,14 @@ static void pixel(world *w, host *hs, int x, int y)
     } else {
         /* the footprint: sqrt of the area the pixel covers there */
         float fp = 0.0f;
-        const double t0 = tick();
+        const double t0 = tick(), traced = hs->in_trace;
+        const unsigned long gathers = hs->gathers;
         if (irc_pixel_footprint(w->eye, w->f, 2.0f * w->ty / w->h, p, n, &fp) < 0 ||
             irc_cache_lookup_or_compute_px(w->cache, p, n, fp, e, NULL, hs) < 0)
             w->failed = 1;
         hs->in_calls += tick() - t0;
+        if (hs->gathers == gathers)
+            hs->in_lookups += tick() - t0 - (hs->in_trace - traced);
     }
     w->img[y * w->w + x] = kd / PI * e[0];
 }
@@ -261,6 +273,7 @@ static void *work(void *arg)
         if (i == id) {
             w->lib_s += hs.in_calls - hs.in_trace + hs.in_passes;
             w->pass_s += hs.in_passes;
+            w->lookup_s += hs.in_lookups;
         }
         pthread_barrier_wait(&w->wall);
     }
@@ -389,9 +402,11 @@ int main(int argc, char **argv)
         tc = render(&w, 0, img);
         /* the library's share of the threads' time: its calls less the
          * callback inside them, pass ends with them */
-        printf("  the library's own time (outside the callback): %.1f%% of the threads', pass "
-               "ends %.1f%%\n", 100.0 * w.lib_s / (THREADS * (tick() - wall0)),
-               100.0 * w.pass_s / (THREADS * (tick() - wall0)));
+        const double all = THREADS * (tick() - wall0);
+        printf("  the library's own time (outside the callback): %.1f%% of the threads': "
+               "lookups %.1f%%, record and detail sampling %.1f%%, pass ends %.1f%%\n",
+               100.0 * w.lib_s / all, 100.0 * w.lookup_s / all,
+               100.0 * (w.lib_s - w.lookup_s - w.pass_s) / all, 100.0 * w.pass_s / all);
     }
     ec = rel_rmse(&w, img, ref);
     {
