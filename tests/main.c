@@ -24,7 +24,7 @@
     X(test_snapshot_round_trip) X(test_snapshot_round_trip_sh) X(test_snapshot_rejects) X(test_snapshot_by_hand) X(test_merge_order_free) \
     X(test_pass_order_free) X(test_pass_frozen) X(test_pass_full) X(test_pass_state) X(test_pass_lock_free) \
     X(test_share_processes) X(test_share_killed) X(test_share_killed_in_lock) X(test_share_zombie) X(test_port_owner_after_fork) X(test_share_killed_random) X(test_join_refused) \
-    X(test_safe_defaults) X(test_index_clamped) X(test_index_compact) X(test_pass_end_incremental) X(test_index_bulk_spread) X(test_index_far_scales) X(test_index_far_from_origin) X(test_index_root_refused) \
+    X(test_safe_defaults) X(test_index_clamped) X(test_index_compact) X(test_pass_end_incremental) X(test_index_reach_tight) X(test_index_bulk_spread) X(test_index_far_scales) X(test_index_far_from_origin) X(test_index_root_refused) \
     X(test_kind_occ_records) X(test_kind_occ_lookups) X(test_kind_occ_snapshot_attach) X(test_kind_occ_config) \
     X(test_levels_closed_form) X(test_levels_nested_refused) X(test_levels_cycle_refused) X(test_levels_threads) X(test_levels_cycle_threads) \
     X(test_detail_refined_strata) X(test_detail_full_grid_paths) X(test_detail_coarse_records) X(test_detail_config) X(test_detail_pixels_wall) X(test_detail_pixels_calls) X(test_detail_pixels_nested) X(test_detail_probes_flagged) X(test_pixel_footprint) X(test_pixel_footprint_lengths) X(test_pixel_footprint_mirror)

@@ -141,6 +141,15 @@ void irc__ref_give(irc_cache *c, uint32_t r)
     irc__st(c)->refs_live--;
 }
 
+/* The reach a reference of id bounds: its radius's now, which neighbour
+ * clamping may have shrunk since the record was placed by the reach in
+ * its entry (test_index_reach_tight). */
+double irc__reach_now(const irc_cache *c, uint32_t id)
+{
+    const float now = irc__reach(c, irc__rec_at(c, id)->r), placed = irc__ix(c)[id].reach;
+    return (double)(now < placed ? now : placed);
+}
+
 /* A new reference to id at the head of node's list, whose cube is q. */
 void irc__ref_push(irc_cache *c, uint32_t node, const irc__cube *q, uint32_t id,
                    int home)
@@ -149,7 +158,7 @@ void irc__ref_push(irc_cache *c, uint32_t node, const irc__cube *q, uint32_t id,
     irc__ref *e = &irc__refs(c)[r];
     irc__node *n = &irc__nodes(c)[node];
     uint32_t *link = &n->head;
-    irc__quantize(e, q, irc__rec_at(c, id)->p, (double)irc__ix(c)[id].reach);
+    irc__quantize(e, q, irc__rec_at(c, id)->p, irc__reach_now(c, id));
     e->id = id | (home ? IRC__REF_HOME : 0u);
     /* A list holds its homes first, so that range walks, which take only
      * homes, stop at the first reference that is not one (query.c). */

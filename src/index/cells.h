@@ -38,6 +38,8 @@ void irc__box_of(const irc_cache *c, const float p[3], double half, irc__box *b)
 /* The deepest level, at most cap, whose cells are as wide as the box. */
 int irc__level(const irc_cache *c, double half, int cap);
 void irc__quantize(irc__ref *e, const irc__cube *q, const float p[3], double reach);
+/* The reach record id's references bound: a R now (no more than placed). */
+double irc__reach_now(const irc_cache *c, uint32_t id);
 /* References an insertion may take beyond the one kept for it. */
 uint32_t irc__spare(const irc_cache *c);
 void irc__ref_give(irc_cache *c, uint32_t r);

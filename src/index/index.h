@@ -16,6 +16,9 @@ typedef void (*irc__visit_fn)(void *ud, uint32_t id);
 void irc__index_reset(irc_cache *c);
 void irc__index_insert(irc_cache *c, uint32_t id);
 void irc__index_remove(irc_cache *c, uint32_t id);
+/* After record id's radius shrank: its references' reach bounds from the
+ * radius now (nodes and list order kept, so lookups are unchanged). */
+void irc__index_tighten(irc_cache *c, uint32_t id);
 void irc__index_compact(irc_cache *c); /* compact.c */
 /* compact.c: the lists laid out as runs again when a quarter as many
  * references have been taken since they last were as they hold (records

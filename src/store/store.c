@@ -52,8 +52,10 @@ static void irc__clamp_visit(void *ud, uint32_t id)
            dz = j->p[2] - k->r->p[2], d = IRC_SQRTF(dx * dx + dy * dy + dz * dz);
     if (!k->back && d < k->r->r && j->r + d < k->r->r)
         k->r->r = (float)(j->r + d);
-    else if (k->back && d < j->r && k->r->r + d < j->r)
+    else if (k->back && d < j->r && k->r->r + d < j->r) {
         j->r = (float)(k->r->r + d);
+        irc__index_tighten(k->c, id);
+    }
 }
 
 static void irc__clamp_neighbours(irc_cache *c, irc__rec *r)
