@@ -13,6 +13,8 @@
  * The records are renumbered in the index's order (compact.c: lookups
  * unchanged, faster) only when the cache has grown by a quarter since they
  * last were, so over a fill each record moves about five times in all.
+ * A pass as large as the cache it joins is indexed again whole, in the
+ * scattered order of merges: that costs at most twice the pass's own.
  */
 #include "../block/cache.h"
 #include "../block/check.h"
@@ -82,6 +84,14 @@ int irc_pass_end(irc_cache *c, uint32_t *added)
     kept = irc__unique(c, base, n);
     irc__zero_slots(c, base + kept, n - kept);
     irc__pass_join(c, base, kept);
+    /* A pass at least as large as the cache it joins (a fill's first
+     * passes, a bulk insert) arrived in space order, which spends the
+     * node pool on the first part of the scene (compact.c): it is indexed
+     * again in a scattered order, at a cost of at most twice its own. */
+    if (kept && kept >= base) {
+        irc__index_clear(c);
+        irc__index_rebuild(c);
+    }
     if (4u * (uint64_t)irc__st(c)->count > 5u * (uint64_t)irc__st(c)->compacted)
         irc__index_compact(c);
     irc__st(c)->pass_open = 0;
