@@ -25,7 +25,6 @@ typedef struct bvh_rays {
     int (*occluded)(void *ctx, const float o[3], const float d[3], float tmin, float tmax);
     void (*release)(void *ctx);
     void *ctx;
-    const char *name;
 } bvh_rays;
 
 typedef struct bvh {

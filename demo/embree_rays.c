@@ -126,6 +126,5 @@ int bvh_embree(bvh *b, char *err, size_t n)
     b->rays.occluded = fast_occluded;
     b->rays.release = fast_release;
     b->rays.ctx = f;
-    b->rays.name = "Embree";
     return 0;
 }

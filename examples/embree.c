@@ -206,12 +206,14 @@ static void pixel(world *w, host *hs, int x, int y)
         float fp = 0.0f;
         const double t0 = tick(), traced = hs->in_trace;
         const unsigned long gathers = hs->gathers;
+        double t1;
         if (irc_pixel_footprint(w->eye, w->f, 2.0f * w->ty / w->h, p, n, &fp) < 0 ||
             irc_cache_lookup_or_compute_px(w->cache, p, n, fp, e, NULL, hs) < 0)
             w->failed = 1;
-        hs->in_calls += tick() - t0;
+        t1 = tick() - t0;
+        hs->in_calls += t1;
         if (hs->gathers == gathers)
-            hs->in_lookups += tick() - t0 - (hs->in_trace - traced);
+            hs->in_lookups += t1 - (hs->in_trace - traced);
     }
     w->img[y * w->w + x] = kd / PI * e[0];
 }

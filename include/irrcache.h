@@ -729,11 +729,8 @@ IRC_API int irc_merge(irc_cache *cache, uint64_t fingerprint, const void *data, 
  * depends on timing.  Two misses within a record's reach both compute:
  * shade sparse pixels first, in several passes (docs/DESIGN.md, "Fill
  * passes": pixels P apart in P^2 passes, P up to 32).  A pass's end costs
- * in proportion to its own records, so many passes cost little: the
- * Sponza atrium at 640 x 480 in 1,024 passes behind Embree, one thread,
- * spent 1.5% of its CPU in irc_pass_begin and irc_pass_end at a = 0.2 and
- * 4.5% at a = 0.4 (0.4.0, which rebuilt the index every pass: 41.5% and
- * 79.3%; bench/README.md, "The library's own cost").  Not concurrent with
+ * in proportion to its own records, so many passes cost little (what they
+ * cost measured: docs/DESIGN.md, "Fill passes").  Not concurrent with
  * other calls.  Returns IRC_OK,
  * IRC_ERR_STATE when a pass is open, or a negative code.
  */

@@ -522,19 +522,26 @@ static void irc__unlink_at(irc_cache *c, const irc__cell *x, int d, void *ud)
     }
 }
 
-void irc__index_remove(irc_cache *c, uint32_t id)
+/* fn on every node that may hold a reference of record id: those its
+ * placement reach's box overlaps, down to its level as the root now
+ * stands (deeper by the root's growths than when it was placed, never by
+ * more). */
+static void irc__cover_placed(irc_cache *c, uint32_t id, irc__cell_fn fn, void *ud)
 {
     const float *p = irc__rec_at(c, id)->p;
-    irc__ixe *e = &irc__ix(c)[id];
-    const double half = irc__half(p, (double)e->reach);
-    irc__unlink u;
+    const double half = irc__half(p, (double)irc__ix(c)[id].reach);
     irc__box b;
+    irc__box_of(c, p, half, &b);
+    irc__cover(c, &b, irc__level(c, half, IRC__LEVELS), 1, fn, ud);
+}
+
+void irc__index_remove(irc_cache *c, uint32_t id)
+{
+    irc__ixe *e = &irc__ix(c)[id];
+    irc__unlink u;
     u.id = id;
     u.found = 0;
-    /* Down to its level as the root now stands (deeper by the root's
-     * growths than when it was placed, never by more). */
-    irc__box_of(c, p, half, &b);
-    irc__cover(c, &b, irc__level(c, half, IRC__LEVELS), 1, irc__unlink_at, &u);
+    irc__cover_placed(c, id, irc__unlink_at, &u);
     IRC_ASSERT(u.found == e->refs);
     if (e->refs)
         irc__st(c)->indexed--;
@@ -569,16 +576,10 @@ static void irc__tighten_at(irc_cache *c, const irc__cell *x, int d, void *ud)
 
 void irc__index_tighten(irc_cache *c, uint32_t id)
 {
-    const float *p = irc__rec_at(c, id)->p;
     const irc__ixe *e = &irc__ix(c)[id];
     irc__tight t;
-    irc__box b;
-    const double half = irc__half(p, (double)e->reach);
     t.id = id;
     t.reach = irc__reach_now(c, id);
-    if (!e->refs || !(t.reach < (double)e->reach))
-        return;
-    /* the cells removal would visit: those the placement reach covers */
-    irc__box_of(c, p, half, &b);
-    irc__cover(c, &b, irc__level(c, half, IRC__LEVELS), 1, irc__tighten_at, &t);
+    if (e->refs && t.reach < (double)e->reach)
+        irc__cover_placed(c, id, irc__tighten_at, &t);
 }
