@@ -48,10 +48,10 @@ SRC = src/status.c src/version.c \
       src/store/confirm.c src/store/lookup.c \
       src/sample/grid.c src/sample/sampler.c src/sample/strata.c \
       src/irr/weight.c src/irr/kind_irr.c src/irr/irradiance.c src/irr/gradient.c src/irr/visibility.c \
-      src/irr/hessian.c src/irr/detail.c \
+      src/irr/hessian.c src/irr/detail.c src/irr/progressive.c \
       src/sh/kind_sh.c src/sh/sh.c src/sh/shgrad.c \
       src/api/kinds.c src/api/config.c src/api/life.c src/api/api_irr.c src/api/api_sh.c \
-      src/api/occlusion.c src/api/pixel.c src/api/pass.c src/api/inspect.c \
+      src/api/occlusion.c src/api/pixel.c src/api/pass.c src/api/progress.c src/api/inspect.c \
       src/persist/snapshot.c src/persist/merge.c
 # make LEAVE_OUT="SH VISIBILITY HESSIAN SIGHT SUPERSAMPLE GUARD" (any of them): those parts are
 # not compiled, and util.h's IRC_NO_* switch tells the rest (the same
@@ -515,10 +515,13 @@ bench-core: $(BUILD)/bench_core
 # The cache in a small path tracer of its own, called at every sample of
 # every pixel (bench/README.md, "In a path tracer's hands"); BEFORE=<commit>
 # also runs the same host against that commit's library.
-$(BUILD)/bench_host: bench/host.c bench/bench_util.h $(LIBA)
+$(BUILD)/bench_host: bench/host.c bench/host_scene.h bench/bench_util.h $(LIBA)
 	$(CC) -std=c99 $(WARN) -Iinclude -Ibench $(OPT) bench/host.c $(LIBA) -o $@ -lm $(THREAD_LIBS)
-bench-host: $(BUILD)/bench_host
+bench-host: $(BUILD)/bench_host $(BUILD)/bench_progressive
 	sh bench/host.sh $(BUILD)/bench_host $(BEFORE)
+	$(BUILD)/bench_progressive $(PROG_ARGS)
+$(BUILD)/bench_progressive: bench/progressive.c bench/host_scene.h bench/bench_util.h $(LIBA)
+	$(CC) -std=c99 $(WARN) -Iinclude -Ibench $(OPT) bench/progressive.c $(LIBA) -o $@ -lm $(THREAD_LIBS)
 
 # One lookup workload for profilers (bench/README.md: "Where the lookup time goes"):
 # rates, entries scanned and passed, and a checksum of the answers.

@@ -17,6 +17,7 @@
 #include "../index/index.h"
 #include "../index/layout.h"
 #include "../index/verify.h"
+#include "../irr/estimator.h"
 #include "../sample/sampler.h"
 #include "../store/lock.h"
 #include "../store/stats.h"
@@ -347,7 +348,7 @@ static int irc__state_sane(const irc_cache *c, const irc__state *h)
            (uint64_t)h->refs_live + (c->capacity - h->indexed) <= c->ref_cap &&
            h->hand < c->capacity && h->depth <= IRC__LEVELS && h->root_set <= 1u &&
            h->pass_open <= 1u && h->pass_base <= c->capacity && h->compacted <= c->capacity &&
-           h->spare == 0u && h->pending <= c->capacity - h->pass_base &&
+           h->progress <= IRC__PROGRESS_TOP + 1u && h->pending <= c->capacity - h->pass_base &&
            h->packed <= h->pending &&
            (uint32_t)h->torn <= c->capacity && (uint32_t)(h->torn >> 32) <= c->capacity &&
            h->writing <= 1u &&

@@ -71,6 +71,10 @@ typedef struct irc__call {
     float footprint;  /* a pixel's width at the query, 0 = none */
     uint32_t visibility_only; /* args->visibility_only while casting: an
                                  irc_visibility (confirm.c, detail.c), or 0 */
+    uint32_t progress;  /* the cache's progressive level + 1 (irc_progress),
+                           0 = not progressive */
+    uint32_t draw;      /* which of a point's independent estimates this is:
+                           0 the first, k > 0 a refinement's (progress.c) */
 } irc__call;
 
 /* A record's parts after its 32-byte head, each numbered by its kind (0 ..

@@ -28,7 +28,8 @@ typedef struct irc__state {
                                 slots [pass_base, capacity) */
     uint32_t compacted;      /* count when the records were last renumbered
                                 in the index's order (compact.c) */
-    uint32_t spare;          /* 0 */
+    uint32_t progress;       /* progressive level + 1 (irc_progress), 0 =
+                                not progressive */
     double root_c[3];        /* the root cube: centre exact in double */
     double root_h;           /* half its edge, a power of two */
     /* Atomic. */

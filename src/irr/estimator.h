@@ -61,8 +61,30 @@ float irc__net_visibility(const irc_cache *c, const irc__sample *s);
 
 /* irradiance.c: the irradiance record's estimator */
 int irc__irr_compute(irc__call *k, void *rec);
-/* E alone from the configured strata, for a per-pixel estimate. */
+/* E alone from the configured strata (progressive: progressive.c's), for
+ * a per-pixel estimate. */
 int irc__irr_estimate(irc__call *k, float e[3]);
+/* One estimate on grid `level` at k's query (k->draw its random numbers):
+ * a record built as a plain one is, without visibility gradients or
+ * super-samples, or E alone (cosine-weighted strata: E = pi x the mean
+ * radiance of the usable strata). */
+int irc__irr_on_grid(irc__call *k, uint32_t level, irc_record *out);
+int irc__irr_estimate_on(irc__call *k, uint32_t level, float e[3]);
+
+/* progressive.c: records and per-pixel estimates whose rays follow the
+ * host's samples (irc_progress).  The level for samples a pixel; a record
+ * or an E at level k->progress - 1; an estimate at level `from` taken to
+ * level `to` by independent draws (IRC_ERR_NOSAMPLES from one of them
+ * skips it). */
+#define IRC__PROGRESS_FULL 256u /* samples a pixel at which a record has the
+                                   configured grid's rays */
+#define IRC__PROGRESS_TOP 24u   /* the last level */
+uint32_t irc__progress_level(const irc_cache *c, uint32_t samples);
+uint32_t irc__progress_full(const irc_cache *c);
+int irc__irr_progressive(irc__call *k, irc_record *out);
+int irc__irr_progressive_e(irc__call *k, float e[3]);
+int irc__irr_refine(irc__call *k, irc_record *rec, uint32_t from, uint32_t to);
+int irc__irr_refine_e(irc__call *k, float e[3], uint32_t from, uint32_t to);
 void irc__gradients(const irc_cache *c, const irc__grid *g, const irc__sample *s,
                     const float mean[3], const float t1[3], const float t2[3], float gt[3][3],
                     float gr[3][3]);

@@ -356,6 +356,22 @@ static int irc__wants_finer(const irc__call *k, const irc__grid *g, const irc_re
     return rp * (float)(1u << g->level) >= k->c->cfg.irr.full_pixels;
 }
 
+int irc__irr_on_grid(irc__call *k, uint32_t level, irc_record *out)
+{
+    float t1[3], t2[3];
+    irc__grid g;
+    int st;
+    irc__grid_at(k->c, level, &g);
+    if ((st = irc__hemisphere(k, &g, t1, t2, 0u)) < 0)
+        return st;
+    irc__record_build(k->c, &g, (const irc__sample *)(void *)k->slot, k->q.n, t1, t2, NULL,
+                      k->footprint, out);
+    out->p[0] = k->q.p[0];
+    out->p[1] = k->q.p[1];
+    out->p[2] = k->q.p[2];
+    return IRC_OK;
+}
+
 int irc__irr_compute(irc__call *k, void *rec)
 {
     irc_cache *c = k->c;
@@ -366,6 +382,8 @@ int irc__irr_compute(irc__call *k, void *rec)
     const uint32_t top = irc__pilot_level(k);
     irc__grid g, finer;
     int st;
+    if (k->progress)
+        return irc__irr_progressive(k, out);
     irc__grid_at(c, top, &g);
     if ((st = irc__hemisphere(k, &g, t1, t2, g.level ? 0u : c->cfg.irr.supersamples)) < 0)
         return st;
@@ -391,16 +409,13 @@ int irc__irr_compute(irc__call *k, void *rec)
     return IRC_OK;
 }
 
-/* A per-pixel estimate (cfg.irr.detail_pixels, detail.c): of a record
- * only its irradiance, from the configured grid (cosine-weighted strata:
- * E = pi x the mean radiance of the usable strata). */
-int irc__irr_estimate(irc__call *k, float e[3])
+int irc__irr_estimate_on(irc__call *k, uint32_t level, float e[3])
 {
     irc__grid g;
     irc__totals t;
     float t1[3], t2[3];
     int st, ch;
-    irc__grid_at(k->c, 0u, &g);
+    irc__grid_at(k->c, level, &g);
     if ((st = irc__hemisphere(k, &g, t1, t2, 0u)) < 0)
         return st;
     irc__totals_of(&g, (const irc__sample *)(void *)k->slot, &t);
@@ -408,4 +423,14 @@ int irc__irr_estimate(irc__call *k, float e[3])
         e[ch] = IRC_PI * t.sum[ch] / (float)t.used;
     /* radiances near FLT_MAX sum past it: refused as such a record is */
     return irc__finite3(e) ? IRC_OK : IRC_ERR_NONFINITE;
+}
+
+/* A per-pixel estimate (cfg.irr.detail_pixels, detail.c): of a record
+ * only its irradiance, from the configured grid, or in a progressive
+ * cache from as many rays as its records have (progressive.c). */
+int irc__irr_estimate(irc__call *k, float e[3])
+{
+    if (k->progress)
+        return irc__irr_progressive_e(k, e);
+    return irc__irr_estimate_on(k, 0u, e);
 }

@@ -30,6 +30,15 @@ static uint32_t irc__bits(float f)
     return u;
 }
 
+/* A call's seed: the config's for a point's first estimate, and for its
+ * k-th refinement (progress.c) the config's mixed with k, so that every
+ * estimate of a point is independent of the others and of the threads. */
+static uint64_t irc__seed_of(const irc__call *k)
+{
+    const uint64_t s = k->c->cfg.seed;
+    return k->draw ? irc__mix(s ^ (0x726566696e65ull + (uint64_t)k->draw)) : s;
+}
+
 /* The record's random numbers depend on nothing but the query and the seed,
  * so a record is the same whichever thread computes it, and when. */
 irc__rng irc__rng_for(const float p[3], const float n[3], uint64_t seed)
@@ -211,7 +220,7 @@ int irc__sample_hemisphere(irc__call *k, const irc__grid *gr, const float n[3],
     uint32_t s0, i, good = 0, j = 0, col = 0;
     int st;
 
-    rng = irc__rng_for(k->q.p, n, c->cfg.seed);
+    rng = irc__rng_for(k->q.p, n, irc__seed_of(k));
     irc__dirs_init(c, gr, n, t1, t2, &rng, &g);
     for (s0 = 0; s0 < total; s0 += batch) {
         uint32_t cnt = total - s0 < batch ? total - s0 : batch;
@@ -344,7 +353,7 @@ int irc__supersample(irc__call *k, const irc__grid *gr, const float n[3], const 
     irc_hit *hits = (irc_hit *)(void *)(rays + c->cfg.max_batch);
     uint32_t at[64], i, cnt = 0, room, bin;
     float most;
-    irc__rng rng = irc__rng_for(k->q.p, n, c->cfg.seed);
+    irc__rng rng = irc__rng_for(k->q.p, n, irc__seed_of(k));
     irc__dirs g;
     int st;
     bin = irc__ss_threshold(s, m, nphi, extra, &most, &room);
@@ -476,7 +485,7 @@ int irc__refine(irc__call *k, uint32_t top, const irc__grid *from, const irc__gr
     const uint32_t batch = c->cfg.max_batch;
     irc_ray *rays = irc__slot_rays(c, k->slot);
     irc_hit *hits = (irc_hit *)(void *)(rays + batch);
-    const irc__rng rng = irc__rng_for(k->q.p, k->q.n, c->cfg.seed);
+    const irc__rng rng = irc__rng_for(k->q.p, k->q.n, irc__seed_of(k));
     irc__dirs d[IRC__GRIDS];
     irc__grid gl;
     uint32_t i, cnt = 0, at = 0, used = 0;

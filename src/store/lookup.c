@@ -7,6 +7,7 @@
  * callback runs with no lock held.  Counters are updated only once a call
  * has succeeded.
  */
+#include "../block/cache.h"
 #include "../block/form.h"
 #include "../block/check.h"
 #include "../block/slots.h"
@@ -63,6 +64,7 @@ static int irc__compute_in_slot(irc_cache *c, irc__call *k, uint32_t t, void *ho
     k->host = host;
     k->rays = 0;
     k->visibility_only = 0;
+    k->progress = irc__st(c)->progress;
     return fn(k, out);
 }
 
@@ -92,6 +94,7 @@ int irc__compute_at(irc_cache *c, const irc__query *q, void *out, void *host,
     int st;
     k.q = *q;
     k.footprint = 0.0f;
+    k.draw = 0;
     *waited = 0;
     *rays = 0;
     if ((st = irc__slot_claim(c, &t, waited)) < 0 ||
@@ -287,6 +290,7 @@ int irc__px_finish(irc_cache *c, irc__px *px, int st, void *out, float *weight, 
         k.host = host;
         k.rays = 0;
         k.visibility_only = 0;
+        k.draw = 0;
         k.q.place = c->w_inner > 0.0f;
         st = irc__lookup_first(&k, out, &w, &px->tally);
         st = st == IRC_MISS ? irc__miss(c, &k, out, &w, host, &px->tally)

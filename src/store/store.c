@@ -138,6 +138,21 @@ static int irc__store(irc_cache *c, const void *rec, const float un[3])
     return IRC_OK;
 }
 
+int irc__store_refresh(irc_cache *c, uint32_t id, const void *rec)
+{
+    float un[3];
+    int st;
+    if ((st = c->kind->check(c, rec, un)) < 0)
+        return st;
+    if (irc__write_lock(c) < 0)
+        return IRC_ERR_PORT;
+    irc__mark(c, id, IRC__NIL);
+    irc__pack_at(c, rec, un, id);
+    irc__unmark(c);
+    irc__write_unlock(c);
+    return IRC_OK;
+}
+
 int irc__insert_checked(irc_cache *c, const void *rec)
 {
     float un[3];

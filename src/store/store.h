@@ -12,6 +12,10 @@
 int irc__insert(irc_cache *c, const irc__kind *want, const void *rec);
 /* The same for a caller that checked the handle. */
 int irc__insert_checked(irc_cache *c, const void *rec);
+/* Record id's contents replaced by rec, which keeps its position, normal
+ * and radius (the index is untouched): irc_progress's refinements.  Not
+ * concurrent with lookups. */
+int irc__store_refresh(irc_cache *c, uint32_t id, const void *rec);
 /* The caller holds the write lock: the record in slot id (below count)
  * joins the index, clamped by its neighbours if the config asks. */
 void irc__commit_locked(irc_cache *c, uint32_t id);
