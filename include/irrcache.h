@@ -685,29 +685,34 @@ IRC_API int irc_pixel_footprint(const float eye[3], const float forward[3], floa
  */
 IRC_API int irc_progress(irc_cache *cache, uint32_t samples, void *host);
 
-/* A pixel's answer, kept by the host for the pixel's later samples: one
+/* A pixel's answers, kept by the host for the pixel's later samples: one
  * per pixel (or per pixel of a tile), zeroed before the first call (a
- * zeroed irc_pixel holds nothing).  Its fields are the library's. */
-typedef struct irc_pixel {
+ * zeroed irc_pixel holds nothing).  Two, because a pixel on an edge has
+ * samples on two surfaces.  Its fields are the library's. */
+typedef struct irc_pixel_answer {
     float p[3], n[3];    /* the point the answer was made for */
     float e[3];          /* the answer */
     float weight;        /* its weight (0: computed there, or a detail) */
     float footprint;
     int32_t status;      /* what the call that made it returned */
     uint32_t epoch;      /* the cache's level + 1 then; 0: nothing kept */
+} irc_pixel_answer;
+typedef struct irc_pixel {
+    irc_pixel_answer kept[2];
+    uint32_t older;      /* which of them the next new answer replaces */
     uint32_t unused;
 } irc_pixel;
 
 /*
- * The _px call for a sample of a pixel whose answer the host keeps in
- * *pixel: a sample whose point lies within 2 footprints of the kept
+ * The _px call for a sample of a pixel whose answers the host keeps in
+ * *pixel: a sample whose point lies within 2 footprints of a kept
  * answer's point, with a normal within about 18 degrees of its normal,
- * gets the kept answer (rgb, *weight, the same status) with no lookup and
+ * gets that answer (rgb, *weight, the same status) with no lookup and
  * no probe, until irc_progress refines the records; then its next sample
  * looks up again, and a kept detail estimate (IRC_DETAIL) gets as many
  * new rays as it has instead of being made again.  Any other point is
  * answered by irc_cache_lookup_or_compute_px, whose answer *pixel then
- * keeps.  So a pixel costs a lookup (and its probes) about once a level,
+ * keeps in place of the one used less recently.  So a pixel costs a lookup (and its probes) about once a level,
  * not once a sample.  Calls for one irc_pixel must not run concurrently;
  * zero it again after irc_cache_clear, irc_snapshot_read or irc_merge,
  * and use it with one cache only.  Returns as the _px call, with

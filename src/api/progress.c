@@ -114,7 +114,7 @@ int irc_progress(irc_cache *c, uint32_t samples, void *host)
 #define IRC__PIXEL_COS 0.95f
 
 /* Whether the pixel's answer was made for a point near (p, n). */
-static int irc__pixel_near(const irc_pixel *px, const float p[3], const float n[3],
+static int irc__pixel_near(const irc_pixel_answer *px, const float p[3], const float n[3],
                            float footprint)
 {
     const float f = IRC__PIXEL_REACH * (footprint > px->footprint ? footprint : px->footprint);
@@ -140,7 +140,7 @@ static int irc__more_run(irc__call *k, void *out)
 }
 
 /* A kept detail estimate taken from its level to the cache's, at (p, n). */
-static int irc__pixel_refine(irc_cache *c, irc_pixel *px, const float p[3], const float n[3],
+static int irc__pixel_refine(irc_cache *c, irc_pixel_answer *px, const float p[3], const float n[3],
                              void *host)
 {
     irc__query q;
@@ -169,9 +169,9 @@ static int irc__pixel_refine(irc_cache *c, irc_pixel *px, const float p[3], cons
     return IRC_DETAIL;
 }
 
-/* The pixel's answer, when it serves (p, n) now: IRC_MISS when not. */
-static int irc__pixel_kept(irc_cache *c, irc_pixel *px, const float p[3], const float n[3],
-                           float footprint, void *host)
+/* Answer i of the pixel, when it serves (p, n) now: IRC_MISS when not. */
+static int irc__pixel_kept(irc_cache *c, irc_pixel_answer *px, const float p[3],
+                           const float n[3], float footprint, void *host)
 {
     const uint32_t epoch = irc__st(c)->progress + 1u;
     int st;
@@ -189,14 +189,15 @@ static int irc__pixel_kept(irc_cache *c, irc_pixel *px, const float p[3], const 
     return IRC_DETAIL;
 }
 
-int irc_cache_lookup_pixel(irc_cache *c, irc_pixel *px, const float p[3], const float n[3],
+int irc_cache_lookup_pixel(irc_cache *c, irc_pixel *pixel, const float p[3], const float n[3],
                            float footprint, float rgb[3], float *weight, void *host)
 {
+    irc_pixel_answer *px;
     float un[3], w = 0.0f;
-    int st = irc__enter(c, &irc__kind_irr), a;
+    int st = irc__enter(c, &irc__kind_irr), a, i;
     if (st < 0)
         return st;
-    if (!px || !rgb)
+    if (!pixel || !rgb)
         return IRC_ERR_NULL;
     if ((st = irc__check_vec(p)) < 0 || (st = irc__check_normal(n, un)) < 0)
         return st;
@@ -204,17 +205,22 @@ int irc_cache_lookup_pixel(irc_cache *c, irc_pixel *px, const float p[3], const 
         return IRC_ERR_NONFINITE;
     if (footprint < 0.0f)
         return IRC_ERR_RANGE;
-    if ((st = irc__pixel_kept(c, px, p, un, footprint, host)) != IRC_MISS) {
+    for (i = 0; i < 2; i++) {
+        px = &pixel->kept[i];
+        if ((st = irc__pixel_kept(c, px, p, un, footprint, host)) == IRC_MISS)
+            continue;
         if (st < 0)
             return st;
         for (a = 0; a < 3; a++)
             rgb[a] = px->e[a];
         if (weight)
             *weight = px->weight;
+        pixel->older = 1u - (uint32_t)i;
         return st;
     }
     if ((st = irc_cache_lookup_or_compute_px(c, p, un, footprint, rgb, &w, host)) < 0)
         return st;
+    px = &pixel->kept[pixel->older & 1u];
     for (a = 0; a < 3; a++) {
         px->p[a] = p[a];
         px->n[a] = un[a];
@@ -224,6 +230,7 @@ int irc_cache_lookup_pixel(irc_cache *c, irc_pixel *px, const float p[3], const 
     px->footprint = footprint;
     px->status = st;
     px->epoch = irc__st(c)->progress + 1u;
+    pixel->older = (pixel->older & 1u) ^ 1u;
     if (weight)
         *weight = w;
     return st;
