@@ -65,10 +65,9 @@ static int irc__refine_all(irc_cache *c, uint32_t from, uint32_t to, void *host,
     k.slot = irc__slot(c, slot);
     k.host = host;
     k.progress = to + 1u;
-    for (id = 0; id < count && st >= 0; id++) {
-        st = irc__refine_record(c, &k, id, from, to);
-        t->add[IRC__C_RAYS] += k.rays;
-    }
+    for (id = 0; id < count && st >= 0; id++)
+        if ((st = irc__refine_record(c, &k, id, from, to)) >= 0)
+            t->add[IRC__C_RAYS] += k.rays;
     irc__slot_release(c, slot);
     return st;
 }
