@@ -31,6 +31,7 @@
  * PROG_A=a sets the knob.  PROG_IMAGES=DIR writes DIR/MODE-SPP.ppm.
  */
 #define _POSIX_C_SOURCE 200809L
+#define IRC_EXPERIMENTAL /* irc_progress, irc_cache_lookup_pixel */
 #include <stdio.h>
 #include <stdlib.h>
 #include <time.h>

@@ -653,75 +653,6 @@ IRC_API int irc_cache_lookup_or_compute_px(irc_cache *cache, const float p[3],
 IRC_API int irc_pixel_footprint(const float eye[3], const float forward[3], float pixel_angle,
                                 const float p[3], const float n[3], float *footprint);
 
-/* ------------------------------------------------------------------------ */
-/* Progressive renderers: many samples a pixel, the image shown as it       */
-/* converges (docs/DESIGN.md, "Progressive hosts"; examples/progressive.c).  */
-
-/*
- * Tells the cache how many samples a pixel the host has taken (call it
- * between iterations: after 1, 2, 4, ... or after every one; only a new
- * power of two does anything).  From the first call on, the cache is
- * progressive: a record's rays follow the samples, M N s / 256 for s
- * samples a pixel (M x N the strata the knob chose) but at least M N / 16
- * (M N / 4 for a >= 0.375; M N at the 64 x 256 and 128 x 512 of a below
- * 0.125), so records are cheap while the image is noisy anyway and have
- * the knob's rays from 256 samples on.  At each power of two every record
- * is refined: new, independent rays as many as it has, its irradiance and
- * gradients the mean of all of them (its position and radius kept), so
- * the cache's noise falls with the samples as path tracing's does.
- * Records computed later get the level's rays at once; per-pixel detail
- * estimates too.  The refinement casts rays through cfg.trace from the
- * calling thread (args->host = host), 2x the rays the records hold; it is
- * the same whatever threads made the records, so a host that fills in
- * passes gets the same image at any thread count.  Not concurrent with
- * any other call on the cache; not inside a pass (IRC_ERR_STATE).
- * samples may fall back only in an empty cache (after irc_cache_clear,
- * for a new view), else IRC_ERR_RANGE.  Records that a snapshot or merge
- * brings in count as holding the level's rays.  Returns IRC_OK,
- * IRC_ERR_UNSUPPORTED (SH records, VISIBILITY, HESSIAN or supersamples: a
- * coarser estimate of those does not exist), or a negative code; a code
- * from the callback stops the refinement there: the records before it are
- * refined, the rest keep their rays, and the cache is at the new level.
- */
-IRC_API int irc_progress(irc_cache *cache, uint32_t samples, void *host);
-
-/* A pixel's answers, kept by the host for the pixel's later samples: one
- * per pixel (or per pixel of a tile), zeroed before the first call (a
- * zeroed irc_pixel holds nothing).  Two, because a pixel on an edge has
- * samples on two surfaces.  Its fields are the library's. */
-typedef struct irc_pixel_answer {
-    float p[3], n[3];    /* the point the answer was made for */
-    float e[3];          /* the answer */
-    float weight;        /* its weight (0: computed there, or a detail) */
-    float footprint;
-    int32_t status;      /* what the call that made it returned */
-    uint32_t epoch;      /* the cache's level + 1 then; 0: nothing kept */
-} irc_pixel_answer;
-typedef struct irc_pixel {
-    irc_pixel_answer kept[2];
-    uint32_t older;      /* which of them the next new answer replaces */
-    uint32_t unused;
-} irc_pixel;
-
-/*
- * The _px call for a sample of a pixel whose answers the host keeps in
- * *pixel: a sample whose point lies within 2 footprints of a kept
- * answer's point, with a normal within about 18 degrees of its normal,
- * gets that answer (rgb, *weight, the same status) with no lookup and
- * no probe, until irc_progress refines the records; then its next sample
- * looks up again, and a kept detail estimate (IRC_DETAIL) gets as many
- * new rays as it has instead of being made again.  Any other point is
- * answered by irc_cache_lookup_or_compute_px, whose answer *pixel then
- * keeps in place of the one used less recently.  So a pixel costs a lookup (and its probes) about once a level,
- * not once a sample.  Calls for one irc_pixel must not run concurrently;
- * zero it again after irc_cache_clear, irc_snapshot_read or irc_merge,
- * and use it with one cache only.  Returns as the _px call, with
- * IRC_ERR_NULL for a NULL pixel; *pixel changes only on success.
- */
-IRC_API int irc_cache_lookup_pixel(irc_cache *cache, irc_pixel *pixel, const float p[3],
-                                   const float n[3], float footprint, float rgb[3],
-                                   float *weight, void *host);
-
 /* Read the record in slot id.  Returns IRC_OK, IRC_MISS (an empty slot),
  * IRC_ERR_RANGE (id >= capacity), or a negative error code. */
 IRC_API int irc_cache_record(irc_cache *cache, uint32_t id, irc_record *out);
@@ -1035,4 +966,72 @@ IRC_API int irc_sh_radiance(const irc_sh *sh, const float w[3], float rgb[3]);
 #ifdef __cplusplus
 }
 #endif
+/* Progressive renderers: many samples a pixel, the image shown as it       */
+/* converges (docs/DESIGN.md, "Progressive hosts"; bench/progressive.c).   */
+
+/*
+ * Tells the cache how many samples a pixel the host has taken (call it
+ * between iterations: after 1, 2, 4, ... or after every one; only a new
+ * power of two does anything).  From the first call on, the cache is
+ * progressive: a record's rays follow the samples, M N s / 256 for s
+ * samples a pixel (M x N the strata the knob chose) but at least M N / 16
+ * (M N / 4 for a >= 0.375; M N at the 64 x 256 and 128 x 512 of a below
+ * 0.125), so records are cheap while the image is noisy anyway and have
+ * the knob's rays from 256 samples on.  At each power of two every record
+ * is refined: new, independent rays as many as it has, its irradiance and
+ * gradients the mean of all of them (its position and radius kept), so
+ * the cache's noise falls with the samples as path tracing's does.
+ * Records computed later get the level's rays at once; per-pixel detail
+ * estimates too.  The refinement casts rays through cfg.trace from the
+ * calling thread (args->host = host), 2x the rays the records hold; it is
+ * the same whatever threads made the records, so a host that fills in
+ * passes gets the same image at any thread count.  Not concurrent with
+ * any other call on the cache; not inside a pass (IRC_ERR_STATE).
+ * samples may fall back only in an empty cache (after irc_cache_clear,
+ * for a new view), else IRC_ERR_RANGE.  Records that a snapshot or merge
+ * brings in count as holding the level's rays.  Returns IRC_OK,
+ * IRC_ERR_UNSUPPORTED (SH records, VISIBILITY, HESSIAN or supersamples: a
+ * coarser estimate of those does not exist), or a negative code; a code
+ * from the callback stops the refinement there: the records before it are
+ * refined, the rest keep their rays, and the cache is at the new level.
+ */
+IRC_API int irc_progress(irc_cache *cache, uint32_t samples, void *host);
+
+/* A pixel's answers, kept by the host for the pixel's later samples: one
+ * per pixel (or per pixel of a tile), zeroed before the first call (a
+ * zeroed irc_pixel holds nothing).  Two, because a pixel on an edge has
+ * samples on two surfaces.  Its fields are the library's. */
+typedef struct irc_pixel_answer {
+    float p[3], n[3];    /* the point the answer was made for */
+    float e[3];          /* the answer */
+    float weight;        /* its weight (0: computed there, or a detail) */
+    float footprint;
+    int32_t status;      /* what the call that made it returned */
+    uint32_t epoch;      /* the cache's level + 1 then; 0: nothing kept */
+} irc_pixel_answer;
+typedef struct irc_pixel {
+    irc_pixel_answer kept[2];
+    uint32_t older;      /* which of them the next new answer replaces */
+    uint32_t unused;
+} irc_pixel;
+
+/*
+ * The _px call for a sample of a pixel whose answers the host keeps in
+ * *pixel: a sample whose point lies within 2 footprints of a kept
+ * answer's point, with a normal within about 18 degrees of its normal,
+ * gets that answer (rgb, *weight, the same status) with no lookup and
+ * no probe, until irc_progress refines the records; then its next sample
+ * looks up again, and a kept detail estimate (IRC_DETAIL) gets as many
+ * new rays as it has instead of being made again.  Any other point is
+ * answered by irc_cache_lookup_or_compute_px, whose answer *pixel then
+ * keeps in place of the one used less recently.  So a pixel costs a lookup (and its probes) about once a level,
+ * not once a sample.  Calls for one irc_pixel must not run concurrently;
+ * zero it again after irc_cache_clear, irc_snapshot_read or irc_merge,
+ * and use it with one cache only.  Returns as the _px call, with
+ * IRC_ERR_NULL for a NULL pixel; *pixel changes only on success.
+ */
+IRC_API int irc_cache_lookup_pixel(irc_cache *cache, irc_pixel *pixel, const float p[3],
+                                   const float n[3], float footprint, float rgb[3],
+                                   float *weight, void *host);
+
 #endif /* IRC_EXPERIMENTAL */

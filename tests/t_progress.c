@@ -4,6 +4,7 @@
  * until the records refine and a kept detail estimate gets exactly the
  * rays it lacks; calls that cannot be taken are refused and change
  * nothing. */
+#define IRC_EXPERIMENTAL /* irc_progress, irc_cache_lookup_pixel (irrcache.h) */
 #include <math.h>
 #include <pthread.h>
 #include <stdlib.h>

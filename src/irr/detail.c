@@ -80,7 +80,8 @@ static int irc__detail_run(irc__call *k, void *out)
     int st = irc__detail_probe(k, dt);
     if (st < 0 || !dt->near)
         return st;
-    return irc__irr_estimate(k, dt->e);
+    /* the configured grid's rays, or a progressive cache's level's */
+    return k->progress ? irc__irr_progressive_e(k, dt->e) : irc__irr_estimate_on(k, 0u, dt->e);
 }
 
 int irc__detail_px(irc_cache *c, irc__px *px, float rgb[3], void *host)

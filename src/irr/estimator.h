@@ -61,9 +61,6 @@ float irc__net_visibility(const irc_cache *c, const irc__sample *s);
 
 /* irradiance.c: the irradiance record's estimator */
 int irc__irr_compute(irc__call *k, void *rec);
-/* E alone from the configured strata (progressive: progressive.c's), for
- * a per-pixel estimate. */
-int irc__irr_estimate(irc__call *k, float e[3]);
 /* One estimate on grid `level` at k's query (k->draw its random numbers):
  * a record built as a plain one is, without visibility gradients or
  * super-samples, or E alone (cosine-weighted strata: E = pi x the mean

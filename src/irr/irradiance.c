@@ -382,8 +382,6 @@ int irc__irr_compute(irc__call *k, void *rec)
     const uint32_t top = irc__pilot_level(k);
     irc__grid g, finer;
     int st;
-    if (k->progress)
-        return irc__irr_progressive(k, out);
     irc__grid_at(c, top, &g);
     if ((st = irc__hemisphere(k, &g, t1, t2, g.level ? 0u : c->cfg.irr.supersamples)) < 0)
         return st;
@@ -423,14 +421,4 @@ int irc__irr_estimate_on(irc__call *k, uint32_t level, float e[3])
         e[ch] = IRC_PI * t.sum[ch] / (float)t.used;
     /* radiances near FLT_MAX sum past it: refused as such a record is */
     return irc__finite3(e) ? IRC_OK : IRC_ERR_NONFINITE;
-}
-
-/* A per-pixel estimate (cfg.irr.detail_pixels, detail.c): of a record
- * only its irradiance, from the configured grid, or in a progressive
- * cache from as many rays as its records have (progressive.c). */
-int irc__irr_estimate(irc__call *k, float e[3])
-{
-    if (k->progress)
-        return irc__irr_progressive_e(k, e);
-    return irc__irr_estimate_on(k, 0u, e);
 }

@@ -364,7 +364,8 @@ static int irc__irrg_finish(const irc_cache *c, const irc__query *q, const void 
 static int irc__irr_make(irc__call *k, void *rec)
 {
     float un[3];
-    int st = irc__irr_compute(k, rec);
+    /* a progressive cache's records follow its level (progressive.c) */
+    int st = k->progress ? irc__irr_progressive(k, (irc_record *)rec) : irc__irr_compute(k, rec);
     return st < 0 ? st : irc__irr_check(k->c, rec, un);
 }
 

@@ -87,7 +87,7 @@ static void irc__mix_record(irc_record *rec, const irc_record *est, float w)
 
 /* Steps (from, to] of the point's estimates, each record or E (by rec or
  * e) mixed into the running mean. */
-static int irc__steps(irc__call *k, irc_record *rec, float e[3], uint32_t from, uint32_t to)
+static int irc__add_draws(irc__call *k, irc_record *rec, float e[3], uint32_t from, uint32_t to)
 {
     const uint32_t top = irc__top(k->c);
     irc_record est;
@@ -122,12 +122,12 @@ static int irc__steps(irc__call *k, irc_record *rec, float e[3], uint32_t from, 
 
 int irc__irr_refine(irc__call *k, irc_record *rec, uint32_t from, uint32_t to)
 {
-    return irc__steps(k, rec, NULL, from, to);
+    return irc__add_draws(k, rec, NULL, from, to);
 }
 
 int irc__irr_refine_e(irc__call *k, float e[3], uint32_t from, uint32_t to)
 {
-    return irc__steps(k, NULL, e, from, to);
+    return irc__add_draws(k, NULL, e, from, to);
 }
 
 int irc__irr_progressive(irc__call *k, irc_record *out)
@@ -135,7 +135,7 @@ int irc__irr_progressive(irc__call *k, irc_record *out)
     int st;
     k->draw = 0;
     if ((st = irc__irr_on_grid(k, irc__top(k->c), out)) < 0 ||
-        (st = irc__steps(k, out, NULL, 0u, k->progress - 1u)) < 0)
+        (st = irc__add_draws(k, out, NULL, 0u, k->progress - 1u)) < 0)
         return st;
     out->rays = k->rays;
     return IRC_OK;
@@ -147,5 +147,5 @@ int irc__irr_progressive_e(irc__call *k, float e[3])
     k->draw = 0;
     if ((st = irc__irr_estimate_on(k, irc__top(k->c), e)) < 0)
         return st;
-    return irc__steps(k, NULL, e, 0u, k->progress - 1u);
+    return irc__add_draws(k, NULL, e, 0u, k->progress - 1u);
 }
