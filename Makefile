@@ -554,6 +554,11 @@ $(BUILD)/bench_run: $(BENCH_RUN_SRC) bench/bench.h $(DEMO_LIBA) demo/*.h demo/em
 	$(CC) $(DEMO_CFLAGS) $(if $(EMBREE_H),-DBENCH_EMBREE demo/embree_rays.c) $(BENCH_RUN_SRC) \
 	      $(DEMO_LIBA) $(LIBA) -o $@ -lm -lpthread $(if $(EMBREE_H),-lembree3)
 
+$(BUILD)/bench_pathtracer: bench/pathtracer.c bench/bench_util.h $(DEMO_LIBA) demo/*.h demo/embree_rays.c \
+                           $(LIBA) $(BUILD)/rays-$(BENCH_RAYS_BUILD).stamp
+	$(CC) $(DEMO_CFLAGS) -Ibench $(if $(EMBREE_H),-DBENCH_EMBREE demo/embree_rays.c) bench/pathtracer.c \
+	      $(DEMO_LIBA) $(LIBA) -o $@ -lm -lpthread $(if $(EMBREE_H),-lembree3)
+
 bench: real-scenes
 	@sh examples/need-embree.sh || echo "bench: Embree not installed: rays from the demo's BVH"
 	$(MAKE) -s $(BUILD)/bench_run $(BUILD)/glossy
