@@ -379,8 +379,24 @@ bench-embree-small:
 	@want=$$([ -e /usr/include/embree3/rtcore.h ] && echo Embree || echo "the demo's BVH"); \
 	  grep -q "library's own CPU (outside the callback) .*pass ends .*($$want)" \
 	    $(BUILD)/bench-embree-small.log || { echo "bench-embree-small: no split line for $$want"; exit 1; }
+# The cache in progressive path tracers (docs/DESIGN.md, "Progressive
+# hosts"): bench/host.c's scene sample-major, and the Sponza atrium with
+# the cache at the first hit and at the second vertex (PT_ARGS: width
+# height samples reference_samples).
+bench-progressive: real-scenes $(BUILD)/bench_progressive $(BUILD)/bench_pathtracer
+	@sh examples/need-embree.sh || echo "bench-progressive: Embree not installed: the demo's BVH"
+	$(BUILD)/bench_progressive $(PROG_ARGS)
+	$(BUILD)/bench_pathtracer $(BUILD)/scenes/sponza-atrium.scene $(PT_ARGS)
+bench-progressive-small:
+	@$(MAKE) -s $(BUILD)/bench_progressive $(BUILD)/bench_pathtracer
+	$(BUILD)/bench_progressive 32 24 16 64 > $(BUILD)/bench-progressive-small.log
+	$(BUILD)/bench_pathtracer demo/scenes/cornell.scene 24 24 16 64 >> $(BUILD)/bench-progressive-small.log
+	@cat $(BUILD)/bench-progressive-small.log
+	@for m in pixel sample fixed second first; do grep -q "^$$m  *16 " $(BUILD)/bench-progressive-small.log || \
+	  { echo "bench-progressive-small: no 16-sample row for $$m"; exit 1; }; done
+
 SMALL_TARGETS = adaptive-small fig15-small glossy-small sh-experiments-small sh-animation-small bench-bounces-small \
-                bench-embree-small
+                bench-embree-small bench-progressive-small
 small-targets:
 	@echo $(SMALL_TARGETS)
 
@@ -617,7 +633,7 @@ uninstall:
 clean:
 	rm -rf build build-*
 
-.PHONY: print-lists small-targets bench-embree-small adaptive-small fig15-small glossy-small sh-experiments-small sh-animation-small bench-bounces-small cycles fingerprint amalgamation embree-example all lib cross embedded-test embedded-host size examples test check coverage demo real-scenes fig15 adaptive glossy sh-experiments sh-animation fuzz fuzz-long replay bench-core bench-host bench-anchor bench-lookups bench-records bench bench-bounces bench-fill farm-demo install uninstall clean
+.PHONY: print-lists small-targets bench-embree-small bench-progressive bench-progressive-small adaptive-small fig15-small glossy-small sh-experiments-small sh-animation-small bench-bounces-small cycles fingerprint amalgamation embree-example all lib cross embedded-test embedded-host size examples test check coverage demo real-scenes fig15 adaptive glossy sh-experiments sh-animation fuzz fuzz-long replay bench-core bench-host bench-anchor bench-lookups bench-records bench bench-bounces bench-fill farm-demo install uninstall clean
 
 # Which records answer the worst pixels of a Sponza render, and why
 # (bench/README.md, "On real geometry"); needs make bench's cached references.

@@ -25,11 +25,16 @@
  *           return D(x2) + kd2 [env | D(x3)], one path each.
  * Errors are against path tracing at ref samples (its own random numbers),
  * with the reference's own noise taken out as in bench/progressive.c;
- * speed-up at equal error likewise (one thread's CPU time).
+ * speed-up at equal error likewise (one thread's CPU time).  rays: every
+ * ray the tracer cast (the callback's included); cache_rays: the rays the
+ * library asked for (irc_stats), each of which costs the first hit's
+ * callback about four.
  *
  * Usage: bench_pathtracer SCENE [width height samples ref_samples]
  * (default 160 120 1024 4096).  PT_MODES=second,first chooses the cache
- * modes; PT_A=a the knob.  Prints the backend.
+ * modes; PT_A=a the knob; PT_SPREAD the second vertex's footprint over
+ * the bounce's length; PT_MIN_PIXELS the first hit's cfg.irr.min_pixels.
+ * Prints the backend.
  */
 #define _POSIX_C_SOURCE 200809L
 #define IRC_EXPERIMENTAL /* irc_progress, irc_cache_lookup_pixel */
@@ -66,7 +71,7 @@ typedef struct pt {
 
 typedef struct point {
     double cpu, library, rmse, raw, worst1;
-    unsigned long long records, rays;
+    unsigned long long records, rays, computes, details, cache_rays;
     int done;
 } point;
 
@@ -327,8 +332,12 @@ static int render(pt *p, irc_cache *c, int mode, int spp, const float *ref, poin
             pts[q].library = lib;
             measure(p, acc, s + 1, ref, &pts[q]);
             pts[q].rays = p->rays;
-            if (c && irc_cache_stats(c, &st) == IRC_OK)
+            if (c && irc_cache_stats(c, &st) == IRC_OK) {
                 pts[q].records = st.records;
+                pts[q].computes = st.computes;
+                pts[q].details = st.details;
+                pts[q].cache_rays = st.rays;
+            }
             pts[q].done = 1;
             spent += cpu_now() - u;
             q++;
@@ -376,6 +385,8 @@ static int cache_run(pt *p, int mode, int spp, const float *ref, point *pts)
     cfg.trace = trace_cb;
     cfg.context = &lv;
     cfg.accuracy = getenv("PT_A") ? (float)atof(getenv("PT_A")) : 0.0f;
+    if (mode == FIRST && getenv("PT_MIN_PIXELS"))
+        cfg.irr.min_pixels = (float)atof(getenv("PT_MIN_PIXELS"));
     if (mode == SECOND) {
         /* After a diffuse bounce a record need be no finer than the
          * bounce's footprint (the _px call's bound a R >= min_pixels x
@@ -460,8 +471,9 @@ int main(int argc, char **argv)
             x->rmse = e2 > 0.0 ? sqrt(e2) : 0.0;
         }
     }
-    printf("%-7s %6s %9s %8s %8s %8s %8s %9s %11s %9s\n", "mode", "spp", "cpu_s", "rmse", "raw",
-           "worst1%", "speedup", "library", "rays", "records");
+    printf("%-7s %6s %9s %8s %8s %8s %8s %9s %11s %9s %9s %8s %11s\n", "mode", "spp", "cpu_s",
+           "rmse", "raw", "worst1%", "speedup", "library", "rays", "records", "computes",
+           "details", "cache_rays");
     for (mode = PATH; mode < MODES; mode++)
         for (q = 0; q < CHECKS; q++) {
             const point *x = &pts[mode][q], *b = &pts[PATH][q];
@@ -470,9 +482,11 @@ int main(int argc, char **argv)
                             : 0.0;
             if (!x->done)
                 continue;
-            printf("%-7s %6d %9.2f %8.4f %8.4f %8.4f %7.2fx %8.1f%% %11llu %9llu\n",
+            printf("%-7s %6d %9.2f %8.4f %8.4f %8.4f %7.2fx %8.1f%% %11llu %9llu %9llu %8llu "
+                   "%11llu\n",
                    mode_name[mode], check_spp[q], x->cpu, x->rmse, x->raw, x->worst1, up,
-                   100.0 * x->library / x->cpu, x->rays, x->records);
+                   100.0 * x->library / x->cpu, x->rays, x->records, x->computes, x->details,
+                   x->cache_rays);
         }
     free(ref);
     lights_free(&p.l);
