@@ -1021,13 +1021,15 @@ typedef struct irc_pixel {
  * answer's point, with a normal within about 18 degrees of its normal,
  * gets that answer (rgb, *weight, the same status) with no lookup and
  * no probe, until irc_progress refines the records; then its next sample
- * looks up again, and a kept detail estimate (IRC_DETAIL) gets as many
- * new rays as it has instead of being made again.  Any other point is
- * answered by irc_cache_lookup_or_compute_px, whose answer *pixel then
- * keeps in place of the one used less recently.  So a pixel costs a lookup (and its probes) about once a level,
- * not once a sample.  Calls for one irc_pixel must not run concurrently;
- * zero it again after irc_cache_clear, irc_snapshot_read or irc_merge,
- * and use it with one cache only.  Returns as the _px call, with
+ * there looks up again (without probes: the point was no detail), and a
+ * kept detail estimate (IRC_DETAIL) gets as many new rays as it has
+ * instead of being made again.  Any other point is answered by
+ * irc_cache_lookup_or_compute_px, whose answer *pixel then keeps in
+ * place of the one used less recently.  So a pixel costs a lookup about
+ * once a level, not once a sample, and its probes once.  Calls for one
+ * irc_pixel must not run concurrently; zero it again after
+ * irc_cache_clear, irc_snapshot_read or irc_merge, and use it with one
+ * cache only.  Returns as the _px call, with
  * IRC_ERR_NULL for a NULL pixel; *pixel changes only on success.
  */
 IRC_API int irc_cache_lookup_pixel(irc_cache *cache, irc_pixel *pixel, const float p[3],

@@ -329,6 +329,7 @@ TEST(test_pixel_kept)
     memcpy(s.box_hi, hi, sizeof hi);
     cfg = scene_config(&s, IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION, 8, 32);
     cfg.max_radius = 4.0f;
+    cfg.check_visibility = IRC_OFF; /* a lookup casts no ray: probes counted alone */
     if (!(c = block_cache(&cfg, 256, 0)))
         return;
     memset(&px, 0, sizeof px);
@@ -355,12 +356,15 @@ TEST(test_pixel_kept)
                   irc_cache_stats(c, &a) == IRC_OK && a.lookups == b.lookups,
               "two surfaces: %llu lookups more", (unsigned long long)(a.lookups - b.lookups));
     }
-    /* refined: looked up again */
+    /* refined: looked up again, without the 8 probes (the point was no
+     * detail), so with no ray at all */
     CHECK(irc_progress(c, 128, NULL) == IRC_OK, "refine");
     irc_cache_stats(c, &b);
     CHECK(irc_cache_lookup_pixel(c, &px, p, up, 0.01f, rgb2, &w, NULL) == IRC_OK &&
-              irc_cache_stats(c, &a) == IRC_OK && a.lookups == b.lookups + 1,
-          "after a refinement the next sample looks up");
+              irc_cache_stats(c, &a) == IRC_OK && a.lookups == b.lookups + 1 &&
+              a.rays == b.rays,
+          "after a refinement the next sample looks up: %llu lookups, %llu rays",
+          (unsigned long long)(a.lookups - b.lookups), (unsigned long long)(a.rays - b.rays));
     /* bad input: an error, *pixel as it was */
     memcpy(&copy, &px, sizeof px);
     p[1] = NAN;

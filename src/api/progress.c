@@ -188,6 +188,26 @@ static int irc__pixel_kept(irc_cache *c, irc_pixel_answer *px, const float p[3],
     return IRC_DETAIL;
 }
 
+/* A new answer at (p, n): the _px call, without its probes where a kept
+ * answer near the point was no detail (the geometry around it has not
+ * moved: the probes would find what they found). */
+static int irc__pixel_fresh(irc_cache *c, const irc_pixel *pixel, const float p[3],
+                            const float n[3], float footprint, float rgb[3], float *w, void *host)
+{
+    irc__px px;
+    int i, st;
+    for (i = 0; i < 2; i++) {
+        const irc_pixel_answer *k = &pixel->kept[i];
+        if (k->epoch && k->status != IRC_DETAIL && irc__pixel_near(k, p, n, footprint))
+            break;
+    }
+    if (i == 2)
+        return irc_cache_lookup_or_compute_px(c, p, n, footprint, rgb, w, host);
+    if ((st = irc__px_open(c, &irc__kind_irr, p, n, footprint, rgb, &px)) < 0)
+        return st;
+    return irc__px_finish(c, &px, IRC_MISS, rgb, w, host);
+}
+
 int irc_cache_lookup_pixel(irc_cache *c, irc_pixel *pixel, const float p[3], const float n[3],
                            float footprint, float rgb[3], float *weight, void *host)
 {
@@ -217,7 +237,7 @@ int irc_cache_lookup_pixel(irc_cache *c, irc_pixel *pixel, const float p[3], con
         pixel->older = 1u - (uint32_t)i;
         return st;
     }
-    if ((st = irc_cache_lookup_or_compute_px(c, p, un, footprint, rgb, &w, host)) < 0)
+    if ((st = irc__pixel_fresh(c, pixel, p, un, footprint, rgb, &w, host)) < 0)
         return st;
     px = &pixel->kept[pixel->older & 1u];
     for (a = 0; a < 3; a++) {
