@@ -402,6 +402,14 @@ static int cache_run(pt *p, int mode, int spp, const float *ref, point *pts)
         return -1;
     }
     rc = render(p, c, mode, spp, ref, pts);
+    {
+        irc_stats st;
+        if (irc_cache_stats(c, &st) == IRC_OK)
+            printf("%s: block %.1f MB for %u records (%llu used, %zu bytes each)%s\n",
+                   mode_name[mode], (double)bytes / 1048576.0, max,
+                   (unsigned long long)st.records, st.record_bytes,
+                   mode == FIRST ? "; irc_pixel store 112 bytes a pixel" : "");
+    }
     irc_fini(c);
     free(cfg.buffer);
     return rc;

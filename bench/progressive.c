@@ -271,8 +271,15 @@ int main(int argc, char **argv)
             printf("%s failed\n", mode_name[mode]);
             failed = 1;
         }
-        if (c)
+        if (c) {
+            irc_stats st;
+            if (irc_cache_stats(c, &st) == IRC_OK)
+                printf("%s: block %.1f MB (%llu records used, %zu bytes each)%s\n",
+                       mode_name[mode], (double)bytes / 1048576.0,
+                       (unsigned long long)st.records, st.record_bytes,
+                       mode == SAMPLE ? "" : "; irc_pixel store 112 bytes a pixel");
             irc_fini(c);
+        }
         free(cfg.buffer);
         if (mode == PATH && pts[PATH][0].done) /* v from 4 samples: raw^2 = v (1/4 + 1/R) */
             v = pts[PATH][0].raw * pts[PATH][0].raw / (0.25 + 1.0 / ref_spp);
