@@ -30,6 +30,9 @@
  * library asked for (irc_stats), each of which costs the first hit's
  * callback about four.
  *
+ * PT_DEPTH=k makes paths of k vertices (the caches' rays then return
+ * paths of k - 2 or k - 3 more vertices).
+ *
  * Usage: bench_pathtracer SCENE [width height samples ref_samples]
  * (default 160 120 1024 4096).  PT_MODES=second,first chooses the cache
  * modes; PT_A=a the knob; PT_SPREAD the second vertex's footprint over
@@ -198,6 +201,17 @@ static int trace_cb(const irc_trace_args *a)
     return 0;
 }
 
+/* Path vertices (PT_DEPTH, default 3): x1 .. x_depth, each with NEE. */
+static int depth(void)
+{
+    static int d = 0;
+    if (!d) {
+        d = getenv("PT_DEPTH") ? atoi(getenv("PT_DEPTH")) : 3;
+        d = d < 3 ? 3 : d > 16 ? 16 : d;
+    }
+    return d;
+}
+
 static float second_spread(void)
 {
     static float s = -1.0f;
@@ -228,7 +242,7 @@ static int sample(pt *p, irc_cache *c, irc_pixel *pix, int mode, float x, float 
     for (k = 0; k < 3; k++)
         acc[k] += l[k];
     if (mode == PATH) {
-        beyond(p, &x1, 1, l);
+        beyond(p, &x1, depth() - 2, l);
         for (k = 0; k < 3; k++)
             acc[k] += x1.m->kd[k] * l[k];
         return 0;
@@ -381,7 +395,7 @@ static int cache_run(pt *p, int mode, int spp, const float *ref, point *pts)
     const uint32_t max = (uint32_t)(p->w * p->h) * 4u + 200000u;
     int rc;
     lv.p = p;
-    lv.more = mode == FIRST ? 1 : 0;
+    lv.more = depth() - (mode == FIRST ? 2 : 3);
     cfg.trace = trace_cb;
     cfg.context = &lv;
     cfg.accuracy = getenv("PT_A") ? (float)atof(getenv("PT_A")) : 0.0f;
