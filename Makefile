@@ -385,12 +385,13 @@ bench-embree-small:
 # height samples reference_samples).
 bench-progressive: real-scenes $(BUILD)/bench_progressive $(BUILD)/bench_pathtracer
 	@sh examples/need-embree.sh || echo "bench-progressive: Embree not installed: the demo's BVH"
-	$(BUILD)/bench_progressive $(PROG_ARGS)
-	$(BUILD)/bench_pathtracer $(BUILD)/scenes/sponza-atrium.scene $(PT_ARGS)
+	@$(MAKE) -s $(BUILD)/bench_pathtracer
+	sh bench/progressive.sh $(BUILD)/bench_progressive $(BUILD)/bench_pathtracer \
+	   $(BUILD)/scenes/sponza-atrium.scene
 bench-progressive-small:
 	@$(MAKE) -s $(BUILD)/bench_progressive $(BUILD)/bench_pathtracer
-	$(BUILD)/bench_progressive 32 24 16 64 > $(BUILD)/bench-progressive-small.log
-	$(BUILD)/bench_pathtracer demo/scenes/cornell.scene 24 24 16 64 >> $(BUILD)/bench-progressive-small.log
+	NO_PLOT=1 PROG_ARGS="32 24 16 64" PT_ARGS="24 24 16 64" sh bench/progressive.sh $(BUILD)/bench_progressive \
+	  $(BUILD)/bench_pathtracer demo/scenes/cornell.scene > $(BUILD)/bench-progressive-small.log
 	@cat $(BUILD)/bench-progressive-small.log
 	@for m in pixel sample fixed second first; do grep -q "^$$m  *16 " $(BUILD)/bench-progressive-small.log || \
 	  { echo "bench-progressive-small: no 16-sample row for $$m"; exit 1; }; done

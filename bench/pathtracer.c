@@ -510,6 +510,18 @@ int main(int argc, char **argv)
                    100.0 * x->library / x->cpu, x->rays, x->records, x->computes, x->details,
                    x->cache_rays);
         }
+    if (getenv("PT_CSV")) { /* mode,spp,cpu_s,rmse for the error-vs-time plot */
+        FILE *f = fopen(getenv("PT_CSV"), "w");
+        if (f) {
+            fprintf(f, "mode,spp,cpu_s,rmse\n");
+            for (mode = PATH; mode < MODES; mode++)
+                for (q = 0; q < CHECKS; q++)
+                    if (pts[mode][q].done)
+                        fprintf(f, "%s,%d,%.4f,%.6f\n", mode_name[mode], check_spp[q],
+                                pts[mode][q].cpu, pts[mode][q].rmse);
+            fclose(f);
+        }
+    }
     free(ref);
     lights_free(&p.l);
     bvh_free(&p.b);

@@ -303,6 +303,18 @@ int main(int argc, char **argv)
                    mode_name[mode], check_spp[q], p->cpu, p->rmse, p->raw, p->worst1, up,
                    100.0 * p->library / p->cpu, p->rays, p->records, p->details);
         }
+    if (getenv("PROG_CSV")) { /* mode,spp,cpu_s,rmse for the error-vs-time plot */
+        FILE *f = fopen(getenv("PROG_CSV"), "w");
+        if (f) {
+            fprintf(f, "mode,spp,cpu_s,rmse\n");
+            for (mode = PATH; mode < MODES; mode++)
+                for (q = 0; q < CHECKS; q++)
+                    if (pts[mode][q].done)
+                        fprintf(f, "%s,%d,%.4f,%.6f\n", mode_name[mode], check_spp[q],
+                                pts[mode][q].cpu, pts[mode][q].rmse);
+            fclose(f);
+        }
+    }
     free(ref);
     return failed;
 }
