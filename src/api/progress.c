@@ -51,31 +51,29 @@ static int irc__refine_record(irc_cache *c, irc__call *k, uint32_t id, uint32_t 
     return IRC_OK;
 }
 
-/* Every record from level `from` to `to`; what was cast into t. */
-static int irc__refine_all(irc_cache *c, uint32_t from, uint32_t to, void *host,
+/* Every record from level `from` to `to` with scratch slot `slot`; what
+ * was cast into t. */
+static int irc__refine_all(irc_cache *c, uint32_t slot, uint32_t from, uint32_t to, void *host,
                            irc__counts *t)
 {
     irc__call k;
-    uint32_t slot, id, count = irc__st(c)->count;
-    int st, waited = 0;
-    if ((st = irc__slot_claim(c, &slot, &waited)) < 0)
-        return st;
+    uint32_t id, count = irc__st(c)->count;
+    int st;
     IRC_MEMSET(&k, 0, sizeof k);
     k.c = c;
     k.slot = irc__slot(c, slot);
     k.host = host;
     k.progress = to + 1u;
-    for (id = 0; id < count && st >= 0; id++)
+    for (id = 0, st = IRC_OK; id < count && st >= 0; id++)
         if ((st = irc__refine_record(c, &k, id, from, to)) >= 0)
             t->add[IRC__C_RAYS] += k.rays;
-    irc__slot_release(c, slot);
     return st;
 }
 
 int irc_progress(irc_cache *c, uint32_t samples, void *host)
 {
     irc__counts t;
-    uint32_t level, old;
+    uint32_t level, old, from;
     int st = irc__enter(c, &irc__kind_irr);
     if (st < 0)
         return st;
@@ -92,8 +90,17 @@ int irc_progress(irc_cache *c, uint32_t samples, void *host)
     IRC_MEMSET(&t, 0, sizeof t);
     /* Records made before the cache was progressive have the configured
      * grid's rays: they join the schedule where it reaches them. */
-    if (irc__st(c)->count && (old ? old - 1u : irc__progress_full(c)) < level - 1u)
-        st = irc__refine_all(c, old ? old - 1u : irc__progress_full(c), level - 1u, host, &t);
+    from = old ? old - 1u : irc__progress_full(c);
+    if (irc__st(c)->count && from < level - 1u) {
+        uint32_t slot;
+        int waited;
+        /* no slot (IRC_ERR_NESTED inside a callback, IRC_ERR_BUSY): the
+         * cache as it was */
+        if ((st = irc__slot_claim(c, &slot, &waited)) < 0)
+            return st;
+        st = irc__refine_all(c, slot, from, level - 1u, host, &t);
+        irc__slot_release(c, slot);
+    }
     /* Even after a callback's error: the records before it are refined,
      * and must not be again; those after keep their rays. */
     if (irc__write_lock(c) < 0)
