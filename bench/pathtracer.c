@@ -437,6 +437,7 @@ int main(int argc, char **argv)
     char err[256];
     float *ref;
     double v = 0.0, t0;
+    setvbuf(stdout, NULL, _IOLBF, 0); /* lines as they come: runs are long */
     if (argc != 2 && argc != 6)
         return fprintf(stderr, "usage: bench_pathtracer SCENE [width height samples ref]\n"), 2;
     if (scene_load(argv[1], &p.s, err, sizeof err) < 0)

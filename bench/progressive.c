@@ -227,6 +227,7 @@ int main(int argc, char **argv)
     static point pts[MODES][CHECKS];
     float *ref;
     double v = 0.0, t0;
+    setvbuf(stdout, NULL, _IOLBF, 0); /* rows as they come: runs are long */
     if (argc == 5) {
         h.w = atoi(argv[1]);
         h.h = atoi(argv[2]);
