@@ -195,9 +195,12 @@ static int irc__pixel_kept(irc_cache *c, irc_pixel_answer *px, const float p[3],
     return IRC_DETAIL;
 }
 
-/* A new answer at (p, n): the _px call, without its probes where a kept
- * answer near the point was no detail (the geometry around it has not
- * moved: the probes would find what they found). */
+/* A new answer at (p, n): the _px call, but where a kept answer near the
+ * point was no detail, without its probes (the geometry around it has not
+ * moved: they would find what they found) and answered by any record
+ * within the lookups' reach (blend a R), not only within a R: a record
+ * made for this pixel serves its next levels' samples, which land
+ * anywhere in the pixel, instead of another being made beside it. */
 static int irc__pixel_fresh(irc_cache *c, const irc_pixel *pixel, const float p[3],
                             const float n[3], float footprint, float rgb[3], float *w, void *host)
 {
@@ -212,6 +215,7 @@ static int irc__pixel_fresh(irc_cache *c, const irc_pixel *pixel, const float p[
         return irc_cache_lookup_or_compute_px(c, p, n, footprint, rgb, w, host);
     if ((st = irc__px_open(c, &irc__kind_irr, p, n, footprint, rgb, &px)) < 0)
         return st;
+    px.loose = 1;
     return irc__px_finish(c, &px, IRC_MISS, rgb, w, host);
 }
 

@@ -272,6 +272,7 @@ int irc__px_open(irc_cache *c, const irc__kind *want, const float p[3], const fl
     if (footprint < 0.0f)
         return IRC_ERR_RANGE;
     px->footprint = footprint;
+    px->loose = 0;
     IRC_MEMSET(&px->tally, 0, sizeof px->tally);
     return IRC_OK;
 }
@@ -291,7 +292,7 @@ int irc__px_finish(irc_cache *c, irc__px *px, int st, void *out, float *weight, 
         k.rays = 0;
         k.visibility_only = 0;
         k.draw = 0;
-        k.q.place = c->w_inner > 0.0f;
+        k.q.place = c->w_inner > 0.0f && !px->loose;
         st = irc__lookup_first(&k, out, &w, &px->tally);
         st = st == IRC_MISS ? irc__miss(c, &k, out, &w, host, &px->tally)
                             : irc__tally_lookup(&px->tally, st);

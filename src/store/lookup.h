@@ -31,6 +31,9 @@ typedef struct irc__px {
     irc__query q;
     float footprint;
     irc__counts tally;
+    int loose;   /* any record within the lookups' reach answers (blend a
+                    R), not only within a R: a kept answer's point looked
+                    up again (progress.c) */
 } irc__px;
 int irc__px_open(irc_cache *c, const irc__kind *want, const float p[3], const float n[3],
                  float footprint, const void *out, irc__px *px);
