@@ -28,7 +28,7 @@
     X(test_kind_occ_records) X(test_kind_occ_lookups) X(test_kind_occ_snapshot_attach) X(test_kind_occ_config) \
     X(test_levels_closed_form) X(test_levels_nested_refused) X(test_levels_cycle_refused) X(test_levels_threads) X(test_levels_cycle_threads) \
     X(test_detail_refined_strata) X(test_detail_full_grid_paths) X(test_detail_coarse_records) X(test_detail_config) X(test_detail_pixels_wall) X(test_detail_pixels_calls) X(test_detail_pixels_nested) X(test_detail_probes_flagged) X(test_pixel_footprint) X(test_pixel_footprint_lengths) X(test_pixel_footprint_mirror) \
-    X(test_progress_rays_and_noise) X(test_progress_refines_stored) X(test_progress_refused) X(test_progress_callback_fails) X(test_progress_threads) X(test_progress_image_threads) X(test_pixel_kept)
+    X(test_progress_rays_and_noise) X(test_progress_refines_stored) X(test_progress_refused) X(test_progress_callback_fails) X(test_progress_threads) X(test_progress_image_threads) X(test_pixel_kept) X(test_progress_pixel_records)
 
 TESTS(TEST_DECL)
 

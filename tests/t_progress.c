@@ -483,3 +483,54 @@ TEST(test_pixel_kept)
     }
     block_free(&cfg);
 }
+
+/* A progressive _px record reaches a pixel at least (a R >= footprint:
+ * a smaller one serves its own point alone, and every level's samples
+ * would make another beside it), where a plain cache's is the
+ * geometry's; and a kept answer's point looked up again after a
+ * refinement takes a record within blend a R rather than making one. */
+TEST(test_progress_pixel_records)
+{
+    tscene s;
+    irc_config cfg;
+    irc_cache *c;
+    irc_pixel px;
+    irc_record r;
+    irc_stats a, b;
+    const float up[3] = {0, 0, 1};
+    float p[3] = {0.3f, 0.0f, 0.0f}, rgb[3], w, d;
+    int prog;
+    scene_sphere_plane(&s);
+    for (prog = 0; prog < 2; prog++) {
+        cfg = scene_config(&s, IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION, 8, 32);
+        cfg.accuracy = 0.2f;
+        cfg.max_radius = 100.0f;
+        if (!(c = block_cache(&cfg, 64, 0)))
+            return;
+        CHECK(!prog || irc_progress(c, 4, NULL) == IRC_OK, "progress");
+        CHECK(irc_cache_lookup_or_compute_px(c, p, up, 2.0f, rgb, &w, NULL) == IRC_OK &&
+                  irc_cache_record(c, 0, &r) == IRC_OK, "a record");
+        CHECK(prog ? r.radius >= 2.0f / 0.2f * 0.9999f : r.radius < 10.0f,
+              "%s: R %.3f against footprint / a = 10", prog ? "progressive" : "plain", r.radius);
+        block_free(&cfg);
+    }
+    cfg = scene_config(&s, IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION, 8, 32);
+    cfg.accuracy = 0.2f;
+    cfg.max_radius = 100.0f;
+    if (!(c = block_cache(&cfg, 64, 0)))
+        return;
+    memset(&px, 0, sizeof px);
+    CHECK(irc_progress(c, 4, NULL) == IRC_OK, "progress");
+    CHECK(irc_cache_lookup_pixel(c, &px, p, up, 1e-3f, rgb, &w, NULL) == IRC_OK &&
+              irc_cache_record(c, 0, &r) == IRC_OK, "the pixel's record");
+    CHECK(irc_progress(c, 128, NULL) == IRC_OK, "refine");
+    irc_cache_stats(c, &a);
+    d = 1.5f * 0.2f * r.radius; /* past a R, within blend a R = 2 a R */
+    p[0] += d;
+    CHECK(irc_cache_lookup_pixel(c, &px, p, up, d, rgb, &w, NULL) == IRC_OK && w > 0.0f,
+          "answered from the record: weight %g", w);
+    irc_cache_stats(c, &b);
+    CHECK(b.computes == a.computes && b.lookups == a.lookups + 1,
+          "%llu records made for the pixel's next level", (unsigned long long)(b.computes - a.computes));
+    block_free(&cfg);
+}
