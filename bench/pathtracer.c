@@ -422,7 +422,7 @@ static int cache_run(pt *p, int mode, int spp, const float *ref, point *pts)
             printf("%s: block %.1f MB for %u records (%llu used, %zu bytes each)%s\n",
                    mode_name[mode], (double)bytes / 1048576.0, max,
                    (unsigned long long)st.records, st.record_bytes,
-                   mode == FIRST ? "; irc_pixel store 112 bytes a pixel" : "");
+                   mode == FIRST ? "; irc_pixel store 120 bytes a pixel" : "");
     }
     irc_fini(c);
     free(cfg.buffer);

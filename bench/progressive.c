@@ -278,7 +278,7 @@ int main(int argc, char **argv)
                 printf("%s: block %.1f MB (%llu records used, %zu bytes each)%s\n",
                        mode_name[mode], (double)bytes / 1048576.0,
                        (unsigned long long)st.records, st.record_bytes,
-                       mode == SAMPLE ? "" : "; irc_pixel store 112 bytes a pixel");
+                       mode == SAMPLE ? "" : "; irc_pixel store 120 bytes a pixel");
             irc_fini(c);
         }
         free(cfg.buffer);

@@ -982,7 +982,10 @@ IRC_API int irc_sh_radiance(const irc_sh *sh, const float w[3], float rgb[3]);
  * gradients the mean of all of them (its position and radius kept), so
  * the cache's noise falls with the samples as path tracing's does.
  * Records computed later get the level's rays at once; per-pixel detail
- * estimates too.  The refinement casts rays through cfg.trace from the
+ * estimates too.  A record the _px call makes in a progressive cache
+ * reaches a pixel at least (a R >= footprint, within max_pixels and
+ * max_radius): a smaller one serves its own point alone, and each
+ * level's samples would make another beside it.  The refinement casts rays through cfg.trace from the
  * calling thread (args->host = host), 2x the rays the records hold; it is
  * the same whatever threads made the records, so a host that fills in
  * passes gets the same image at any thread count.  Not concurrent with
@@ -1008,6 +1011,7 @@ typedef struct irc_pixel_answer {
     float footprint;
     int32_t status;      /* what the call that made it returned */
     uint32_t epoch;      /* the cache's level + 1 then; 0: nothing kept */
+    uint32_t level;      /* a detail estimate's: its rays are T0 2^level */
 } irc_pixel_answer;
 typedef struct irc_pixel {
     irc_pixel_answer kept[2];
@@ -1021,9 +1025,12 @@ typedef struct irc_pixel {
  * answer's point, with a normal within about 18 degrees of its normal,
  * gets that answer (rgb, *weight, the same status) with no lookup and
  * no probe, until irc_progress refines the records; then its next sample
- * there looks up again (without probes: the point was no detail), and a
- * kept detail estimate (IRC_DETAIL) gets as many new rays as it has
- * instead of being made again.  Any other point is answered by
+ * there looks up again (without probes: the point was no detail; any
+ * record within the lookups' reach blend a R answers it), and a
+ * kept detail estimate (IRC_DETAIL) gets the rays the level lacks
+ * instead of being made again (one is made on the coarsest grid, T0
+ * rays: a pixel whose samples land on many surfaces would otherwise pay
+ * the level's rays at each).  Any other point is answered by
  * irc_cache_lookup_or_compute_px, whose answer *pixel then keeps in
  * place of the one used less recently.  So a pixel costs a lookup about
  * once a level, not once a sample, and its probes once.  Calls for one

@@ -458,8 +458,9 @@ TEST(test_pixel_kept)
               !memcmp(&copy, &px, sizeof px), "negative footprint");
 
     /* A detail point: the box's wall within half a footprint of the
-     * origin (footprint 1).  Level 1 (128 samples): 128 rays after the
-     * probes; kept; at level 2 (256) exactly 128 rays more and no probe. */
+     * origin (footprint 1).  At level 1 (128 samples) a new estimate is
+     * level 0's, 64 rays after the probes; kept; at level 2 (256) exactly
+     * the 192 rays it lacks (256 - 64) and no probe. */
     {
         const float o[3] = {0.0f, 0.0f, 0.0f};
         irc_pixel d;
@@ -467,8 +468,8 @@ TEST(test_pixel_kept)
         irc_cache_stats(c, &a);
         CHECK(irc_cache_lookup_pixel(c, &d, o, up, 1.0f, rgb, &w, NULL) == IRC_DETAIL, "detail");
         irc_cache_stats(c, &b);
-        CHECK(b.details == a.details + 1 && b.rays - a.rays <= 128 + 8 && b.rays - a.rays > 128,
-              "a detail at level 1: %llu rays", (unsigned long long)(b.rays - a.rays));
+        CHECK(b.details == a.details + 1 && b.rays - a.rays <= 64 + 8 && b.rays - a.rays > 64,
+              "a new detail at level 1: %llu rays", (unsigned long long)(b.rays - a.rays));
         CHECK(irc_cache_lookup_pixel(c, &d, o, up, 1.0f, rgb2, &w, NULL) == IRC_DETAIL &&
                   irc_cache_stats(c, &a) == IRC_OK && a.rays == b.rays &&
                   !memcmp(rgb, rgb2, sizeof rgb),
@@ -477,8 +478,8 @@ TEST(test_pixel_kept)
         irc_cache_stats(c, &a);
         CHECK(irc_cache_lookup_pixel(c, &d, o, up, 1.0f, rgb2, &w, NULL) == IRC_DETAIL, "again");
         irc_cache_stats(c, &b);
-        CHECK(b.rays - a.rays == 128 && memcmp(rgb, rgb2, sizeof rgb) != 0,
-              "a kept detail refined with %llu rays (128 lacked)",
+        CHECK(b.rays - a.rays == 192 && memcmp(rgb, rgb2, sizeof rgb) != 0,
+              "a kept detail refined with %llu rays (192 lacked)",
               (unsigned long long)(b.rays - a.rays));
     }
     block_free(&cfg);

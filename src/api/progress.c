@@ -160,7 +160,7 @@ static int irc__pixel_refine(irc_cache *c, irc_pixel_answer *px, const float p[3
         q.n[a] = n[a];
         m.e[a] = px->e[a];
     }
-    m.from = px->epoch - 2u;
+    m.from = px->level;
     m.to = irc__st(c)->progress - 1u;
     if ((st = irc__compute_at(c, &q, &m, host, irc__more_run, &rays, &waited)) < 0)
         return st;
@@ -172,6 +172,7 @@ static int irc__pixel_refine(irc_cache *c, irc_pixel_answer *px, const float p[3
     irc__count_tally(c, &t);
     for (a = 0; a < 3; a++)
         px->e[a] = m.e[a];
+    px->level = m.to;
     return IRC_DETAIL;
 }
 
@@ -187,7 +188,8 @@ static int irc__pixel_kept(irc_cache *c, irc_pixel_answer *px, const float p[3],
         return px->status;
     /* A detail estimate gets the rays it lacks (a record's answer is
      * looked up again: its records have changed). */
-    if (px->status != IRC_DETAIL || px->epoch < 2u || px->epoch > epoch)
+    if (px->status != IRC_DETAIL || px->epoch < 2u || px->epoch > epoch ||
+        px->level >= epoch - 2u)
         return IRC_MISS;
     if ((st = irc__pixel_refine(c, px, p, n, host)) < 0)
         return st;
@@ -260,6 +262,7 @@ int irc_cache_lookup_pixel(irc_cache *c, irc_pixel *pixel, const float p[3], con
     px->footprint = footprint;
     px->status = st;
     px->epoch = irc__st(c)->progress + 1u;
+    px->level = 0; /* a new detail estimate's (progressive.c) */
     pixel->older = (pixel->older & 1u) ^ 1u;
     if (weight)
         *weight = w;

@@ -70,9 +70,9 @@ int irc__irr_estimate_on(irc__call *k, uint32_t level, float e[3]);
 
 /* progressive.c: records and per-pixel estimates whose rays follow the
  * host's samples (irc_progress).  The level for samples a pixel; a record
- * or an E at level k->progress - 1; an estimate at level `from` taken to
- * level `to` by independent draws (IRC_ERR_NOSAMPLES from one of them
- * skips it). */
+ * at level k->progress - 1; a new per-pixel E at level 0; an estimate at
+ * level `from` taken to level `to` by independent draws
+ * (IRC_ERR_NOSAMPLES from one of them skips it). */
 #define IRC__PROGRESS_FULL 256u /* samples a pixel at which a record has the
                                    configured grid's rays */
 #define IRC__PROGRESS_TOP 24u   /* the last level */
