@@ -459,8 +459,9 @@ TEST(test_pixel_kept)
 
     /* A detail point: the box's wall within half a footprint of the
      * origin (footprint 1).  At level 1 (128 samples) a new estimate is
-     * level 0's, 64 rays after the probes; kept; at level 2 (256) exactly
-     * the 192 rays it lacks (256 - 64) and no probe. */
+     * level 0's, 64 rays after the probes; kept; at level 2 (256) a kept
+     * one is taken to level 2 - top = 1 (top = 1 for 8 x 32): exactly the
+     * 64 rays it lacks (128 - 64) and no probe. */
     {
         const float o[3] = {0.0f, 0.0f, 0.0f};
         irc_pixel d;
@@ -478,8 +479,8 @@ TEST(test_pixel_kept)
         irc_cache_stats(c, &a);
         CHECK(irc_cache_lookup_pixel(c, &d, o, up, 1.0f, rgb2, &w, NULL) == IRC_DETAIL, "again");
         irc_cache_stats(c, &b);
-        CHECK(b.rays - a.rays == 192 && memcmp(rgb, rgb2, sizeof rgb) != 0,
-              "a kept detail refined with %llu rays (192 lacked)",
+        CHECK(b.rays - a.rays == 64 && memcmp(rgb, rgb2, sizeof rgb) != 0,
+              "a kept detail refined with %llu rays (64 lacked)",
               (unsigned long long)(b.rays - a.rays));
     }
     block_free(&cfg);

@@ -161,7 +161,7 @@ static int irc__pixel_refine(irc_cache *c, irc_pixel_answer *px, const float p[3
         m.e[a] = px->e[a];
     }
     m.from = px->level;
-    m.to = irc__st(c)->progress - 1u;
+    m.to = irc__detail_level(c, irc__st(c)->progress - 1u);
     if ((st = irc__compute_at(c, &q, &m, host, irc__more_run, &rays, &waited)) < 0)
         return st;
     IRC_MEMSET(&t, 0, sizeof t);
@@ -188,10 +188,10 @@ static int irc__pixel_kept(irc_cache *c, irc_pixel_answer *px, const float p[3],
         return px->status;
     /* A detail estimate gets the rays it lacks (a record's answer is
      * looked up again: its records have changed). */
-    if (px->status != IRC_DETAIL || px->epoch < 2u || px->epoch > epoch ||
-        px->level >= epoch - 2u)
+    if (px->status != IRC_DETAIL || px->epoch < 2u || px->epoch > epoch)
         return IRC_MISS;
-    if ((st = irc__pixel_refine(c, px, p, n, host)) < 0)
+    if (px->level < irc__detail_level(c, epoch - 2u) &&
+        (st = irc__pixel_refine(c, px, p, n, host)) < 0)
         return st;
     px->epoch = epoch;
     return IRC_DETAIL;

@@ -78,6 +78,11 @@ int irc__irr_estimate_on(irc__call *k, uint32_t level, float e[3]);
 #define IRC__PROGRESS_TOP 24u   /* the last level */
 uint32_t irc__progress_level(const irc_cache *c, uint32_t samples);
 uint32_t irc__progress_full(const irc_cache *c);
+/* The level a kept per-pixel estimate is refined to in a cache at
+ * `level`: top levels below it (T0 2^(l - top) rays, about one a sample a
+ * pixel has had, as path tracing would cast for it: a detail pixel serves
+ * itself alone, where a record's rays serve (a R / footprint)^2 pixels). */
+uint32_t irc__detail_level(const irc_cache *c, uint32_t level);
 int irc__irr_progressive(irc__call *k, irc_record *out);
 int irc__irr_progressive_e(irc__call *k, float e[3]);
 int irc__irr_refine(irc__call *k, irc_record *rec, uint32_t from, uint32_t to);

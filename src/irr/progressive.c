@@ -161,6 +161,12 @@ int irc__irr_progressive(irc__call *k, irc_record *out)
     return IRC_OK;
 }
 
+uint32_t irc__detail_level(const irc_cache *c, uint32_t level)
+{
+    const uint32_t top = irc__top(c);
+    return level > top ? level - top : 0u;
+}
+
 /* A new per-pixel estimate is level 0's, T0 rays, whatever the cache's
  * level: a pixel whose samples land on many surfaces makes one at each
  * (the atrium's foliage at 160 x 120: 84,000 by 256 samples, most of the
