@@ -1027,10 +1027,11 @@ typedef struct irc_pixel {
  * no probe, until irc_progress refines the records; then its next sample
  * there looks up again (without probes: the point was no detail; any
  * record within the lookups' reach blend a R answers it), and a
- * kept detail estimate (IRC_DETAIL) gets the rays the level lacks
- * instead of being made again (one is made on the coarsest grid, T0
- * rays: a pixel whose samples land on many surfaces would otherwise pay
- * the level's rays at each).  Any other point is answered by
+ * kept detail estimate (IRC_DETAIL) gets more rays instead of being
+ * made again: a detail pixel serves itself alone, so it holds about a ray
+ * a sample the pixel has had (T0 2^(level - 2) at the default grids), and
+ * a new one has T0 (a pixel whose samples land on many surfaces makes one
+ * for each).  Any other point is answered by
  * irc_cache_lookup_or_compute_px, whose answer *pixel then keeps in
  * place of the one used less recently.  So a pixel costs a lookup about
  * once a level, not once a sample, and its probes once.  Calls for one
