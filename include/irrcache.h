@@ -981,8 +981,9 @@ IRC_API int irc_sh_radiance(const irc_sh *sh, const float w[3], float rgb[3]);
  * is refined: new, independent rays as many as it has, its irradiance and
  * gradients the mean of all of them (its position and radius kept), so
  * the cache's noise falls with the samples as path tracing's does.
- * Records computed later get the level's rays at once; per-pixel detail
- * estimates too.  A record the _px call makes in a progressive cache
+ * Records computed later get the level's rays at once; a per-pixel
+ * detail estimate gets the coarsest grid's (irc_cache_lookup_pixel then
+ * refines it).  A record the _px call makes in a progressive cache
  * reaches a pixel at least (a R >= footprint, within max_pixels and
  * max_radius): a smaller one serves its own point alone, and each
  * level's samples would make another beside it.  The refinement casts rays through cfg.trace from the
@@ -1028,10 +1029,11 @@ typedef struct irc_pixel {
  * there looks up again (without probes: the point was no detail; any
  * record within the lookups' reach blend a R answers it), and a
  * kept detail estimate (IRC_DETAIL) gets more rays instead of being
- * made again: a detail pixel serves itself alone, so it holds about a ray
- * a sample the pixel has had (T0 2^(level - 2) at the default grids), and
- * a new one has T0 (a pixel whose samples land on many surfaces makes one
- * for each).  Any other point is answered by
+ * made again: a detail pixel serves itself alone, so it holds about a
+ * ray a sample the pixel has had (T0 2^(level - top), top 2 for the
+ * default grids below a = 0.375, 1 above), and a new one has T0 (a pixel
+ * whose samples land on many surfaces makes one for each).  Any other
+ * point is answered by
  * irc_cache_lookup_or_compute_px, whose answer *pixel then keeps in
  * place of the one used less recently.  So a pixel costs a lookup about
  * once a level, not once a sample, and its probes once.  Calls for one

@@ -145,7 +145,8 @@ static int irc__more_run(irc__call *k, void *out)
     return irc__irr_refine_e(k, m->e, m->from, m->to);
 }
 
-/* A kept detail estimate taken from its level to the cache's, at (p, n). */
+/* A kept detail estimate taken from its level to the one a detail has in
+ * the cache's level (progressive.c, irc__detail_level), at (p, n). */
 static int irc__pixel_refine(irc_cache *c, irc_pixel_answer *px, const float p[3], const float n[3],
                              void *host)
 {
