@@ -973,11 +973,10 @@ IRC_API int irc_sh_radiance(const irc_sh *sh, const float w[3], float rgb[3]);
  * Tells the cache how many samples a pixel the host has taken (call it
  * between iterations: after 1, 2, 4, ... or after every one; only a new
  * power of two does anything).  From the first call on, the cache is
- * progressive: a record's rays follow the samples, M N s / 256 for s
+ * progressive: a record's rays follow the samples, M N s / 1024 for s
  * samples a pixel (M x N the strata the knob chose) but at least M N / 16
- * (M N / 4 for a >= 0.375; M N at the 64 x 256 and 128 x 512 of a below
- * 0.125), so records are cheap while the image is noisy anyway and have
- * the knob's rays from 256 samples on.  At each power of two every record
+ * (M N / 4 for a >= 0.375), so records are cheap while the image is noisy
+ * anyway and have the knob's rays from 1,024 samples on.  At each power of two every record
  * is refined: new, independent rays as many as it has, its irradiance and
  * gradients the mean of all of them (its position and radius kept), so
  * the cache's noise falls with the samples as path tracing's does.

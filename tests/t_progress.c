@@ -11,8 +11,13 @@
 #include <string.h>
 
 #include "irrcache.h"
+#include "irr/estimator.h"
 #include "scenes.h"
 #include "test.h"
+
+/* The tests' sample counts are written for a schedule whose records reach
+ * the configured grid at 256 samples; Q scales them to the library's. */
+#define Q (IRC__PROGRESS_FULL / 256u)
 
 /* A sky whose radiance along each ray is a hash of its direction's bits,
  * uniform in [0, 2): mean 1, so E = pi exactly, and no two rays alike (no
@@ -42,7 +47,7 @@ static int noisy_trace(const irc_trace_args *a)
 }
 
 /* 8 x 32 strata: the coarsest grid is 4 x 16, T0 = 64 rays; level(s) =
- * max(0, 2 + log2(s) - 8). */
+ * max(0, 2 + log2(s / Q) - 8). */
 static irc_cache *noisy_cache(tscene *s, irc_config *cfg, uint32_t batch)
 {
     scene_init(s);
@@ -69,7 +74,7 @@ static void noisy_point(int i, float p[3])
  * times pi^2 for E). */
 TEST(test_progress_rays_and_noise)
 {
-    static const uint32_t samples[4] = {1, 128, 512, 4096};
+    static const uint32_t samples[4] = {1, 128 * Q, 512 * Q, 4096 * Q};
     static const uint32_t rays[4] = {64, 128, 512, 4096};
     const float up[3] = {0, 0, 1};
     double rms[4];
@@ -122,7 +127,7 @@ TEST(test_progress_refines_stored)
     CHECK(c != NULL, "cache");
     if (!c)
         return;
-    CHECK(irc_progress(c, 1, NULL) == IRC_OK, "progress");
+    CHECK(irc_progress(c, 1 * Q, NULL) == IRC_OK, "progress");
     for (i = 0; i < NPTS; i++) {
         float p[3], rgb[3], w;
         noisy_point(i, p);
@@ -131,7 +136,7 @@ TEST(test_progress_refines_stored)
     }
     CHECK(irc_cache_stats(c, &a) == IRC_OK && a.records == NPTS, "%llu records",
           (unsigned long long)a.records);
-    CHECK(irc_progress(c, 4095, NULL) == IRC_OK, "refine");
+    CHECK(irc_progress(c, 4095 * Q, NULL) == IRC_OK, "refine");
     CHECK(irc_cache_stats(c, &b) == IRC_OK, "stats");
     CHECK(b.rays - a.rays == (uint64_t)NPTS * (2048 - 64), "refinement cast %llu rays",
           (unsigned long long)(b.rays - a.rays));
@@ -145,7 +150,7 @@ TEST(test_progress_refines_stored)
     CHECK(se1 < se0 / 3.5 && fabs(se1 / (TPI / sqrt(3.0 * 2048)) - 1.0) < 0.35,
           "stored records' RMS %.5f -> %.5f (expected %.5f)", se0, se1, TPI / sqrt(3.0 * 2048));
     /* the same samples again: nothing to do */
-    CHECK(irc_progress(c, 2048, NULL) == IRC_OK && irc_cache_stats(c, &a) == IRC_OK &&
+    CHECK(irc_progress(c, 2048 * Q, NULL) == IRC_OK && irc_cache_stats(c, &a) == IRC_OK &&
               a.rays == b.rays, "no refinement within a level");
     block_free(&cfg);
 }
@@ -163,20 +168,20 @@ TEST(test_progress_refused)
     CHECK(c != NULL, "cache");
     if (!c)
         return;
-    CHECK(irc_progress(c, 512, NULL) == IRC_OK, "progress");
+    CHECK(irc_progress(c, 512 * Q, NULL) == IRC_OK, "progress");
     CHECK(irc_cache_lookup_or_compute(c, p, up, rgb, &w, NULL) == IRC_OK, "compute");
     copy = malloc(cfg.buffer_size);
     if (copy) {
         memcpy(copy, cfg.buffer, cfg.buffer_size);
-        CHECK(irc_progress(c, 4, NULL) == IRC_ERR_RANGE, "fall back with records");
+        CHECK(irc_progress(c, 4 * Q, NULL) == IRC_ERR_RANGE, "fall back with records");
         CHECK(irc_pass_begin(c) == IRC_OK, "begin");
         memcpy(copy, cfg.buffer, cfg.buffer_size);
-        CHECK(irc_progress(c, 1024, NULL) == IRC_ERR_STATE, "in a pass");
+        CHECK(irc_progress(c, 1024 * Q, NULL) == IRC_ERR_STATE, "in a pass");
         CHECK(block_same(&cfg, copy, c), "a refused call changed the block");
         CHECK(irc_pass_end(c, NULL) == IRC_OK, "end");
         free(copy);
     }
-    CHECK(irc_cache_clear(c) == IRC_OK && irc_progress(c, 4, NULL) == IRC_OK,
+    CHECK(irc_cache_clear(c) == IRC_OK && irc_progress(c, 4 * Q, NULL) == IRC_OK,
           "an empty cache starts again");
     CHECK(irc_progress(NULL, 4, NULL) == IRC_ERR_NULL, "NULL cache");
     block_free(&cfg);
@@ -184,12 +189,12 @@ TEST(test_progress_refused)
     scene_init(&s);
     sh = scene_config(&s, IRC_FEATURE_SH, 0, 0);
     if ((d = block_cache(&sh, 16, 0)) != NULL) {
-        CHECK(irc_progress(d, 4, NULL) == IRC_ERR_UNSUPPORTED, "SH records");
+        CHECK(irc_progress(d, 4 * Q, NULL) == IRC_ERR_UNSUPPORTED, "SH records");
         block_free(&sh);
     }
     vis = scene_config(&s, IRC_FEATURE_TRANSLATION | IRC_FEATURE_VISIBILITY, 8, 32);
     if ((d = block_cache(&vis, 16, 0)) != NULL) {
-        CHECK(irc_progress(d, 4, NULL) == IRC_ERR_UNSUPPORTED, "visibility gradients");
+        CHECK(irc_progress(d, 4 * Q, NULL) == IRC_ERR_UNSUPPORTED, "visibility gradients");
         block_free(&vis);
     }
 }
@@ -210,7 +215,7 @@ TEST(test_progress_callback_fails)
     CHECK(c != NULL, "cache");
     if (!c)
         return;
-    CHECK(irc_progress(c, 1, NULL) == IRC_OK, "progress");
+    CHECK(irc_progress(c, 1 * Q, NULL) == IRC_OK, "progress");
     for (i = 0; i < 8; i++) {
         float p[3], rgb[3], w;
         noisy_point(i, p);
@@ -220,7 +225,7 @@ TEST(test_progress_callback_fails)
     s.calls = 0;
     s.fail_every = 4; /* the 4th record's */
     CHECK(irc_cache_stats(c, &a) == IRC_OK, "stats");
-    CHECK(irc_progress(c, 128, NULL) == -77, "the callback's code");
+    CHECK(irc_progress(c, 128 * Q, NULL) == -77, "the callback's code");
     s.fail_every = 0;
     CHECK(irc_cache_stats(c, &b) == IRC_OK && b.rays == a.rays + 3 * 64,
           "rays of the refined records: %llu", (unsigned long long)(b.rays - a.rays));
@@ -232,7 +237,7 @@ TEST(test_progress_callback_fails)
             kept += after.e[0] == before[i].e[0];
     }
     CHECK(changed == 3 && kept == 5, "refined %d of 3, kept %d of 5", changed, kept);
-    CHECK(irc_progress(c, 128, NULL) == IRC_OK && irc_cache_stats(c, &a) == IRC_OK &&
+    CHECK(irc_progress(c, 128 * Q, NULL) == IRC_OK && irc_cache_stats(c, &a) == IRC_OK &&
               a.rays == b.rays, "the level was taken: nothing refined twice");
     block_free(&cfg);
 }
@@ -271,7 +276,7 @@ static size_t threaded_fill(int threads, unsigned char **snap)
     *snap = NULL;
     if (!(c = block_cache(&cfg, 2048, 0)))
         return 0;
-    CHECK(irc_progress(c, 16, NULL) == IRC_OK, "progress");
+    CHECK(irc_progress(c, 16 * Q, NULL) == IRC_OK, "progress");
     for (pass = 0; pass < 2; pass++) {
         pthread_t th[3];
         part k[3];
@@ -288,7 +293,7 @@ static size_t threaded_fill(int threads, unsigned char **snap)
             fail |= k[t].fail;
         }
         CHECK(irc_pass_end(c, NULL) == IRC_OK, "end");
-        CHECK(irc_progress(c, pass ? 1024 : 256, NULL) == IRC_OK, "refine");
+        CHECK(irc_progress(c, (pass ? 1024 : 256) * Q, NULL) == IRC_OK, "refine");
     }
     CHECK(!fail, "a lookup failed");
     if (irc_snapshot_size(c, &bytes) == IRC_OK && (*snap = malloc(bytes)) != NULL)
@@ -373,7 +378,7 @@ static int render_threads(int threads, double *sum)
         fail |= irc_pass_end(c, NULL) < 0;
         /* 32 samples an iteration as far as the schedule goes: a new level
          * at iterations 2, 4 and 8 */
-        fail |= irc_progress(c, 32u * (uint32_t)(it + 1), NULL) < 0;
+        fail |= irc_progress(c, 32u * Q * (uint32_t)(it + 1), NULL) < 0;
     }
     block_free(&cfg);
     return fail ? -1 : 0;
@@ -415,7 +420,7 @@ TEST(test_pixel_kept)
     if (!(c = block_cache(&cfg, 256, 0)))
         return;
     memset(&px, 0, sizeof px);
-    CHECK(irc_progress(c, 4, NULL) == IRC_OK, "progress");
+    CHECK(irc_progress(c, 4 * Q, NULL) == IRC_OK, "progress");
     CHECK(irc_cache_lookup_pixel(c, &px, p, up, 0.01f, rgb, &w, NULL) == IRC_OK, "first");
     irc_cache_stats(c, &a);
     p[0] += 0.015f; /* within 2 footprints */
@@ -440,7 +445,7 @@ TEST(test_pixel_kept)
     }
     /* refined: looked up again, without the 8 probes (the point was no
      * detail), so with no ray at all */
-    CHECK(irc_progress(c, 128, NULL) == IRC_OK, "refine");
+    CHECK(irc_progress(c, 128 * Q, NULL) == IRC_OK, "refine");
     irc_cache_stats(c, &b);
     CHECK(irc_cache_lookup_pixel(c, &px, p, up, 0.01f, rgb2, &w, NULL) == IRC_OK &&
               irc_cache_stats(c, &a) == IRC_OK && a.lookups == b.lookups + 1 &&
@@ -475,7 +480,7 @@ TEST(test_pixel_kept)
                   irc_cache_stats(c, &a) == IRC_OK && a.rays == b.rays &&
                   !memcmp(rgb, rgb2, sizeof rgb),
               "kept detail");
-        CHECK(irc_progress(c, 256, NULL) == IRC_OK, "refine");
+        CHECK(irc_progress(c, 256 * Q, NULL) == IRC_OK, "refine");
         irc_cache_stats(c, &a);
         CHECK(irc_cache_lookup_pixel(c, &d, o, up, 1.0f, rgb2, &w, NULL) == IRC_DETAIL, "again");
         irc_cache_stats(c, &b);
@@ -509,7 +514,7 @@ TEST(test_progress_pixel_records)
         cfg.max_radius = 100.0f;
         if (!(c = block_cache(&cfg, 64, 0)))
             return;
-        CHECK(!prog || irc_progress(c, 4, NULL) == IRC_OK, "progress");
+        CHECK(!prog || irc_progress(c, 4 * Q, NULL) == IRC_OK, "progress");
         CHECK(irc_cache_lookup_or_compute_px(c, p, up, 2.0f, rgb, &w, NULL) == IRC_OK &&
                   irc_cache_record(c, 0, &r) == IRC_OK, "a record");
         CHECK(prog ? r.radius >= 2.0f / 0.2f * 0.9999f : r.radius < 10.0f,
@@ -522,10 +527,10 @@ TEST(test_progress_pixel_records)
     if (!(c = block_cache(&cfg, 64, 0)))
         return;
     memset(&px, 0, sizeof px);
-    CHECK(irc_progress(c, 4, NULL) == IRC_OK, "progress");
+    CHECK(irc_progress(c, 4 * Q, NULL) == IRC_OK, "progress");
     CHECK(irc_cache_lookup_pixel(c, &px, p, up, 1e-3f, rgb, &w, NULL) == IRC_OK &&
               irc_cache_record(c, 0, &r) == IRC_OK, "the pixel's record");
-    CHECK(irc_progress(c, 128, NULL) == IRC_OK, "refine");
+    CHECK(irc_progress(c, 128 * Q, NULL) == IRC_OK, "refine");
     irc_cache_stats(c, &a);
     d = 1.5f * 0.2f * r.radius; /* past a R, within blend a R = 2 a R */
     p[0] += d;

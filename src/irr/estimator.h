@@ -73,8 +73,14 @@ int irc__irr_estimate_on(irc__call *k, uint32_t level, float e[3]);
  * at level k->progress - 1; a new per-pixel E at level 0; an estimate at
  * level `from` taken to level `to` by independent draws
  * (IRC_ERR_NOSAMPLES from one of them skips it). */
-#define IRC__PROGRESS_FULL 256u /* samples a pixel at which a record has the
-                                   configured grid's rays */
+/* Samples a pixel at which a record has the configured grid's rays: 2^10
+ * (2^8 cost the Sponza atrium and floor views 1.7-2.4x the time at 64 and
+ * 256 samples for 0-19% less error; docs/DESIGN.md, "Progressive hosts";
+ * a build may try another). */
+#ifndef IRC__PROGRESS_FULL_LOG2
+#define IRC__PROGRESS_FULL_LOG2 10u
+#endif
+#define IRC__PROGRESS_FULL (1u << IRC__PROGRESS_FULL_LOG2)
 #define IRC__PROGRESS_TOP 24u   /* the last level */
 uint32_t irc__progress_level(const irc_cache *c, uint32_t samples);
 uint32_t irc__progress_full(const irc_cache *c);

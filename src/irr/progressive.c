@@ -14,7 +14,7 @@
  * record made at level l and one made at level 0 and refined to l are the
  * same estimates.  The level for s samples a pixel puts the configured
  * grid (T0 4^top rays, the knob's choice) at IRC__PROGRESS_FULL samples:
- * rays a record = M N s / 256, at least T0.  The record's radius is its
+ * rays a record = M N s / IRC__PROGRESS_FULL, at least T0.  The record's radius is its
  * first estimate's and never changes (the index's bounds hold), and the
  * variance of its irradiance and gradients falls as 1 / rays.
  */
@@ -38,9 +38,9 @@ uint32_t irc__progress_level(const irc_cache *c, uint32_t samples)
     uint32_t lg = 0, l;
     while (lg < 31u && (samples >> (lg + 1u)) != 0u)
         lg++;
-    /* level 2 top at 256 = 2^8 samples, one more each doubling */
+    /* level 2 top at IRC__PROGRESS_FULL samples, one more each doubling */
     l = 2u * irc__top(c) + lg;
-    l = l > 8u ? l - 8u : 0u;
+    l = l > IRC__PROGRESS_FULL_LOG2 ? l - IRC__PROGRESS_FULL_LOG2 : 0u;
     return l < IRC__PROGRESS_TOP ? l : IRC__PROGRESS_TOP;
 }
 
