@@ -74,7 +74,7 @@ typedef struct irc__call {
     uint32_t progress;  /* the cache's progressive level + 1 (irc_progress),
                            0 = not progressive */
     uint32_t draw;      /* which of a point's independent estimates this is:
-                           0 the first, k > 0 a refinement's (progress.c) */
+                           0 the first, k > 0 a refinement's (progressive.c) */
 } irc__call;
 
 /* A record's parts after its 32-byte head, each numbered by its kind (0 ..

@@ -31,7 +31,7 @@ static uint32_t irc__bits(float f)
 }
 
 /* A call's seed: the config's for a point's first estimate, and for its
- * k-th refinement (progress.c) the config's mixed with k, so that every
+ * k-th refinement (progressive.c) the config's mixed with k, so that every
  * estimate of a point is independent of the others and of the threads. */
 static uint64_t irc__seed_of(const irc__call *k)
 {
