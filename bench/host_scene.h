@@ -192,22 +192,12 @@ static void camera(const host *h, float x, float y, float d[3])
  * it lands; E = pi L for that density. */
 static void path_irradiance(host *h, const float x[3], const float n[3], float e[3])
 {
-    float u = rnd(h), v = rnd(h), s = sqrtf(u), phi = 2.0f * PI * v, t[3], b[3], d[3], o[3];
+    float d[3], o[3], u = rnd(h), v = rnd(h);
     hit r;
     int k;
-    /* a frame around n (Frisvad's, made safe at n.z = -1) */
-    if (n[2] < -0.9999f) {
-        t[0] = 0.0f; t[1] = -1.0f; t[2] = 0.0f;
-        b[0] = -1.0f; b[1] = 0.0f; b[2] = 0.0f;
-    } else {
-        float a = 1.0f / (1.0f + n[2]), c = -n[0] * n[1] * a;
-        t[0] = 1.0f - n[0] * n[0] * a; t[1] = c; t[2] = -n[0];
-        b[0] = c; b[1] = 1.0f - n[1] * n[1] * a; b[2] = -n[1];
-    }
-    for (k = 0; k < 3; k++) {
-        d[k] = s * cosf(phi) * t[k] + s * sinf(phi) * b[k] + sqrtf(1.0f - u) * n[k];
+    bench_cosine_dir(n, u, v, d);
+    for (k = 0; k < 3; k++)
         o[k] = x[k] + EPS * n[k];
-    }
     e[0] = e[1] = e[2] = 0.0f;
     if (intersect(o, d, 1e30f, &r) && r.mat != LIGHT) {
         float y[3] = {o[0] + r.t * d[0], o[1] + r.t * d[1], o[2] + r.t * d[2]};

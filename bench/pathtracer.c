@@ -25,7 +25,8 @@
  *           return D(x2) + kd2 [env | D(x3)], one path each.
  * Errors are against path tracing at ref samples (its own random numbers),
  * with the reference's own noise taken out as in bench/progressive.c;
- * speed-up at equal error likewise (one thread's CPU time).  rays: every
+ * speed-up at equal error likewise (one thread's CPU time; the table and
+ * CSV are bench/progress_report.h's).  traced: every
  * ray the tracer cast (the callback's included); cache_rays: the rays the
  * library asked for (irc_stats), each of which costs the first hit's
  * callback about four.
@@ -49,6 +50,7 @@
 #include <time.h>
 
 #include "bench_util.h"
+#include "progress_report.h"
 #include "bvh.h"
 #include "camera.h"
 #include "irrcache.h"
@@ -58,8 +60,6 @@
 #define PT_PI 3.14159265358979f
 enum { PATH, SECOND, FIRST, MODES };
 static const char *const mode_name[MODES] = {"path", "second", "first"};
-#define CHECKS 5
-static const int check_spp[CHECKS] = {4, 16, 64, 256, 1024};
 
 typedef struct pt {
     scene s;
@@ -71,19 +71,6 @@ typedef struct pt {
     uint64_t key, rays;
     double t_trace; /* monotonic seconds inside the caches' callbacks */
 } pt;
-
-typedef struct point {
-    double cpu, library, rmse, raw, worst1;
-    unsigned long long records, rays, computes, details, cache_rays;
-    int done;
-} point;
-
-static double cpu_now(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
 
 static float urand(pt *p) { return (float)bench_xorshift(&p->rng); }
 
@@ -118,19 +105,8 @@ static void next_event(pt *p, const surface *sf, const float d[3], float out[3])
  * leaves below the geometric surface (the path ends there). */
 static int bounce(pt *p, const surface *sf, float d[3])
 {
-    const float *n = gather_normal(sf);
-    float u = urand(p), v = urand(p), s = sqrtf(u), phi = 2.0f * PT_PI * v, t[3], b[3];
-    int k;
-    if (n[2] < -0.9999f) {
-        t[0] = 0.0f, t[1] = -1.0f, t[2] = 0.0f;
-        b[0] = -1.0f, b[1] = 0.0f, b[2] = 0.0f;
-    } else {
-        float a = 1.0f / (1.0f + n[2]), c = -n[0] * n[1] * a;
-        t[0] = 1.0f - n[0] * n[0] * a, t[1] = c, t[2] = -n[0];
-        b[0] = c, b[1] = 1.0f - n[1] * n[1] * a, b[2] = -n[1];
-    }
-    for (k = 0; k < 3; k++)
-        d[k] = s * cosf(phi) * t[k] + s * sinf(phi) * b[k] + sqrtf(1.0f - u) * n[k];
+    const float u = urand(p), v = urand(p);
+    bench_cosine_dir(gather_normal(sf), u, v, d);
     return dot3(d, sf->ng) > 0.0f;
 }
 
@@ -290,35 +266,6 @@ static int sample(pt *p, irc_cache *c, irc_pixel *pix, int mode, float x, float 
     return st < 0 ? st : 0;
 }
 
-static int cmp_desc(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return x < y ? 1 : x > y ? -1 : 0;
-}
-
-static void measure(const pt *p, const double *acc, int s, const float *ref, point *pt_)
-{
-    const int n = p->w * p->h, worst = n / 100 > 0 ? n / 100 : 1;
-    double se = 0.0, sr = 0.0, w = 0.0, *rel = malloc(sizeof(double) * (size_t)n);
-    int i;
-    for (i = 0; i < n; i++) {
-        const double a = (acc[3 * i] + acc[3 * i + 1] + acc[3 * i + 2]) / (3.0 * s),
-                     b = (ref[3 * i] + ref[3 * i + 1] + ref[3 * i + 2]) / 3.0;
-        se += (a - b) * (a - b);
-        sr += b * b;
-        if (rel)
-            rel[i] = fabs(a - b) / (b > 1e-3 ? b : 1e-3);
-    }
-    pt_->raw = sqrt(se / sr);
-    if (rel) {
-        qsort(rel, (size_t)n, sizeof(double), cmp_desc);
-        for (i = 0; i < worst; i++)
-            w += rel[i];
-        pt_->worst1 = w / worst;
-        free(rel);
-    }
-}
-
 static int render(pt *p, irc_cache *c, int mode, int spp, const float *ref, point *pts)
 {
     const int n = p->w * p->h;
@@ -341,18 +288,8 @@ static int render(pt *p, irc_cache *c, int mode, int spp, const float *ref, poin
         }
         while (q < CHECKS && check_spp[q] == s + 1) {
             double u = cpu_now();
-            irc_stats st = {0};
-            pts[q].cpu = u - t0 - spent;
-            pts[q].library = lib;
-            measure(p, acc, s + 1, ref, &pts[q]);
-            pts[q].rays = p->rays;
-            if (c && irc_cache_stats(c, &st) == IRC_OK) {
-                pts[q].records = st.records;
-                pts[q].computes = st.computes;
-                pts[q].details = st.details;
-                pts[q].cache_rays = st.rays;
-            }
-            pts[q].done = 1;
+            checkpoint(&pts[q], u - t0 - spent, lib, n, acc, s + 1, ref, c);
+            pts[q].traced = p->rays;
             spent += cpu_now() - u;
             q++;
         }
@@ -433,10 +370,10 @@ int main(int argc, char **argv)
 {
     static pt p;
     static point pts[MODES][CHECKS];
-    int spp = 1024, ref_spp = 4096, mode, q, failed = 0;
+    int spp = 1024, ref_spp = 4096, mode, failed = 0;
     char err[256];
     float *ref;
-    double v = 0.0, t0;
+    double t0;
     setvbuf(stdout, NULL, _IOLBF, 0); /* lines as they come: runs are long */
     if (argc != 2 && argc != 6)
         return fprintf(stderr, "usage: bench_pathtracer SCENE [width height samples ref]\n"), 2;
@@ -486,43 +423,9 @@ int main(int argc, char **argv)
             printf("%s failed\n", mode_name[mode]);
             failed = 1;
         }
-        if (mode == PATH && pts[PATH][0].done)
-            v = pts[PATH][0].raw * pts[PATH][0].raw / (0.25 + 1.0 / ref_spp);
-        for (q = 0; q < CHECKS; q++) {
-            point *x = &pts[mode][q];
-            double e2 = x->raw * x->raw - v / ref_spp;
-            x->rmse = e2 > 0.0 ? sqrt(e2) : 0.0;
-        }
     }
-    printf("%-7s %6s %9s %8s %8s %8s %8s %9s %11s %9s %9s %8s %11s\n", "mode", "spp", "cpu_s",
-           "rmse", "raw", "worst1%", "speedup", "library", "rays", "records", "computes",
-           "details", "cache_rays");
-    for (mode = PATH; mode < MODES; mode++)
-        for (q = 0; q < CHECKS; q++) {
-            const point *x = &pts[mode][q], *b = &pts[PATH][q];
-            double up = x->rmse > 0.0 && b->done
-                            ? b->cpu * (b->rmse / x->rmse) * (b->rmse / x->rmse) / x->cpu
-                            : 0.0;
-            if (!x->done)
-                continue;
-            printf("%-7s %6d %9.2f %8.4f %8.4f %8.4f %7.2fx %8.1f%% %11llu %9llu %9llu %8llu "
-                   "%11llu\n",
-                   mode_name[mode], check_spp[q], x->cpu, x->rmse, x->raw, x->worst1, up,
-                   100.0 * x->library / x->cpu, x->rays, x->records, x->computes, x->details,
-                   x->cache_rays);
-        }
-    if (getenv("PT_CSV")) { /* mode,spp,cpu_s,rmse for the error-vs-time plot */
-        FILE *f = fopen(getenv("PT_CSV"), "w");
-        if (f) {
-            fprintf(f, "mode,spp,cpu_s,rmse\n");
-            for (mode = PATH; mode < MODES; mode++)
-                for (q = 0; q < CHECKS; q++)
-                    if (pts[mode][q].done)
-                        fprintf(f, "%s,%d,%.4f,%.6f\n", mode_name[mode], check_spp[q],
-                                pts[mode][q].cpu, pts[mode][q].rmse);
-            fclose(f);
-        }
-    }
+    denoise(pts, MODES, ref_spp);
+    report(mode_name, pts, MODES, getenv("PT_CSV"));
     free(ref);
     lights_free(&p.l);
     bvh_free(&p.b);

@@ -26,6 +26,9 @@
  * without the error measurements; "library" is the time inside irc_*
  * calls less the callback's (monotonic clock: one thread, so the same).
  *
+ * The table and CSV are bench/progress_report.h's; its `traced` column is
+ * 0 here (this host does not count its rays; cache_rays are the library's).
+ *
  * Usage: bench_progressive [width height samples reference_samples]
  * (default 128 96 1024 4096).  PROG_MODES=path,pixel,... chooses modes;
  * PROG_A=a sets the knob.  PROG_IMAGES=DIR writes DIR/MODE-SPP.ppm.
@@ -37,24 +40,10 @@
 #include <time.h>
 
 #include "host_scene.h"
+#include "progress_report.h"
 
 enum { PATH, PIXEL, SAMPLE, FIXED, MODES };
 static const char *const mode_name[MODES] = {"path", "pixel", "sample", "fixed"};
-#define CHECKS 5
-static const int check_spp[CHECKS] = {4, 16, 64, 256, 1024};
-
-typedef struct point {
-    double cpu, library, rmse, raw, worst1;
-    unsigned long long records, rays, lookups, details;
-    int done;
-} point;
-
-static double cpu_now(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
 
 /* E at the first hit by the mode's means; the library's CPU into *lib. */
 static int irradiance(host *h, irc_cache *c, irc_pixel *pix, int mode, const float x[3],
@@ -106,37 +95,6 @@ static int sample(host *h, irc_cache *c, irc_pixel *pix, int mode, float px, flo
     return 0;
 }
 
-static int cmp_desc(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return x < y ? 1 : x > y ? -1 : 0;
-}
-
-/* Relative RMSE of acc / s against ref (luminance), and the mean relative
- * error of the worst 1% of pixels. */
-static void measure(const host *h, const double *acc, int s, const float *ref, point *pt)
-{
-    const int n = h->w * h->h, worst = n / 100 > 0 ? n / 100 : 1;
-    double se = 0.0, sr = 0.0, w = 0.0, *rel = malloc(sizeof(double) * (size_t)n);
-    int i;
-    for (i = 0; i < n; i++) {
-        const double a = (acc[3 * i] + acc[3 * i + 1] + acc[3 * i + 2]) / (3.0 * s),
-                     b = (ref[3 * i] + ref[3 * i + 1] + ref[3 * i + 2]) / 3.0;
-        se += (a - b) * (a - b);
-        sr += b * b;
-        if (rel)
-            rel[i] = fabs(a - b) / (b > 1e-3 ? b : 1e-3);
-    }
-    pt->raw = sqrt(se / sr);
-    if (rel) {
-        qsort(rel, (size_t)n, sizeof(double), cmp_desc);
-        for (i = 0; i < worst; i++)
-            w += rel[i];
-        pt->worst1 = w / worst;
-        free(rel);
-    }
-}
-
 static void write_ppm(const host *h, const char *mode, int s, const double *acc)
 {
     char path[512];
@@ -177,19 +135,9 @@ static int render(host *h, irc_cache *c, int mode, int spp, const float *ref, po
         }
         while (q < CHECKS && check_spp[q] == s + 1) {
             double u = cpu_now();
-            irc_stats st = {0};
-            pts[q].cpu = u - t0 - spent;
-            pts[q].library = lib;
-            measure(h, acc, s + 1, ref, &pts[q]);
-            if (c && irc_cache_stats(c, &st) == IRC_OK) {
-                pts[q].records = st.records;
-                pts[q].rays = st.rays;
-                pts[q].lookups = st.lookups;
-                pts[q].details = st.details;
-            }
+            checkpoint(&pts[q], u - t0 - spent, lib, n, acc, s + 1, ref, c);
             if (getenv("PROG_IMAGES"))
                 write_ppm(h, mode_name[mode], s + 1, acc);
-            pts[q].done = 1;
             spent += cpu_now() - u;
             q++;
         }
@@ -223,10 +171,10 @@ static int wanted(int mode)
 int main(int argc, char **argv)
 {
     host h = {0};
-    int spp = 1024, ref_spp = 4096, mode, q, failed = 0;
+    int spp = 1024, ref_spp = 4096, mode, failed = 0;
     static point pts[MODES][CHECKS];
     float *ref;
-    double v = 0.0, t0;
+    double t0;
     setvbuf(stdout, NULL, _IOLBF, 0); /* rows as they come: runs are long */
     if (argc == 5) {
         h.w = atoi(argv[1]);
@@ -282,40 +230,9 @@ int main(int argc, char **argv)
             irc_fini(c);
         }
         free(cfg.buffer);
-        if (mode == PATH && pts[PATH][0].done) /* v from 4 samples: raw^2 = v (1/4 + 1/R) */
-            v = pts[PATH][0].raw * pts[PATH][0].raw / (0.25 + 1.0 / ref_spp);
-        for (q = 0; q < CHECKS; q++) {
-            point *p = &pts[mode][q];
-            double e2 = p->raw * p->raw - v / ref_spp;
-            p->rmse = e2 > 0.0 ? sqrt(e2) : 0.0;
-        }
     }
-    printf("%-7s %6s %9s %8s %8s %8s %8s %9s %11s %9s %8s\n", "mode", "spp", "cpu_s", "rmse",
-           "raw", "worst1%", "speedup", "library", "rays", "records", "details");
-    for (mode = PATH; mode < MODES; mode++)
-        for (q = 0; q < CHECKS; q++) {
-            const point *p = &pts[mode][q], *b = &pts[PATH][q];
-            double up = p->rmse > 0.0 && b->done
-                            ? b->cpu * (b->rmse / p->rmse) * (b->rmse / p->rmse) / p->cpu
-                            : 0.0;
-            if (!p->done)
-                continue;
-            printf("%-7s %6d %9.2f %8.4f %8.4f %8.4f %7.2fx %8.1f%% %11llu %9llu %8llu\n",
-                   mode_name[mode], check_spp[q], p->cpu, p->rmse, p->raw, p->worst1, up,
-                   100.0 * p->library / p->cpu, p->rays, p->records, p->details);
-        }
-    if (getenv("PROG_CSV")) { /* mode,spp,cpu_s,rmse for the error-vs-time plot */
-        FILE *f = fopen(getenv("PROG_CSV"), "w");
-        if (f) {
-            fprintf(f, "mode,spp,cpu_s,rmse\n");
-            for (mode = PATH; mode < MODES; mode++)
-                for (q = 0; q < CHECKS; q++)
-                    if (pts[mode][q].done)
-                        fprintf(f, "%s,%d,%.4f,%.6f\n", mode_name[mode], check_spp[q],
-                                pts[mode][q].cpu, pts[mode][q].rmse);
-            fclose(f);
-        }
-    }
+    denoise(pts, MODES, ref_spp);
+    report(mode_name, pts, MODES, getenv("PROG_CSV"));
     free(ref);
     return failed;
 }
