@@ -970,40 +970,30 @@ IRC_API int irc_sh_radiance(const irc_sh *sh, const float w[3], float rgb[3]);
 /* converges (docs/DESIGN.md, "Progressive hosts"; bench/progressive.c).   */
 
 /*
- * Tells the cache how many samples a pixel the host has taken (call it
- * between iterations: after 1, 2, 4, ... or after every one; only a new
- * power of two does anything).  From the first call on, the cache is
- * progressive: a record's rays follow the samples, M N s / 1024 for s
- * samples a pixel (M x N the strata the knob chose) but at least M N / 16
- * (M N / 4 for a >= 0.375), so records are cheap while the image is noisy
- * anyway and have the knob's rays from 1,024 samples on.  At each power of two every record
- * is refined: new, independent rays as many as it has, its irradiance and
- * gradients the mean of all of them (its position and radius kept), so
- * the cache's noise falls with the samples as path tracing's does.
- * Records computed later get the level's rays at once; a per-pixel
- * detail estimate gets the coarsest grid's (irc_cache_lookup_pixel then
- * refines it).  A record the _px call makes in a progressive cache
+ * Tells the cache how many samples a pixel the host has taken, between
+ * iterations (only a new power of two does anything).  From the first
+ * call on the cache is progressive: a record holds M N s / 1024 rays at
+ * s samples a pixel, at least M N / 16 (M N / 4 for a >= 0.375), M x N
+ * the knob's strata; at each power of two every record gets new,
+ * independent rays as many as it has, its E and gradients their mean,
+ * its position and radius kept (docs/DESIGN.md, "Progressive hosts").
+ * Records computed later get the level's rays at once, and a _px record
  * reaches a pixel at least (a R >= footprint, within max_pixels and
- * max_radius): a smaller one serves its own point alone, and each
- * level's samples would make another beside it.  The refinement casts rays through cfg.trace from the
- * calling thread (args->host = host), 2x the rays the records hold; it is
- * the same whatever threads made the records, so a host that fills in
- * passes gets the same image at any thread count.  Not concurrent with
- * any other call on the cache; not inside a pass (IRC_ERR_STATE).
- * samples may fall back only in an empty cache (after irc_cache_clear,
- * for a new view), else IRC_ERR_RANGE.  Records that a snapshot or merge
- * brings in count as holding the level's rays.  Returns IRC_OK,
- * IRC_ERR_UNSUPPORTED (SH records, VISIBILITY, HESSIAN or supersamples: a
- * coarser estimate of those does not exist), or a negative code; a code
- * from the callback stops the refinement there: the records before it are
- * refined, the rest keep their rays, and the cache is at the new level.
+ * max_radius).  The refinement casts 2x the rays the records hold through
+ * cfg.trace from the calling thread (args->host = host), the same
+ * whatever threads made the records.  Not concurrent with any other call;
+ * not inside a pass (IRC_ERR_STATE); samples may fall back only in an
+ * empty cache, else IRC_ERR_RANGE.  Records a snapshot or merge brings in
+ * count as holding the level's rays.  Returns IRC_OK, IRC_ERR_UNSUPPORTED
+ * (SH, VISIBILITY, HESSIAN or supersamples), or a negative code; the
+ * callback's stops the refinement: the records before it are refined,
+ * the rest keep their rays, and the cache is at the new level.
  */
 IRC_API int irc_progress(irc_cache *cache, uint32_t samples, void *host);
 
-/* A pixel's answers, kept by the host for the pixel's later samples: one
- * per pixel (or per pixel of a tile), zeroed before the first call (a
- * zeroed irc_pixel holds nothing).  Two, because a pixel on an edge has
- * samples on two surfaces.  Its fields are the library's. */
+/* A pixel's answers, kept by the host for its later samples: one
+ * irc_pixel a pixel, zeroed before the first call.  Two answers, for a
+ * pixel on an edge.  Its fields are the library's. */
 typedef struct irc_pixel_answer {
     float p[3], n[3];    /* the point the answer was made for */
     float e[3];          /* the answer */
@@ -1021,25 +1011,19 @@ typedef struct irc_pixel {
 
 /*
  * The _px call for a sample of a pixel whose answers the host keeps in
- * *pixel: a sample whose point lies within 2 footprints of a kept
- * answer's point, with a normal within about 18 degrees of its normal,
- * gets that answer (rgb, *weight, the same status) with no lookup and
- * no probe, until irc_progress refines the records; then its next sample
- * there looks up again (without probes: the point was no detail; any
- * record within the lookups' reach blend a R answers it), and a
- * kept detail estimate (IRC_DETAIL) gets more rays instead of being
- * made again: a detail pixel serves itself alone, so it holds about a
- * ray a sample the pixel has had (T0 2^(level - top), top 2 for the
- * default grids below a = 0.375, 1 above), and a new one has T0 (a pixel
- * whose samples land on many surfaces makes one for each).  Any other
- * point is answered by
- * irc_cache_lookup_or_compute_px, whose answer *pixel then keeps in
- * place of the one used less recently.  So a pixel costs a lookup about
- * once a level, not once a sample, and its probes once.  Calls for one
- * irc_pixel must not run concurrently; zero it again after
- * irc_cache_clear, irc_snapshot_read or irc_merge, and use it with one
- * cache only.  Returns as the _px call, with
- * IRC_ERR_NULL for a NULL pixel; *pixel changes only on success.
+ * *pixel.  A point within 2 footprints of a kept answer's point, with a
+ * normal within about 18 degrees of its normal, gets that answer (rgb,
+ * *weight, the same status) with no lookup and no probe until the cache's
+ * level changes (irc_progress); then it is looked up again without probes
+ * and answered by any record within blend a R, or, for a kept detail
+ * estimate (IRC_DETAIL), given more rays: up to T0 2^(level - top), about
+ * one a sample (top 2 for the default grids below a = 0.375, 1 above); a
+ * new detail estimate has T0 (M N / 16 or / 4).  Any other point is
+ * answered by irc_cache_lookup_or_compute_px, kept in place of the answer
+ * used less recently.  Calls for one irc_pixel must not run concurrently;
+ * zero it again after irc_cache_clear, irc_snapshot_read or irc_merge, and
+ * use it with one cache only.  Returns as the _px call, IRC_ERR_NULL for
+ * a NULL pixel; *pixel changes only on success.
  */
 IRC_API int irc_cache_lookup_pixel(irc_cache *cache, irc_pixel *pixel, const float p[3],
                                    const float n[3], float footprint, float rgb[3],
