@@ -62,6 +62,7 @@ static double record_cost(uint32_t features, uint32_t m, uint32_t n, double seco
     double t0, t1;
     long done = 0;
     memset(&cfg, 0, sizeof cfg);
+    cfg.version = IRC_CONFIG_VERSION;
     cfg.trace = bench_cheap_trace;
     cfg.features = features;
     cfg.strata_theta = m;
@@ -277,6 +278,7 @@ static void placement(void)
         irc_stats st;
         double ins, hr, rate;
         memset(&cfg, 0, sizeof cfg);
+        cfg.version = IRC_CONFIG_VERSION;
         cfg.trace = no_trace;
         cfg.accuracy = 0.2f;
         cfg.features = IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION;
@@ -426,6 +428,7 @@ int main(void)
         irc_stats st;
         double ins;
         memset(&cfg, 0, sizeof cfg);
+        cfg.version = IRC_CONFIG_VERSION;
         cfg.trace = no_trace;
         cfg.accuracy = 0.2f;
         cfg.features = sets[i].f;
@@ -465,6 +468,7 @@ int main(void)
             double ins, hr, rate;
             int coh;
             memset(&cfg, 0, sizeof cfg);
+            cfg.version = IRC_CONFIG_VERSION;
             cfg.trace = no_trace;
             cfg.accuracy = 0.2f;
             cfg.features = IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION;

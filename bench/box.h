@@ -48,6 +48,7 @@ static inline irc_cache *box_cache(uint32_t count, irc_config *cfg)
     irc_cache *c;
     size_t bytes;
     memset(cfg, 0, sizeof *cfg);
+    cfg->version = IRC_CONFIG_VERSION;
     cfg->trace = box_no_trace;
     cfg->accuracy = 0.2f;
     cfg->features = IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION;

@@ -305,7 +305,7 @@ int main(int argc, char **argv)
     printf("%-7s %8s %9s %8s %8s %9s %10s %10s %8s %12s\n", "mode", "seconds", "rel_rmse",
            "worst1%", "records", "library", "lookups", "misses", "details", "replayed/s");
     for (mode = PATH; mode < MODES; mode++) {
-        irc_config cfg = {0}; /* the library's defaults */
+        irc_config cfg = IRC_CONFIG_INIT; /* the library's defaults */
         irc_cache *c = NULL;
         irc_stats st = {0};
         run r;

@@ -323,7 +323,7 @@ static int wanted(int mode)
  * the knob; 0 or -1. */
 static int cache_run(pt *p, int mode, int spp, const float *ref, point *pts)
 {
-    irc_config cfg = {0};
+    irc_config cfg = IRC_CONFIG_INIT;
     level lv;
     irc_cache *c = NULL;
     size_t bytes;

@@ -196,7 +196,7 @@ int main(int argc, char **argv)
            "(%.1f s)\n",
            irc_version_string(), h.w, h.h, spp, ref_spp, cpu_now() - t0);
     for (mode = PATH; mode < MODES; mode++) {
-        irc_config cfg = {0}; /* the library's defaults */
+        irc_config cfg = IRC_CONFIG_INIT; /* the library's defaults */
         irc_cache *c = NULL;
         size_t bytes;
         if (mode != PATH && !wanted(mode))

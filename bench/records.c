@@ -60,6 +60,7 @@ int main(int argc, char **argv)
     if (kind < 0 || count < 0)
         return 2;
     memset(&cfg, 0, sizeof cfg);
+    cfg.version = IRC_CONFIG_VERSION;
     cfg.trace = bench_cheap_trace;
     cfg.features = kinds[kind].f;
     cfg.strata_theta = argc == 5 ? (uint32_t)atol(argv[3]) : 16u;

@@ -104,6 +104,7 @@ int renderer_init(renderer *r, const scene *s, const render_opts *o, char *err, 
         size_t bytes;
         int st;
         memset(&cfg, 0, sizeof cfg);
+        cfg.version = IRC_CONFIG_VERSION;
         cfg.trace = host_trace;
         r->ctx[0].r = r;
         r->ctx[0].level = 1;

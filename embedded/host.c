@@ -80,6 +80,7 @@ static irc_sh sh_out;
 static void settings(irc_config *cfg, uint32_t features)
 {
     memset(cfg, 0, sizeof *cfg);
+    cfg->version = IRC_CONFIG_VERSION;
     cfg->trace = trace;
     cfg->max_batch = 64;
     cfg->features = features;

@@ -29,6 +29,7 @@ static void per_record(const char *name, uint32_t features)
     irc_config cfg;
     size_t a = 0, b = 0;
     memset(&cfg, 0, sizeof cfg);
+    cfg.version = IRC_CONFIG_VERSION;
     cfg.trace = trace;
     cfg.features = features;
     irc_footprint(&cfg, 1000, &a);
@@ -61,6 +62,7 @@ int main(void)
     const float p[3] = {0, 0, 0}, n[3] = {0, 0, 1};
     float w = 0.0f;
     memset(&cfg, 0, sizeof cfg);
+    cfg.version = IRC_CONFIG_VERSION;
     cfg.trace = trace;
     cfg.buffer = block;
     cfg.buffer_size = sizeof block;

@@ -343,7 +343,7 @@ int main(int argc, char **argv)
     scene s;
     world w;
     char err[512];
-    irc_config cfg = {0}; /* the library's defaults */
+    irc_config cfg = IRC_CONFIG_INIT; /* the library's defaults */
     size_t bytes;
     float *ref, *img;
     double tb[4], eb[4], tc, ec, tbrute = -1.0, full;

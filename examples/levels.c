@@ -54,7 +54,7 @@ static int trace(const irc_trace_args *a)
 
 static irc_cache *make(level *l, void **block)
 {
-    irc_config cfg = {0};
+    irc_config cfg = IRC_CONFIG_INIT;
     irc_cache *c;
     size_t bytes;
     cfg.trace = trace;

@@ -40,7 +40,7 @@ static int trace(const irc_trace_args *a)
 
 int main(void)
 {
-    irc_config cfg = {0};
+    irc_config cfg = IRC_CONFIG_INIT;
     irc_cache *cache;
     size_t bytes;
     int i, st;

@@ -235,7 +235,7 @@ static void check(const job *j, double *rmse, double *worst)
 int main(void)
 {
     static job j;
-    irc_config cfg = {0}; /* the library's defaults */
+    irc_config cfg = IRC_CONFIG_INIT; /* the library's defaults */
     irc_stats st1, st4;
     size_t bytes;
     double rmse1, worst1, rmse4, worst4;

@@ -76,7 +76,7 @@ static void *work(void *arg)
 
 int main(void)
 {
-    irc_config cfg = {0};
+    irc_config cfg = IRC_CONFIG_INIT;
     irc_cache *cache;
     irc_stats s;
     worker ws[WORKERS];

@@ -222,6 +222,7 @@ static int cost(const scene *s)
                     size_t bytes;
                     void *block;
                     memset(&cfg, 0, sizeof cfg);
+                    cfg.version = IRC_CONFIG_VERSION;
                     cfg.trace = h ? sh_env_trace : sky_trace;
                     cfg.context = &e;
                     cfg.max_batch = 64;

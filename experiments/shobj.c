@@ -82,6 +82,7 @@ irc_cache *sh_env_cache(sh_env *e, uint32_t features, uint32_t m, uint32_t n, vo
     irc_cache *c;
     size_t bytes;
     memset(&cfg, 0, sizeof cfg);
+    cfg.version = IRC_CONFIG_VERSION;
     cfg.trace = sh_env_trace;
     cfg.context = e;
     cfg.max_batch = 64;

@@ -79,6 +79,7 @@ static void read_config(fuzz_in *in, irc_config *cfg, host *h, uint32_t *cap)
     int k;
     float px[2];
     memset(cfg, 0, sizeof *cfg);
+    cfg->version = IRC_CONFIG_VERSION;
     cfg->trace = trace;
     cfg->context = h;
     cfg->features = fz_u8(in) & 127u;

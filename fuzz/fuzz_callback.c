@@ -112,6 +112,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     uint8_t s;
     int ops, st;
     memset(&cfg, 0, sizeof cfg);
+    cfg.version = IRC_CONFIG_VERSION;
     s = fz_u8(&in);
     cfg.trace = trace;
     cfg.context = &h;

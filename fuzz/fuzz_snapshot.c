@@ -47,6 +47,7 @@ static void config(uint8_t pick, irc_config *cfg)
         IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION | IRC_FEATURE_HESSIAN,
         IRC_FEATURE_SH | IRC_FEATURE_SH_GRADIENT};
     memset(cfg, 0, sizeof *cfg);
+    cfg->version = IRC_CONFIG_VERSION;
     cfg->trace = no_trace;
     cfg->port = &irc_port_none;
     cfg->features = feats[pick & 3];

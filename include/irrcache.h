@@ -133,7 +133,9 @@ typedef enum irc_status {
     IRC_ERR_CORRUPT = -14,    /* a snapshot whose magic, checksums, length or
                                  values are wrong; irc_attach, irc_join: a
                                  block no cache could have made */
-    IRC_ERR_VERSION = -15,    /* a snapshot of another format version */
+    IRC_ERR_VERSION = -15,    /* a snapshot of another format version; a
+                                 config whose version is not
+                                 IRC_CONFIG_VERSION (use IRC_CONFIG_INIT) */
     IRC_ERR_MISMATCH = -16,   /* a snapshot of another kind, features, record
                                  size, SH bands, channels, accuracy, strata */
     IRC_ERR_FINGERPRINT = -17,/* a snapshot for another scene (fingerprint) */
@@ -307,7 +309,8 @@ IRC_API extern const irc_port *const irc_port_default; /* the chosen one: what
                                                           cfg.port = NULL means */
 
 /* ------------------------------------------------------------------------ */
-/* Configuration.  Zero in any field means its default.                    */
+/* Configuration.  Start from IRC_CONFIG_INIT; zero in any other field    */
+/* means its default.                                                        */
 
 /* Gradient terms a record carries.  A cache pays in memory and time only for
  * the terms it enables: 32 bytes per record bare, +16 per gradient. */
@@ -346,11 +349,16 @@ enum irc_evict {
 };
 
 typedef struct irc_config {
+    /* IRC_CONFIG_VERSION, which IRC_CONFIG_INIT sets.  Every call that takes
+     * a config refuses another value (IRC_ERR_VERSION): a config zeroed or
+     * initialised by position for another version of this struct, or one
+     * compiled against another version of this header. */
+    uint32_t version;
     irc_trace_fn trace;      /* required */
     void *context;           /* handed to trace unchanged */
-    uint32_t max_batch;      /* rays per trace call, 1..4096 (default 1); more
-                                serve packet tracers, at 56 bytes per ray
-                                and thread */
+    uint32_t max_batch;      /* rays per trace call, 1..4096 (default 1;
+                                past M N: M N); more serve packet tracers,
+                                at 56 bytes per ray and thread */
     uint32_t features;       /* IRC_FEATURE_* bits (default 0: TRANSLATION |
                                 ROTATION) */
     float accuracy;          /* Ward's a: a record counts at p when
@@ -444,6 +452,22 @@ typedef struct irc_config {
     size_t buffer_size;      /* bytes, >= what irc_footprint() returned */
 } irc_config;
 
+/* The config's version (0.5) and size: what IRC_CONFIG_INIT sets. */
+#define IRC_CONFIG_VERSION ((uint32_t)(0x1C050000u | (uint32_t)sizeof(irc_config)))
+
+/*
+ * The config every host starts from: irc_config cfg = IRC_CONFIG_INIT; then
+ * set fields by name (cfg.trace = ...; C99: {.version = IRC_CONFIG_VERSION,
+ * .trace = ...}).  Every other field zero: its default.
+ */
+#ifdef __cplusplus
+#define IRC_CONFIG_INIT                                                          \
+    {IRC_CONFIG_VERSION, 0, 0, 0, 0, 0.0f, 0.0f, 0.0f, 0, 0, 0, 0, 0, 0, 0,      \
+     {0, 0, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f}, {0, 0, 0.0f}, 0, 0, 0, 0}
+#else
+#define IRC_CONFIG_INIT {.version = IRC_CONFIG_VERSION}
+#endif
+
 #define IRC_MAX_STRATA 4194304u /* 1024 x 4096 */
 #define IRC_MAX_BATCH 4096u
 #define IRC_MAX_THREADS 64u
@@ -528,6 +552,19 @@ IRC_API int irc_attach(const irc_config *cfg, irc_cache **cache);
 /* Release the port's lock; the block is the caller's again.  Returns
  * IRC_OK, or a negative error code. */
 IRC_API int irc_fini(irc_cache *cache);
+
+/*
+ * The cache's config as resolved: every field left at 0 replaced by what
+ * the defaults chose (accuracy, strata, max_batch, threads, max_radius,
+ * the kind's fields: pixel bounds, detail_pixels, full_pixels, blend or
+ * bands, channels, power; "none" as -1), features as implied (0: TRANSLATION
+ * | ROTATION, VISIBILITY with TRANSLATION, bare records IRC_FEATURE_NONE),
+ * every irc_switch IRC_ON or IRC_OFF, port the one in use, and trace,
+ * context, buffer, buffer_size as this process gave them.  Given to
+ * irc_footprint or irc_init, it makes the same cache.  Any thread.
+ * Returns IRC_OK, IRC_ERR_NULL, or IRC_ERR_CONFIG (not a live cache).
+ */
+IRC_API int irc_cache_config(irc_cache *cache, irc_config *out);
 
 /* ------------------------------------------------------------------------ */
 /* Irradiance records.                                                       */

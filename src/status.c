@@ -24,7 +24,7 @@ const char *irc_strerror(int status)
     case IRC_ERR_RANGE: return "a value or index is out of its range";
     case IRC_ERR_TRUNCATED: return "the snapshot is shorter than its header says";
     case IRC_ERR_CORRUPT: return "the snapshot is corrupt (magic, checksum, length or values)";
-    case IRC_ERR_VERSION: return "the snapshot has another format version";
+    case IRC_ERR_VERSION: return "another version: a snapshot of another format, or a config not from IRC_CONFIG_INIT";
     case IRC_ERR_MISMATCH: return "the snapshot's kind or config differs from the cache's";
     case IRC_ERR_FINGERPRINT: return "the snapshot was made for another scene";
     case IRC_ERR_STATE: return "a fill pass is open, or none is, where the call needs otherwise";

@@ -143,6 +143,7 @@ static irc_config base(uint32_t features)
 {
     irc_config cfg;
     memset(&cfg, 0, sizeof cfg);
+    cfg.version = IRC_CONFIG_VERSION;
     cfg.trace = scene_trace;
     cfg.context = &scene;
     cfg.features = features;

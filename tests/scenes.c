@@ -270,6 +270,7 @@ irc_config scene_config(tscene *s, uint32_t features, uint32_t m, uint32_t n)
 {
     irc_config cfg;
     memset(&cfg, 0, sizeof cfg);
+    cfg.version = IRC_CONFIG_VERSION;
     cfg.trace = scene_trace;
     cfg.context = s;
     /* 0: bare records, and records keep the radii they are given or

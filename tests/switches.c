@@ -39,6 +39,7 @@ static irc_config config(uint32_t features)
 {
     irc_config cfg;
     memset(&cfg, 0, sizeof cfg);
+    cfg.version = IRC_CONFIG_VERSION;
     cfg.trace = sky;
     cfg.features = features;
     cfg.strata_theta = 8;

@@ -189,6 +189,7 @@ TEST(test_defaults)
     scene_sphere_plane(&s);
     for (k = 0; k < 2; k++) {
         memset(&cfg, 0, sizeof cfg);
+        cfg.version = IRC_CONFIG_VERSION;
         cfg.trace = scene_trace;
         cfg.context = &s;
         cfg.strata_theta = 8;
@@ -228,6 +229,7 @@ TEST(test_defaults)
     /* clamping: a wide record beside a narrow one is held to 1 + 0.5 */
     for (k = 0; k < 2; k++) {
         memset(&cfg, 0, sizeof cfg);
+        cfg.version = IRC_CONFIG_VERSION;
         cfg.trace = scene_trace;
         cfg.context = &s;
         cfg.clamp_neighbours = k ? IRC_OFF : IRC_DEFAULT;
@@ -245,6 +247,7 @@ TEST(test_defaults)
     }
     /* no pixel bounds: the floor's own radius under the sphere */
     memset(&cfg, 0, sizeof cfg);
+    cfg.version = IRC_CONFIG_VERSION;
     cfg.trace = scene_trace;
     cfg.context = &s;
     cfg.strata_theta = 8;

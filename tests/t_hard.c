@@ -145,6 +145,7 @@ static irc_config hard_config(hhost *h, uint32_t features, uint32_t m, uint32_t 
 {
     irc_config cfg;
     memset(&cfg, 0, sizeof cfg);
+    cfg.version = IRC_CONFIG_VERSION;
     cfg.trace = hard_trace;
     cfg.context = h;
     cfg.features = features;

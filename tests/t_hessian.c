@@ -190,6 +190,7 @@ TEST(test_hessian_reference)
         for (i = 0; gi % 2 && i < 3; i++)
             nn[i] = (float)tilt[i];
         memset(&cfg, 0, sizeof cfg);
+        cfg.version = IRC_CONFIG_VERSION;
         cfg.trace = cave_trace;
         cfg.context = &cv;
         cfg.features = IRC_FEATURE_TRANSLATION | IRC_FEATURE_HESSIAN;

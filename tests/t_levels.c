@@ -79,6 +79,7 @@ static irc_cache *make(level *l, const irc_port *port, uint32_t slots, int no_wa
     irc_cache *c = NULL;
     size_t bytes;
     memset(&cfg, 0, sizeof cfg);
+    cfg.version = IRC_CONFIG_VERSION;
     cfg.trace = sphere_trace;
     cfg.context = l;
     cfg.port = port;

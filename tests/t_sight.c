@@ -281,6 +281,7 @@ TEST(test_sight_convex)
     for (tilted = 0; tilted < 2; tilted++) {
         irc_record r;
         memset(&cfg, 0, sizeof cfg);
+        cfg.version = IRC_CONFIG_VERSION;
         cfg.trace = ball_trace;
         cfg.context = &vis_rays;
         cfg.strata_theta = 4;

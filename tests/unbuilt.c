@@ -26,6 +26,7 @@ static int try_port(const irc_port *port, int want)
     unsigned char *block;
     int st;
     memset(&cfg, 0, sizeof cfg);
+    cfg.version = IRC_CONFIG_VERSION;
     cfg.trace = trace;
     cfg.port = port;
     if (irc_footprint(&cfg, 16, &bytes) != IRC_OK || !(block = calloc(1, bytes)))

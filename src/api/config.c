@@ -108,6 +108,8 @@ int irc__config_resolve(const irc_config *in, irc_config *out)
     int st;
     if (!in)
         return IRC_ERR_NULL;
+    if (in->version != IRC_CONFIG_VERSION)
+        return IRC_ERR_VERSION;
     *out = *in;
     if (!out->trace)
         return IRC_ERR_NULL;

@@ -1,13 +1,31 @@
 /*
  * inspect.c -- the calls that read a cache's state or empty it: its
- * counters and sizes (irc_cache_stats), the records a lookup would use
- * (irc_cache_neighbours), and clearing (irc_cache_clear).
+ * config as resolved (irc_cache_config), its counters and sizes
+ * (irc_cache_stats), the records a lookup would use (irc_cache_neighbours),
+ * and clearing (irc_cache_clear).
  */
 #include "../block/check.h"
 #include "../index/index.h"
 #include "../store/lock.h"
 #include "../store/lookup.h"
 #include "../store/stats.h"
+
+int irc_cache_config(irc_cache *c, irc_config *out)
+{
+    irc_config r;
+    int st = irc__enter(c, NULL);
+    if (st < 0)
+        return st;
+    if (!out)
+        return IRC_ERR_NULL;
+    r = c->cfg;
+    r.clamp_neighbours = r.clamp_neighbours ? IRC_ON : IRC_OFF;
+    r.check_visibility = r.check_visibility ? IRC_ON : IRC_OFF;
+    if (c->kind->publish)
+        c->kind->publish(&r);
+    *out = r;
+    return IRC_OK;
+}
 
 int irc_cache_stats(irc_cache *c, irc_stats *out)
 {

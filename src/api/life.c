@@ -446,7 +446,11 @@ int irc_attach(const irc_config *cfg, irc_cache **out)
     const irc_port *port;
     size_t was, pad;
     int st;
-    if (!cfg || !out || !cfg->buffer || !cfg->trace)
+    if (!cfg || !out)
+        return IRC_ERR_NULL;
+    if (cfg->version != IRC_CONFIG_VERSION)
+        return IRC_ERR_VERSION;
+    if (!cfg->buffer || !cfg->trace)
         return IRC_ERR_NULL;
     port = cfg->port ? cfg->port : irc_port_default;
     if ((st = irc__find(cfg, &was, &head)) < 0)

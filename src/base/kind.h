@@ -176,6 +176,10 @@ typedef struct irc__kind {
      * already holds, of total weight w > 0 (lookups that reach past a R:
      * cfg.irr.blend); NULL for a kind whose lookups never do */
     void (*blend)(const irc_cache *c, const void *rec, void *out, float w);
+    /* Its fields and features of a resolved config as a host writes them
+     * (irc_cache_config: a switch as IRC_ON or IRC_OFF, bare records by
+     * name); NULL: as resolved */
+    void (*publish)(irc_config *cfg);
     /* Its lookups' reach over R and the weight a record at a R gets, from
      * the resolved config (cfg.irr.blend); NULL: a, and Ward's weights
      * (w_inner 0) */

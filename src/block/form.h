@@ -20,7 +20,7 @@
 
 /* What a block must agree on to be re-attached (irc_attach): the layout's
  * version, pointer and size_t widths, byte order. */
-#define IRC__LAYOUT_VERSION 22u
+#define IRC__LAYOUT_VERSION 23u
 #define IRC__ABI                                                           \
     (IRC__LAYOUT_VERSION | (uint32_t)sizeof(void *) << 8 |                 \
      (uint32_t)sizeof(size_t) << 16 | (uint32_t)sizeof(double) << 24)

@@ -579,6 +579,14 @@ static void irc__irr_reach(const irc_config *cfg, float *reach_a, float *w_inner
     }
 }
 
+/* The inverse of irc__irr_features and of the leak guard's switch. */
+static void irc__irr_publish(irc_config *cfg)
+{
+    if (cfg->features == 0u)
+        cfg->features = IRC_FEATURE_NONE;
+    cfg->irr.leak_guard = cfg->irr.leak_guard ? IRC_ON : IRC_OFF;
+}
+
 const irc__kind irc__kind_irr = {
     .id = IRC__KIND_IRR_ID,
     .features = IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION | IRC_FEATURE_VISIBILITY |
@@ -596,5 +604,6 @@ const irc__kind irc__kind_irr = {
     .unpack = irc__irr_unpack,
     .answer = irc__irr_answer,
     .blend = irc__irr_blend,
+    .publish = irc__irr_publish,
     .reach = irc__irr_reach,
     .lookup = &irc__irr_lookup};
