@@ -244,7 +244,11 @@ static int irradiance(renderer *r, const float p[3], const float n[3], float fp,
                 ts->dropped++;
             }
         } else if (ts->final) {
-            st = irc_cache_lookup(r->cache, p, n, e, NULL);
+            /* every record within blend a R answers, as the fill's
+             * lookups did (a miss only beyond: irrcache.h) */
+            float w = 0.0f;
+            if ((st = irc_cache_lookup(r->cache, p, n, e, &w)) == IRC_MISS && w > 0.0f)
+                st = IRC_OK;
         } else {
             st = irc_cache_lookup_or_compute_px(r->cache, p, n, r->o.no_footprint ? 0.0f : fp,
                                                 e, NULL, ts);

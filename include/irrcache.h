@@ -624,15 +624,19 @@ IRC_API int irc_record_compute(irc_cache *cache, const float p[3], const float n
 IRC_API int irc_cache_insert(irc_cache *cache, const irc_record *rec);
 
 /*
- * Interpolate irradiance at (p, n): every record with Ward-Heckbert weight
- * w_i = 1 / (|p - p_i|/R_i + sqrt(1 - n.n_i)) > 1/a, not in front of p
- * ((p - p_i).(n + n_i)/2 >= -0.05 R_i) nor rejected by its leak guard, is
- * extrapolated, E_i + (p - p_i).grad_t + (n_i x n).grad_r, clamped at 0 a
- * channel, and averaged with weights w_i (capped at 1e6).  An ellipse's
- * |p - p_i|/R_i is docs/DESIGN.md's ("Error control").  Records facing
- * away (n.n_i <= 0) never count.  rgb gets the average and *weight
- * (optional) the summed weight.  Returns IRC_OK, IRC_MISS (rgb = 0, weight
- * = 0) when no record counts, IRC_ERR_NONFINITE when the extrapolation
+ * Interpolate irradiance at (p, n).  Record i counts when its Ward
+ * distance e_i = |p - p_i|/R_i + sqrt(1 - n.n_i) is below blend x a
+ * (cfg.irr.blend, default 2; an ellipse's |p - p_i|/R_i is docs/DESIGN.md's,
+ * "Error control"), it is not in front of p ((p - p_i).(n + n_i)/2 >= -0.05
+ * R_i) and its leak guard does not reject p; records facing away (n.n_i <=
+ * 0) never count.  Each is extrapolated, E_i + (p - p_i).grad_t + (n_i x
+ * n).grad_r, clamped at 0 a channel, and averaged with weights (1 -
+ * t^2)^2, t = e_i / (blend a) (blend 1: Ward-Heckbert's 1/e_i, capped at
+ * 1e6).  rgb gets the average and *weight (optional) the summed weight.
+ * Returns IRC_OK when some record lies within a R (e_i < a); IRC_MISS when
+ * none does, which is where irc_cache_lookup_or_compute computes a record
+ * (rgb and *weight then hold the average over those within blend a R, 0
+ * and 0 when there are none); IRC_ERR_NONFINITE when the extrapolation
  * overflows float, or a negative error code.
  */
 IRC_API int irc_cache_lookup(irc_cache *cache, const float p[3], const float n[3],
@@ -959,8 +963,9 @@ typedef struct irc_gradient {
  * for a clamped channel or a gradient the cache lacks), averaged with the
  * same weights, whose own derivatives are left out (docs/DESIGN.md, "What
  * a record is").  rgb and grad not NULL (IRC_ERR_NULL); an SH cache:
- * IRC_ERR_UNSUPPORTED.  Otherwise as irc_cache_lookup, grad zero on
- * IRC_MISS, IRC_ERR_NONFINITE also for a gradient that overflows float.
+ * IRC_ERR_UNSUPPORTED.  Otherwise as irc_cache_lookup (grad on IRC_MISS
+ * that of its average, zero with no record within blend a R),
+ * IRC_ERR_NONFINITE also for a gradient that overflows float.
  */
 IRC_API int irc_cache_lookup_gradient(irc_cache *cache, const float p[3], const float n[3],
                                       float rgb[3], irc_gradient *grad, float *weight);

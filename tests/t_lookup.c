@@ -111,6 +111,15 @@ TEST(test_blend_mean)
     tb = sqrt(0.09 + 0.0625) / 0.4;
     wa = (1.0 - 0.625 * 0.625) * (1.0 - 0.625 * 0.625);
     wb = (1.0 - tb * tb) * (1.0 - tb * tb);
+    /* One rule for both calls: no record within a R is a miss, where the
+     * lookup-or-compute below computes; the lookup still hands over what
+     * lies within blend a R */
+    want = (wa * 1.0 + wb * 3.0) / (wa + wb);
+    CHECK(irc_cache_lookup(c, q, n, rgb, &w) == IRC_MISS && fabs(rgb[0] - want) < 1e-4 * want &&
+              fabs(w - (wa + wb)) < 1e-3 * (wa + wb),
+          "no record within a R: a miss with the wider mean %g (want %g), weight %g", rgb[0],
+          want, w);
+    CHECK(irc_cache_lookup(c, p, n, rgb, &w) == IRC_OK, "a record within a R: a hit");
     CHECK(irc_cache_lookup_or_compute(c, q, n, rgb, &w, NULL) == IRC_OK && w == 0.0f &&
               irc_cache_stats(c, &st) == IRC_OK && st.computes == 1 && st.records == 3 &&
               irc_cache_record(c, 2, &r) == IRC_OK,

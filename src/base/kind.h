@@ -55,9 +55,10 @@ typedef struct irc__query {
                                first walk accepted, in its order) */
     uint32_t n_among;
     irc__marks *marks;      /* NULL: a lookup that cannot fail after it reads */
-    int place;              /* a lookup-or-compute's, in a cache whose
-                               lookups reach past a R: a miss unless a
-                               record lies within a R (form.h, w_inner) */
+    int place;              /* in a cache whose lookups reach past a R:
+                               a miss unless a record lies within a R
+                               (form.h, w_inner), the rule of every call
+                               but a progressive pixel's loose look */
 } irc__query;
 
 /* One record computation in progress: the cache, its claimed scratch

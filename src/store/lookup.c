@@ -141,6 +141,9 @@ int irc__lookup(irc_cache *c, const irc__kind *want, const irc__acc *ops, const 
         return st;
     marks.n = 0;
     q.marks = &marks;
+    /* A miss where a lookup-or-compute would compute (out keeps the mean
+     * of the records within blend a R). */
+    q.place = c->w_inner > 0.0f;
     /* A lookup that read records and then failed (its answer past float)
      * takes its use bits back. */
     if ((st = ops->find(c, &q, out, weight)) < 0) {
