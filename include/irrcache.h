@@ -137,7 +137,7 @@ typedef enum irc_status {
                                  config whose version is not
                                  IRC_CONFIG_VERSION (use IRC_CONFIG_INIT) */
     IRC_ERR_MISMATCH = -16,   /* a snapshot of another kind, features, record
-                                 size, SH bands, channels, accuracy, strata */
+                                 size, SH bands, channels or accuracy */
     IRC_ERR_FINGERPRINT = -17,/* a snapshot for another scene (fingerprint) */
     IRC_ERR_STATE = -18,      /* a pass begun in a pass or ended outside one;
                                  clear, snapshot read or merge in a pass */
@@ -736,10 +736,12 @@ IRC_API int irc_snapshot_write(irc_cache *cache, uint64_t fingerprint, void *buf
  * Replaces the cache's records with a snapshot's, after checking everything:
  * IRC_ERR_TRUNCATED, IRC_ERR_CORRUPT, IRC_ERR_VERSION, IRC_ERR_FINGERPRINT
  * (not the fingerprint given), IRC_ERR_MISMATCH (another kind, features,
- * record size, SH bands or channels, accuracy or strata), IRC_ERR_FULL
- * (more records than the cache holds); on any of them the cache is as it
- * was.  Lookups then answer as the written cache did, bit for bit.  Not
- * concurrent with other calls.  Returns IRC_OK or a negative error code.
+ * record size, SH bands or channels, or accuracy), IRC_ERR_FULL (more
+ * records than the cache holds); on any of them the cache is as it was.
+ * Records of other strata load: a record holds what lookups read, whatever
+ * rays made it.  Lookups then answer as the written cache did, bit for bit
+ * (at the same blend).  Not concurrent with other calls.  Returns IRC_OK
+ * or a negative error code.
  */
 IRC_API int irc_snapshot_read(irc_cache *cache, uint64_t fingerprint, const void *data,
                               size_t size);

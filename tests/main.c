@@ -21,7 +21,7 @@
     X(test_footprint_bounds) X(test_footprint_size_t) X(test_radius_limits) X(test_gradient_channels) \
     X(test_index_origin) X(test_relocate) X(test_host_context) X(test_busy_waits) X(test_not_stored_counted) \
     X(test_hessian_closed_forms) X(test_hessian_reference) X(test_eigen2) X(test_hessian_radius) X(test_gradient_within_reach) X(test_ellipse_records) X(test_ellipse_axis_range) X(test_screen_bound) X(test_leak_guard_by_hand) \
-    X(test_snapshot_round_trip) X(test_snapshot_round_trip_sh) X(test_snapshot_rejects) X(test_snapshot_by_hand) X(test_merge_order_free) \
+    X(test_snapshot_round_trip) X(test_snapshot_round_trip_sh) X(test_snapshot_rejects) X(test_snapshot_other_strata) X(test_snapshot_by_hand) X(test_merge_order_free) \
     X(test_pass_order_free) X(test_pass_frozen) X(test_pass_full) X(test_pass_state) X(test_pass_lock_free) \
     X(test_share_processes) X(test_share_killed) X(test_share_killed_in_lock) X(test_share_zombie) X(test_port_owner_after_fork) X(test_share_killed_random) X(test_join_refused) \
     X(test_safe_defaults) X(test_index_clamped) X(test_index_compact) X(test_pass_end_incremental) X(test_index_reach_tight) X(test_index_bulk_spread) X(test_index_far_scales) X(test_index_far_from_origin) X(test_index_root_refused) \

@@ -233,6 +233,50 @@ TEST(test_snapshot_rejects)
     block_free(&cfg3);
 }
 
+/* Records carry what lookups read, whatever rays made them: a snapshot
+ * of 8 x 32 records reads into caches of 16 x 64 and of the default
+ * strata (32 x 128 at a = 0.2), and merges, answering every lookup as the
+ * writer did; another accuracy is still refused (lookups reach a R). */
+TEST(test_snapshot_other_strata)
+{
+    tscene s, s2;
+    irc_config cfg, to;
+    irc_cache *a = filled(&s, &cfg, IRC_FEATURE_TRANSLATION, 64, 3), *t;
+    size_t bytes = 0;
+    unsigned char *buf;
+    static const uint32_t strata[][2] = {{16, 64}, {0, 0}};
+    int i, k, differ = 0;
+    CHECK(a && irc_snapshot_size(a, &bytes) == IRC_OK && (buf = malloc(bytes)) != NULL, "fill");
+    if (!a || !buf)
+        return;
+    CHECK(irc_snapshot_write(a, 5u, buf, bytes, NULL, NULL, NULL) == IRC_OK, "write");
+    scene_sphere_plane(&s2);
+    for (i = 0; i < 2; i++) {
+        to = scene_config(&s2, IRC_FEATURE_TRANSLATION, strata[i][0], strata[i][1]);
+        t = block_cache(&to, 64, 0);
+        CHECK(t && irc_snapshot_read(t, 5u, buf, bytes) == IRC_OK, "read into %u x %u",
+              strata[i][0], strata[i][1]);
+        for (k = 0; t && k < 400; k++) {
+            const float p[3] = {-1.5f + 0.15f * (float)(k % 20), -1.5f + 0.15f * (float)(k / 20), 0},
+                        n[3] = {0, 0, 1};
+            float ra[3], rt[3], wa, wt;
+            const int sa = irc_cache_lookup(a, p, n, ra, &wa), st = irc_cache_lookup(t, p, n, rt, &wt);
+            differ += sa != st || memcmp(ra, rt, sizeof ra) != 0 || wa != wt;
+        }
+        CHECK(t && irc_cache_clear(t) == IRC_OK && irc_merge(t, 5u, buf, bytes) == IRC_OK,
+              "merge into %u x %u", strata[i][0], strata[i][1]);
+        block_free(&to);
+    }
+    CHECK(differ == 0, "%d lookups differ from the writer's", differ);
+    to = scene_config(&s2, IRC_FEATURE_TRANSLATION, 8, 32);
+    to.accuracy = 0.3f;
+    t = block_cache(&to, 64, 0);
+    CHECK(t && irc_snapshot_read(t, 5u, buf, bytes) == IRC_ERR_MISMATCH, "another accuracy");
+    block_free(&to);
+    free(buf);
+    block_free(&cfg);
+}
+
 /* A trans + rot cache filled by lookups on a 0.25 grid over [x0, x1] x
  * [-1, 1], and its snapshot. */
 static unsigned char *tile(irc_config *cfg, double x0, double x1, size_t *bytes)

@@ -233,8 +233,11 @@ int irc__snap_check(const irc_cache *c, uint64_t fingerprint, const unsigned cha
         return IRC_ERR_CORRUPT;
     if (irc__le_get(d + 36, 8) != fingerprint)
         return IRC_ERR_FINGERPRINT;
+    /* Kind, features, record bytes, the kind's words and a must agree;
+     * not the count, nor the strata (bytes 28-35): a record holds what
+     * lookups read, whatever rays made it. */
     irc__header(c, fingerprint, want);
-    for (i = 6; i < 36; i++)
+    for (i = 6; i < 28; i++)
         if ((i < 12 || i >= 16) && d[i] != want[i])
             return IRC_ERR_MISMATCH;
     if (*count > room)
