@@ -90,13 +90,15 @@ extern "C" {
 
 typedef enum irc_status {
     IRC_OK = 0,
-    IRC_MISS = 1,             /* lookup: no record is close enough; a record
-                                 read: the slot is empty (not an error) */
+    IRC_MISS = 1,             /* lookup: no record within a R (where a
+                                 lookup_or_compute computes); a record read:
+                                 the slot is empty (not an error) */
     IRC_NOT_STORED = 2,       /* lookup_or_compute: the value was computed and
                                  returned, not stored (pool full, no eviction) */
     IRC_DETAIL = 3,           /* the _px call: answered by the point's own
                                  estimate (cfg.irr.detail_pixels), stored
-                                 nowhere; a host that comes back to the same
+                                 nowhere (*weight 0 as for a computed
+                                 record, though none was made); a host that comes back to the same
                                  pixel may keep the value (irc_stats.details) */
     IRC_ERR_NULL = -1,        /* a required pointer, or cfg.trace, is NULL */
     IRC_ERR_CONFIG = -2,      /* a config field out of its range; a handle not
@@ -445,7 +447,10 @@ typedef struct irc_config {
         float power;         /* free points: b of the weight
                                 (R_j/|p - p_j|)^b; (0, 16] (default 2) */
     } sh;
-    uint64_t seed;           /* mixed into every record's random numbers */
+    uint64_t seed;           /* mixed into the random numbers of every record
+                                and every detail estimate (IRC_DETAIL):
+                                another seed, other records and other
+                                detail pixels; 0 is one seed among others */
     const irc_port *port;    /* locks and atomics (default irc_port_default) */
     void *buffer;            /* the caller's block, any alignment; the library
                                 uses [buffer, buffer + buffer_size) only */
@@ -665,7 +670,9 @@ IRC_API int irc_cache_lookup_or_compute(irc_cache *cache, const float p[3],
  * to 15 pixels) before [min_radius, max_radius], and points near finer
  * geometry get their own estimate first (cfg.irr.detail_pixels): that
  * answer returns IRC_DETAIL (weight 0), which a host that calls again for
- * the same pixel (more samples a pixel) may keep instead.  Otherwise
+ * the same pixel (more samples a pixel) may keep instead; its weight is 0
+ * as a computed record's, though nothing was stored: the status tells
+ * them apart.  Otherwise
  * returns as irc_cache_lookup_or_compute; IRC_ERR_NONFINITE (nothing done)
  * for a footprint not finite, else IRC_ERR_RANGE for a negative one.
  */
