@@ -131,7 +131,7 @@ $(LIBSO): $(LIBSO_REAL)
 TEST_SRC = tests/main.c tests/harness.c tests/scenes.c tests/t_record.c tests/t_lookup.c \
            tests/t_index.c tests/t_compact.c tests/t_api.c tests/t_threads.c tests/t_visibility.c tests/t_sight.c tests/t_attach.c tests/t_sh.c \
            tests/t_shrec.c tests/t_hard.c tests/t_store.c tests/t_embed.c tests/t_hessian.c \
-           tests/t_snapshot.c tests/t_pass.c tests/t_share.c tests/t_kill.c tests/t_levels.c tests/t_detail.c tests/t_progress.c tests/t_config.c tests/kind_occ.c
+           tests/t_snapshot.c tests/t_pass.c tests/t_share.c tests/t_kill.c tests/t_levels.c tests/t_detail.c tests/t_progress.c tests/t_config.c tests/t_normals.c tests/kind_occ.c
 # The tests exercise every threaded port; the library holds one of them.
 TEST_PORTS = $(filter-out $(PORT),posix c11)
 TEST_PORT_OBJ = $(TEST_PORTS:%=$(BUILD)/tests/port_%.o)

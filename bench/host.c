@@ -76,7 +76,7 @@ static int cache_irradiance(host *h, irc_cache *c, int mode, int fill, const flo
     }
     if (st == IRC_MISS) {
         float w = 1.0f;
-        st = irc_cache_lookup_or_compute_px(c, x, n, fp, e, &w, NULL);
+        st = irc_cache_lookup_or_compute_px(c, x, n, NULL, fp, e, &w, NULL);
         out->misses += !fill && w == 0.0f;
         if (mode == FREE && h->nq < h->cap) {
             float *q = h->q + 6 * h->nq++;

@@ -231,7 +231,7 @@ static int sample(pt *p, irc_cache *c, irc_pixel *pix, int mode, float x, float 
             t += (x1.p[k] - p->cf.eye[k]) * d[k];
         fp = camera_footprint(&p->cf, &p->s.cam, d, t, x1.ng);
         cache_point(&x1, q);
-        st = irc_cache_lookup_pixel(c, &pix[p->pixel], q, gather_normal(&x1), fp, e, NULL, p);
+        st = irc_cache_lookup_pixel(c, &pix[p->pixel], q, gather_normal(&x1), NULL, fp, e, NULL, p);
         if (st >= 0)
             for (k = 0; k < 3; k++)
                 acc[k] += x1.m->kd[k] / PT_PI * e[k];
@@ -257,7 +257,7 @@ static int sample(pt *p, irc_cache *c, irc_pixel *pix, int mode, float x, float 
         for (fp = 0.0f, k = 0; k < 3; k++)
             fp += (x2.p[k] - x1.p[k]) * (x2.p[k] - x1.p[k]);
         fp = second_spread() * sqrtf(fp);
-        st = irc_cache_lookup_or_compute_px(c, q, gather_normal(&x2), fp, e, NULL, p);
+        st = irc_cache_lookup_or_compute_px(c, q, gather_normal(&x2), NULL, fp, e, NULL, p);
         if (st >= 0)
             for (k = 0; k < 3; k++)
                 acc[k] += x1.m->kd[k] * (l[k] + x2.m->kd[k] / PT_PI * e[k]);

@@ -60,9 +60,9 @@ static int irradiance(host *h, irc_cache *c, irc_pixel *pix, int mode, const flo
     t0 = bench_now();
     tr = h->t_trace;
     if (mode == SAMPLE)
-        st = irc_cache_lookup_or_compute_px(c, x, n, fp, e, NULL, h);
+        st = irc_cache_lookup_or_compute_px(c, x, n, NULL, fp, e, NULL, h);
     else
-        st = irc_cache_lookup_pixel(c, &pix[h->pixel], x, n, fp, e, NULL, h);
+        st = irc_cache_lookup_pixel(c, &pix[h->pixel], x, n, NULL, fp, e, NULL, h);
     *lib += bench_now() - t0 - (h->t_trace - tr);
     return st < 0 ? st : 0;
 }

@@ -219,11 +219,15 @@ int render_hidden(const renderer *r, const float p[3], const float q[3])
 }
 
 /* Indirect irradiance at a surface, from the cache or by brute force;
- * sh gets the SH record it came from (sh->bands 0: none).  fp: the
+ * sh gets the SH record it came from (sh->bands 0: none).  n: the normal
+ * gathered around (gather_normal); the _px call takes the shading normal
+ * ns and the geometric one ng (NULL: none) instead and leaves out the
+ * rays below the surface itself, so its callback casts them all.  fp: the
  * pixel's footprint there (0: no pixel), which bounds new records' reach
  * in pixels (irc_cache_lookup_or_compute_px). */
-static int irradiance(renderer *r, const float p[3], const float n[3], float fp, uint64_t key,
-                      float e[3], irc_sh *sh, tstate *ts)
+static int irradiance(renderer *r, const float p[3], const float n[3], const float ns[3],
+                      const float *ng, float fp, uint64_t key, float e[3], irc_sh *sh,
+                      tstate *ts)
 {
     sh->bands = 0;
     if (r->o.mode == MODE_CACHE) {
@@ -250,8 +254,11 @@ static int irradiance(renderer *r, const float p[3], const float n[3], float fp,
             if ((st = irc_cache_lookup(r->cache, p, n, e, &w)) == IRC_MISS && w > 0.0f)
                 st = IRC_OK;
         } else {
-            st = irc_cache_lookup_or_compute_px(r->cache, p, n, r->o.no_footprint ? 0.0f : fp,
-                                                e, NULL, ts);
+            const float *under = ts->under[1];
+            ts->under[1] = NULL;
+            st = irc_cache_lookup_or_compute_px(r->cache, p, ng ? ns : n, ng,
+                                                r->o.no_footprint ? 0.0f : fp, e, NULL, ts);
+            ts->under[1] = under;
             ts->detail = st == IRC_DETAIL;
         }
         clock_enter(ts, was);
@@ -332,7 +339,8 @@ static int shade_pixel(renderer *r, const cam_frame *cf, int x, int y, float out
     {
         /* E over the directions above the surface (ts->under, bounce.h). */
         ts->under[1] = sf.ng;
-        st = irradiance(r, p, gather_normal(&sf), camera_footprint(cf, c, d, bh.t, sf.ng), key,
+        st = irradiance(r, p, gather_normal(&sf), sf.nsm, sf.ng,
+                        camera_footprint(cf, c, d, bh.t, sf.ng), key,
                         e, &sh, ts);
         ts->under[1] = NULL;
     }
@@ -596,7 +604,7 @@ int render_points(renderer *r, const float *pn, int n, float *rgb, render_stats 
         const float *p = &pn[6 * i], *nn = &pn[6 * i + 3];
         uint64_t key = hash64(r->o.seed ^ (uint64_t)i);
         irc_sh sh;
-        if ((e = irradiance(r, p, nn, 0.0f, key, &rgb[3 * i], &sh, &ts)) < 0)
+        if ((e = irradiance(r, p, nn, nn, NULL, 0.0f, key, &rgb[3 * i], &sh, &ts)) < 0)
             return e;
     }
     collect(r, &ts, 1, render_clock() - t0, render_cpu_clock() - c0, st);

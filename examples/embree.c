@@ -208,7 +208,7 @@ static void pixel(world *w, host *hs, int x, int y)
         const unsigned long gathers = hs->gathers;
         double t1;
         if (irc_pixel_footprint(w->eye, w->f, 2.0f * w->ty / w->h, p, n, &fp) < 0 ||
-            irc_cache_lookup_or_compute_px(w->cache, p, n, fp, e, NULL, hs) < 0)
+            irc_cache_lookup_or_compute_px(w->cache, p, n, NULL, fp, e, NULL, hs) < 0)
             w->failed = 1;
         t1 = tick() - t0;
         hs->in_calls += t1;

@@ -151,7 +151,7 @@ static void shade(job *j, int x, int y, int s)
         return;
     /* every sample through the _px call: it confirms the records it uses
      * (cfg.check_visibility), which the plain lookup does not */
-    st = irc_cache_lookup_or_compute_px(j->cache, p, n, fp, rgb, NULL, NULL);
+    st = irc_cache_lookup_or_compute_px(j->cache, p, n, NULL, fp, rgb, NULL, NULL);
     if (st < 0)
         __atomic_add_fetch(&j->errors, 1, __ATOMIC_RELAXED);
     j->e[y][x] += rgb[0];

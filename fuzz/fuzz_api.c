@@ -211,7 +211,7 @@ static int call(fuzz_in *in, irc_cache *c, uint32_t cap)
     case 3:
         s = op == 2            ? irc_cache_lookup(c, p, n, rgb, &w)
             : fz_u8(in) & 1    ? irc_cache_lookup_or_compute(c, p, n, rgb, &w, NULL)
-                               : irc_cache_lookup_or_compute_px(c, p, n, fz_float(in), rgb, &w, NULL);
+                               : irc_cache_lookup_or_compute_px(c, p, n, NULL, fz_float(in), rgb, &w, NULL);
         if (s >= 0)
             for (k = 0; k < 3; k++)
                 check(rgb[k] >= 0.0f && rgb[k] <= 3.4028235e38f);

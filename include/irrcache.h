@@ -224,15 +224,13 @@ enum irc_visibility {
  * a negative code of the host's own to abort the record (the library
  * returns it unchanged and keeps nothing of the record).
  *
- * A host that passes a shading normal as n (smooth or interpolated
- * normals) has part of that hemisphere below its geometric surface; a ray
- * sent there finds the surface itself at a distance near 0, which the
- * library cannot tell from geometry within reach: tiny records and a
- * per-pixel estimate at each such point (bench/README.md, "Rays under
- * the surface").  Answer such rays IRC_RAY_FAILED (left out of every
- * estimate; confirming rays, which run along the surface, excepted), with
- * the geometric normal reaching the callback through args->host
- * (demo/bounce.c), or pass the geometric normal as n.
+ * Shading normals: give the _px call the geometric normal too (ng), and
+ * the rays that would leave below the surface never reach the callback.
+ * The calls without ng (lookup_or_compute, record_compute, irc_progress's
+ * refinements) cast every ray of n's hemisphere: a host that passes a
+ * shading normal there answers those below its geometric surface
+ * IRC_RAY_FAILED itself (the geometric normal reaching the callback
+ * through args->host: demo/bounce.c), or passes the geometric normal as n.
  *
  * Several bounces take one cache per level: level k's callback shades its
  * hits with level k+1's lookup, passing args->host on (examples/levels.c;
@@ -661,8 +659,17 @@ IRC_API int irc_cache_lookup_or_compute(irc_cache *cache, const float p[3],
                                         void *host);
 
 /*
- * irc_cache_lookup_or_compute with a screen-space bound: the recommended
- * call at camera-ray hits.  footprint: the width of one pixel at p, the
+ * irc_cache_lookup_or_compute with a screen-space bound and both normals:
+ * the recommended call at camera-ray hits.  n: the shading normal (smooth
+ * or interpolated; any length > 0).  ng: the geometric normal of the
+ * surface hit (either side, any length > 0), or NULL when n is it.  The
+ * hemisphere is gathered around n, and its rays that leave below the
+ * geometric surface fail without reaching the callback (left out of the
+ * estimate, as IRC_RAY_FAILED is: they would find the surface itself at
+ * distance 0, making tiny records; 1.5-2.3x the time at equal error on
+ * four Sponza views: bench/README.md, "Rays under the surface"); where n
+ * lies more than 60 degrees from ng, the point gathers and looks up
+ * around ng instead.  footprint: the width of one pixel at p, the
  * square root of the area it covers on the surface (pbrt's sqrt(|dp/dx x
  * dp/dy|) from ray differentials; irc_pixel_footprint for a pinhole
  * camera); 0 is the plain call.  A record computed here gets a reach a R
@@ -673,12 +680,14 @@ IRC_API int irc_cache_lookup_or_compute(irc_cache *cache, const float p[3],
  * the same pixel (more samples a pixel) may keep instead; its weight is 0
  * as a computed record's, though nothing was stored: the status tells
  * them apart.  Otherwise
- * returns as irc_cache_lookup_or_compute; IRC_ERR_NONFINITE (nothing done)
- * for a footprint not finite, else IRC_ERR_RANGE for a negative one.
+ * returns as irc_cache_lookup_or_compute; IRC_ERR_NORMAL for an ng zero or
+ * not finite, IRC_ERR_NONFINITE (nothing done) for a footprint not
+ * finite, else IRC_ERR_RANGE for a negative one.
  */
 IRC_API int irc_cache_lookup_or_compute_px(irc_cache *cache, const float p[3],
-                                           const float n[3], float footprint, float rgb[3],
-                                           float *weight, void *host);
+                                           const float n[3], const float ng[3],
+                                           float footprint, float rgb[3], float *weight,
+                                           void *host);
 
 /*
  * The footprint the _px call wants, for a pinhole camera: the width of one
@@ -1035,7 +1044,9 @@ IRC_API int irc_sh_radiance(const irc_sh *sh, const float w[3], float rgb[3]);
  * whatever threads made the records.  Not concurrent with any other call;
  * not inside a pass (IRC_ERR_STATE); samples may fall back only in an
  * empty cache, else IRC_ERR_RANGE.  Records a snapshot or merge brings in
- * count as holding the level's rays.  Returns IRC_OK, IRC_ERR_UNSUPPORTED
+ * count as holding the level's rays.  A record keeps no geometric normal:
+ * its new rays are all cast (a host whose shading normals differ from its
+ * geometric ones fails those below in its callback, or passes ng as n).  Returns IRC_OK, IRC_ERR_UNSUPPORTED
  * (SH, VISIBILITY, HESSIAN or supersamples), or a negative code; the
  * callback's stops the refinement: the records before it are refined,
  * the rest keep their rays, and the cache is at the new level.
@@ -1073,11 +1084,12 @@ typedef struct irc_pixel {
  * answered by irc_cache_lookup_or_compute_px, kept in place of the answer
  * used less recently.  Calls for one irc_pixel must not run concurrently;
  * zero it again after irc_cache_clear, irc_snapshot_read or irc_merge, and
- * use it with one cache only.  Returns as the _px call, IRC_ERR_NULL for
+ * use it with one cache only.  ng as the _px call's; a kept detail
+ * estimate's new rays take the sample's ng.  Returns as the _px call, IRC_ERR_NULL for
  * a NULL pixel; *pixel changes only on success.
  */
 IRC_API int irc_cache_lookup_pixel(irc_cache *cache, irc_pixel *pixel, const float p[3],
-                                   const float n[3], float footprint, float rgb[3],
-                                   float *weight, void *host);
+                                   const float n[3], const float ng[3], float footprint,
+                                   float rgb[3], float *weight, void *host);
 
 #endif /* IRC_EXPERIMENTAL */

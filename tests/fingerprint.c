@@ -97,7 +97,7 @@ static void drive_irr(fp *f, irc_cache *c, int n, int m, int passes)
             irc_pass_begin(c);
         point(p, nn);
         st = i % 3 ? irc_cache_lookup_or_compute(c, p, nn, rgb, &w, NULL)
-                   : irc_cache_lookup_or_compute_px(c, p, nn, 0.004f, rgb, &w, NULL);
+                   : irc_cache_lookup_or_compute_px(c, p, nn, NULL, 0.004f, rgb, &w, NULL);
         eat(f, &st, sizeof st);
         eat(f, rgb, sizeof rgb);
         eat(f, &w, sizeof w);

@@ -7,7 +7,7 @@
     X(test_pack_roundtrip) X(test_weighted_mean) X(test_blend_mean) X(test_strata_follow_accuracy) X(test_behind_relative)  \
     X(test_extrapolation) X(test_lookup_gradient_one) X(test_lookup_gradient_sphere) X(test_lookup_gradient_status) X(test_lookup_or_compute) X(test_open_sky_own_point) X(test_full_no_evict) \
     X(test_evict_clock) X(test_index_exact) X(test_weigh_fused) X(test_index_scales) X(test_index_grow_faces)          \
-    X(test_config_checks) X(test_config_version) X(test_config_read_back) X(test_version) X(test_footprints) X(test_defaults) X(test_init_block) \
+    X(test_config_checks) X(test_config_version) X(test_config_read_back) X(test_normals_both) X(test_normals_refused) X(test_version) X(test_footprints) X(test_defaults) X(test_init_block) \
     X(test_normal_any_length) X(test_bad_input_unchanged) X(test_callback_failures) X(test_overflow_radiance) X(test_ports) \
     X(test_threads_stress) X(test_threads_determinism)                 \
     X(test_visibility_sphere) X(test_visibility_box) X(test_visibility_open_sky) \

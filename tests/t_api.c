@@ -205,7 +205,7 @@ TEST(test_defaults)
               "features %u", r.features);
         /* reach 15 pixels of 0.01: R = 15 x 0.01 / 0.2 where every ray
          * escapes (open sky: the record saw nothing that bounds it) */
-        CHECK(irc_cache_lookup_or_compute_px(c, far, n, 0.01f, rgb, &w, NULL) == IRC_OK &&
+        CHECK(irc_cache_lookup_or_compute_px(c, far, n, NULL, 0.01f, rgb, &w, NULL) == IRC_OK &&
                   irc_cache_record(c, 0, &back) == IRC_OK && fabsf(back.radius - 0.75f) < 1e-5f,
               "max: radius %g", (double)back.radius);
         /* no lower bound: under the sphere, with pixels of 1, the record
@@ -218,7 +218,7 @@ TEST(test_defaults)
                       irc_cache_record(c, 0, &back) == IRC_OK && (own = back.radius) < 2.0f,
                   "plain: radius %g", (double)own);
             CHECK(irc_cache_clear(c) == IRC_OK &&
-                      irc_cache_lookup_or_compute_px(c, under, n, 1.0f, rgb, &w, NULL) == IRC_OK &&
+                      irc_cache_lookup_or_compute_px(c, under, n, NULL, 1.0f, rgb, &w, NULL) == IRC_OK &&
                       irc_cache_record(c, 0, &back) == IRC_OK && back.radius == own,
                   "min: radius %g, own %g", (double)back.radius, (double)own);
         }
@@ -254,7 +254,7 @@ TEST(test_defaults)
     cfg.strata_phi = 32;
     cfg.irr.min_pixels = -1.0f;
     c = block_cache(&cfg, 8, 0);
-    CHECK(c && irc_cache_lookup_or_compute_px(c, under, n, 1.0f, rgb, &w, NULL) == IRC_OK &&
+    CHECK(c && irc_cache_lookup_or_compute_px(c, under, n, NULL, 1.0f, rgb, &w, NULL) == IRC_OK &&
               irc_cache_record(c, 0, &back) == IRC_OK && back.radius < 2.0f,
           "no bound: radius %g", c ? (double)back.radius : 0.0);
     block_free(&cfg);

@@ -82,7 +82,7 @@ TEST(test_detail_refined_strata)
         return;
     }
     /* footprint 1e-4: a radius of ~1 spans ~10^4 pixels */
-    CHECK(irc_cache_lookup_or_compute_px(c, p, n, 1e-4f, rgb, &w, &h) == IRC_OK && w == 0.0f,
+    CHECK(irc_cache_lookup_or_compute_px(c, p, n, NULL, 1e-4f, rgb, &w, &h) == IRC_OK && w == 0.0f,
           "compute");
     for (i = 0; i < h.m * h.n; i++) {
         empty += h.count[i] == 0;
@@ -116,7 +116,7 @@ TEST(test_detail_full_grid_paths)
         return;
     }
     uint32_t i, empty = 0, twice = 0;
-    CHECK(irc_cache_lookup_or_compute_px(c, p, n, 10.0f, rgb, &w, &h) == IRC_OK &&
+    CHECK(irc_cache_lookup_or_compute_px(c, p, n, NULL, 10.0f, rgb, &w, &h) == IRC_OK &&
               h.rays == 1024, "off: %u rays", h.rays);
     for (i = 0; i < h.m * h.n; i++) {
         empty += h.count[i] == 0;
@@ -132,7 +132,7 @@ TEST(test_detail_full_grid_paths)
     free(h.count);
     /* the default (0) is off: a record 2 pixels wide still takes 1,024 */
     c = detail_cache(&h, &cfg, 0.0f);
-    CHECK(c != NULL && irc_cache_lookup_or_compute_px(c, p, n, 0.5f, rgb, &w, &h) == IRC_OK &&
+    CHECK(c != NULL && irc_cache_lookup_or_compute_px(c, p, n, NULL, 0.5f, rgb, &w, &h) == IRC_OK &&
               h.rays == 1024, "default: %u rays", h.rays);
     block_free(&cfg);
     free(h.count);
@@ -164,7 +164,7 @@ TEST(test_detail_coarse_records)
         double e = sphere_plane_e(&h.s, pd), rel;
         CHECK(irc_cache_clear(c) == IRC_OK, "clear");
         h.rays = 0;
-        CHECK(irc_cache_lookup_or_compute_px(c, p, n, 0.5f, rgb, &w, &h) == IRC_OK, "compute");
+        CHECK(irc_cache_lookup_or_compute_px(c, p, n, NULL, 0.5f, rgb, &w, &h) == IRC_OK, "compute");
         CHECK(irc_cache_record(c, 0, &r) == IRC_OK, "record");
         if (h.rays == 64) {
             /* its radius below full_pixels / 2 = 16 pixels of 0.5, with room
@@ -239,7 +239,7 @@ TEST(test_detail_config)
             cfg.irr.max_pixels = -1.0f; /* unbounded: the floor alone decides */
             cfg.irr.detail_pixels = -1.0f;
             c = block_cache(&cfg, 16, 0);
-            CHECK(c && irc_cache_lookup_or_compute_px(c, p, n, 1e-30f, rgb, &w, NULL) == IRC_OK &&
+            CHECK(c && irc_cache_lookup_or_compute_px(c, p, n, NULL, 1e-30f, rgb, &w, NULL) == IRC_OK &&
                       irc_cache_record(c, 0, &rec) == IRC_OK,
                   "floor %g", (double)floors[k]);
             radius[k] = c ? rec.radius : 0.0f;
@@ -513,7 +513,7 @@ static double wall_z(irc_cache *c, const tscene *s, double delta, double *wmax, 
         const double q[3] = {p[0], p[1], 0.0};
         float rgb[3], w = -1.0f;
         double d;
-        const int st = irc_cache_lookup_or_compute_px(c, p, n, 0.01f, rgb, &w, NULL);
+        const int st = irc_cache_lookup_or_compute_px(c, p, n, NULL, 0.01f, rgb, &w, NULL);
         if (st != IRC_OK && st != IRC_DETAIL)
             (*bad)++;
         *details += st == IRC_DETAIL;
@@ -591,26 +591,26 @@ TEST(test_detail_pixels_calls)
     CHECK(c != NULL, "init");
     if (!c)
         return;
-    CHECK(irc_cache_lookup_or_compute_px(c, p, n, 0.01f, rgb, &w, NULL) == IRC_DETAIL, "call");
+    CHECK(irc_cache_lookup_or_compute_px(c, p, n, NULL, 0.01f, rgb, &w, NULL) == IRC_DETAIL, "call");
     CHECK(irc_cache_stats(c, &st) == IRC_OK && st.rays == 1025, "rays %llu",
           (unsigned long long)st.rays);
     s.return_code = -77;
-    CHECK(irc_cache_lookup_or_compute_px(c, p, n, 0.01f, rgb, &w, NULL) == -77,
+    CHECK(irc_cache_lookup_or_compute_px(c, p, n, NULL, 0.01f, rgb, &w, NULL) == -77,
           "the host's error lost");
     s.return_code = 0;
-    CHECK(irc_cache_lookup_or_compute_px(c, p, n, -0.01f, rgb, &w, NULL) == IRC_ERR_RANGE,
+    CHECK(irc_cache_lookup_or_compute_px(c, p, n, NULL, -0.01f, rgb, &w, NULL) == IRC_ERR_RANGE,
           "negative footprint");
-    CHECK(irc_cache_lookup_or_compute_px(c, p, n, NAN, rgb, &w, NULL) == IRC_ERR_NONFINITE,
+    CHECK(irc_cache_lookup_or_compute_px(c, p, n, NULL, NAN, rgb, &w, NULL) == IRC_ERR_NONFINITE,
           "NaN footprint");
-    CHECK(irc_cache_lookup_or_compute_px(c, p, n, INFINITY, rgb, &w, NULL) == IRC_ERR_NONFINITE,
+    CHECK(irc_cache_lookup_or_compute_px(c, p, n, NULL, INFINITY, rgb, &w, NULL) == IRC_ERR_NONFINITE,
           "infinite footprint");
     /* negative and not finite: not finite comes first (irrcache.h) */
-    CHECK(irc_cache_lookup_or_compute_px(c, p, n, -INFINITY, rgb, &w, NULL) == IRC_ERR_NONFINITE,
+    CHECK(irc_cache_lookup_or_compute_px(c, p, n, NULL, -INFINITY, rgb, &w, NULL) == IRC_ERR_NONFINITE,
           "-inf footprint");
     /* a sky so bright that 1,024 strata sum past FLT_MAX: refused, as a
      * record of it would be */
     s.sky_a[0] = s.sky_a[1] = s.sky_a[2] = 3e37f;
-    CHECK(irc_cache_lookup_or_compute_px(c, p, n, 0.01f, rgb, &w, NULL) == IRC_ERR_NONFINITE,
+    CHECK(irc_cache_lookup_or_compute_px(c, p, n, NULL, 0.01f, rgb, &w, NULL) == IRC_ERR_NONFINITE,
           "an estimate past float answered");
     s.sky_a[0] = s.sky_a[1] = s.sky_a[2] = 1.0f;
     /* x = -1: no probe hits within reach and the record does not reach, so
@@ -621,7 +621,7 @@ TEST(test_detail_pixels_calls)
         s.fail_every = 9;
         s.fail_kind = FAIL_BAD_STATUS;
         s.calls = 0;
-        CHECK(irc_cache_lookup_or_compute_px(c, far, n, 0.01f, rgb, &w, NULL) ==
+        CHECK(irc_cache_lookup_or_compute_px(c, far, n, NULL, 0.01f, rgb, &w, NULL) ==
                   IRC_ERR_CALLBACK,
               "a refused ray after the probes");
         s.fail_every = 0;
@@ -641,10 +641,10 @@ TEST(test_detail_pixels_calls)
         return;
     {
         const float near[3] = {-0.001f, 0.0f, 0.0f}, off[3] = {-0.01f, 0.0f, 0.0f};
-        CHECK(irc_cache_lookup_or_compute_px(c, near, n, 0.01f, rgb, &w, NULL) == IRC_DETAIL &&
+        CHECK(irc_cache_lookup_or_compute_px(c, near, n, NULL, 0.01f, rgb, &w, NULL) == IRC_DETAIL &&
                   irc_cache_stats(c, &st) == IRC_OK && st.rays == 1025 && w == 0.0f,
               "default, near: rays %llu, weight %g", (unsigned long long)st.rays, w);
-        CHECK(irc_cache_lookup_or_compute_px(c, off, n, 0.01f, rgb, &w, NULL) == IRC_OK &&
+        CHECK(irc_cache_lookup_or_compute_px(c, off, n, NULL, 0.01f, rgb, &w, NULL) == IRC_OK &&
                   irc_cache_stats(c, &st) == IRC_OK && st.rays == 1025 + 8 && w > 0.0f,
               "default, a pixel off: rays %llu, weight %g", (unsigned long long)st.rays, w);
     }
@@ -690,7 +690,7 @@ TEST(test_detail_probes_flagged)
     if (!c)
         return;
     /* near the wall: 8 probes in one flagged call, then 16 x 64 plain rays */
-    CHECK(irc_cache_lookup_or_compute_px(c, near, n, 0.01f, rgb, &w, NULL) == IRC_DETAIL &&
+    CHECK(irc_cache_lookup_or_compute_px(c, near, n, NULL, 0.01f, rgb, &w, NULL) == IRC_DETAIL &&
               w == 0.0f && rgb[0] > 0.0f && rgb[0] < 4.0f,
           "near: weight %g, E %g", w, rgb[0]);
     CHECK(probe_seen.probe_calls == 1 && probe_seen.probe_rays == 8 &&
@@ -700,7 +700,7 @@ TEST(test_detail_probes_flagged)
           probe_seen.other_flag);
     /* a pixel off: the probes alone, flagged, then the record answers */
     memset(&probe_seen, 0, sizeof probe_seen);
-    CHECK(irc_cache_lookup_or_compute_px(c, off, n, 0.01f, rgb, &w, NULL) == IRC_OK && w > 0.0f,
+    CHECK(irc_cache_lookup_or_compute_px(c, off, n, NULL, 0.01f, rgb, &w, NULL) == IRC_OK && w > 0.0f,
           "off: weight %g", w);
     CHECK(probe_seen.probe_rays == 8 && probe_seen.plain_rays == 0,
           "off: %u flagged rays, %u plain", probe_seen.probe_rays, probe_seen.plain_rays);
@@ -723,7 +723,7 @@ static int nest_trace(const irc_trace_args *a)
         const float p[3] = {-0.3f, 0.1f, 0.0f}, n[3] = {0, 0, 1};
         float rgb[3], w;
         h->depth = 1;
-        h->status = irc_cache_lookup_or_compute_px(h->c, p, n, 0.01f, rgb, &w, NULL);
+        h->status = irc_cache_lookup_or_compute_px(h->c, p, n, NULL, 0.01f, rgb, &w, NULL);
     }
     return scene_trace(a);
 }
@@ -743,7 +743,7 @@ TEST(test_detail_pixels_nested)
         return;
     h.c = c;
     h.status = 1;
-    CHECK(irc_cache_lookup_or_compute_px(c, q, n, 0.01f, rgb, &w, &h) == IRC_OK, "outer call");
+    CHECK(irc_cache_lookup_or_compute_px(c, q, n, NULL, 0.01f, rgb, &w, &h) == IRC_OK, "outer call");
     CHECK(h.status == IRC_OK, "the nested call at a covered point returned %d", h.status);
     block_free(&cfg);
 }

@@ -656,7 +656,7 @@ TEST(test_screen_bound)
     for (i = 0; i < 400; i++) {
         const float p[3] = {(float)(i % 20) * 0.3f - 3.0f, (float)(i / 20) * 0.3f - 3.0f, 0.0f};
         const float fp = i < 200 ? 0.05f : 0.2f;
-        CHECK(irc_cache_lookup_or_compute_px(c, p, n, fp, rgb, &w, NULL) >= 0, "query %u", i);
+        CHECK(irc_cache_lookup_or_compute_px(c, p, n, NULL, fp, rgb, &w, NULL) >= 0, "query %u", i);
     }
     CHECK(irc_cache_stats(c, &st0) == IRC_OK && st0.records > 10, "records %llu",
           (unsigned long long)st0.records);
@@ -689,7 +689,7 @@ TEST(test_screen_bound)
     {
         const float p[3] = {0.05f, 0.05f, 0.0f};
         CHECK(irc_cache_clear(c) == IRC_OK &&
-                  irc_cache_lookup_or_compute_px(c, p, n, 0.0f, rgb, &w, NULL) >= 0 &&
+                  irc_cache_lookup_or_compute_px(c, p, n, NULL, 0.0f, rgb, &w, NULL) >= 0 &&
                   irc_cache_stats(c, &st0) == IRC_OK && irc_cache_record(c, 0, &r) == IRC_OK,
               "plain record");
         free_r = r.minor_radius < 2.0f;
@@ -698,9 +698,9 @@ TEST(test_screen_bound)
     }
     {
         const float p[3] = {7.0f, 7.0f, 0.0f};
-        CHECK(irc_cache_lookup_or_compute_px(c, p, n, -1.0f, rgb, &w, NULL) == IRC_ERR_RANGE,
+        CHECK(irc_cache_lookup_or_compute_px(c, p, n, NULL, -1.0f, rgb, &w, NULL) == IRC_ERR_RANGE,
               "negative footprint");
-        CHECK(irc_cache_lookup_or_compute_px(c, p, n, NAN, rgb, &w, NULL) == IRC_ERR_NONFINITE,
+        CHECK(irc_cache_lookup_or_compute_px(c, p, n, NULL, NAN, rgb, &w, NULL) == IRC_ERR_NONFINITE,
               "NaN footprint");
         CHECK(irc_cache_stats(c, &st1) == IRC_OK && st1.records == st0.records &&
                   st1.computes == st0.computes,

@@ -338,7 +338,7 @@ static void *render_part(void *arg)
         p[0] = ((float)(i % IMG) + (float)xrand(&st)) * 0.25f - 2.0f;
         p[1] = ((float)(i / IMG) + (float)xrand(&st)) * 0.25f - 2.0f;
         p[2] = 0.0f;
-        if (irc_cache_lookup_pixel(k->c, &k->pix[i], p, up, 0.25f, rgb, NULL, NULL) < 0)
+        if (irc_cache_lookup_pixel(k->c, &k->pix[i], p, up, NULL, 0.25f, rgb, NULL, NULL) < 0)
             k->fail = 1;
         else
             k->sum[i] += rgb[0] + rgb[1] + rgb[2];
@@ -421,25 +421,25 @@ TEST(test_pixel_kept)
         return;
     memset(&px, 0, sizeof px);
     CHECK(irc_progress(c, 4 * Q, NULL) == IRC_OK, "progress");
-    CHECK(irc_cache_lookup_pixel(c, &px, p, up, 0.01f, rgb, &w, NULL) == IRC_OK, "first");
+    CHECK(irc_cache_lookup_pixel(c, &px, p, up, NULL, 0.01f, rgb, &w, NULL) == IRC_OK, "first");
     irc_cache_stats(c, &a);
     p[0] += 0.015f; /* within 2 footprints */
-    st = irc_cache_lookup_pixel(c, &px, p, up, 0.01f, rgb2, &w, NULL);
+    st = irc_cache_lookup_pixel(c, &px, p, up, NULL, 0.01f, rgb2, &w, NULL);
     irc_cache_stats(c, &b);
     CHECK(st == IRC_OK && b.lookups == a.lookups && !memcmp(rgb, rgb2, sizeof rgb),
           "kept: status %d, %llu lookups more", st, (unsigned long long)(b.lookups - a.lookups));
     p[0] += 0.03f; /* 4.5 footprints from the first */
-    CHECK(irc_cache_lookup_pixel(c, &px, p, up, 0.01f, rgb2, &w, NULL) == IRC_OK, "moved");
+    CHECK(irc_cache_lookup_pixel(c, &px, p, up, NULL, 0.01f, rgb2, &w, NULL) == IRC_OK, "moved");
     irc_cache_stats(c, &a);
     CHECK(a.lookups == b.lookups + 1, "a point 4.5 footprints away is looked up");
     /* a point on another surface (the box's side) takes the other answer;
      * both then serve without lookups */
     {
         float q[3] = {0.1f, 0.0f, 0.15f};
-        CHECK(irc_cache_lookup_pixel(c, &px, q, wall, 0.01f, rgb2, &w, NULL) >= 0, "wall");
+        CHECK(irc_cache_lookup_pixel(c, &px, q, wall, NULL, 0.01f, rgb2, &w, NULL) >= 0, "wall");
         irc_cache_stats(c, &b);
-        CHECK(irc_cache_lookup_pixel(c, &px, p, up, 0.01f, rgb2, &w, NULL) >= 0 &&
-                  irc_cache_lookup_pixel(c, &px, q, wall, 0.01f, rgb2, &w, NULL) >= 0 &&
+        CHECK(irc_cache_lookup_pixel(c, &px, p, up, NULL, 0.01f, rgb2, &w, NULL) >= 0 &&
+                  irc_cache_lookup_pixel(c, &px, q, wall, NULL, 0.01f, rgb2, &w, NULL) >= 0 &&
                   irc_cache_stats(c, &a) == IRC_OK && a.lookups == b.lookups,
               "two surfaces: %llu lookups more", (unsigned long long)(a.lookups - b.lookups));
     }
@@ -447,7 +447,7 @@ TEST(test_pixel_kept)
      * detail), so with no ray at all */
     CHECK(irc_progress(c, 128 * Q, NULL) == IRC_OK, "refine");
     irc_cache_stats(c, &b);
-    CHECK(irc_cache_lookup_pixel(c, &px, p, up, 0.01f, rgb2, &w, NULL) == IRC_OK &&
+    CHECK(irc_cache_lookup_pixel(c, &px, p, up, NULL, 0.01f, rgb2, &w, NULL) == IRC_OK &&
               irc_cache_stats(c, &a) == IRC_OK && a.lookups == b.lookups + 1 &&
               a.rays == b.rays,
           "after a refinement the next sample looks up: %llu lookups, %llu rays",
@@ -455,11 +455,11 @@ TEST(test_pixel_kept)
     /* bad input: an error, *pixel as it was */
     memcpy(&copy, &px, sizeof px);
     p[1] = NAN;
-    CHECK(irc_cache_lookup_pixel(c, &px, p, up, 0.01f, rgb2, &w, NULL) == IRC_ERR_NONFINITE &&
+    CHECK(irc_cache_lookup_pixel(c, &px, p, up, NULL, 0.01f, rgb2, &w, NULL) == IRC_ERR_NONFINITE &&
               !memcmp(&copy, &px, sizeof px), "NaN point");
     p[1] = 0.0f;
-    CHECK(irc_cache_lookup_pixel(c, NULL, p, up, 0.01f, rgb2, &w, NULL) == IRC_ERR_NULL, "NULL");
-    CHECK(irc_cache_lookup_pixel(c, &px, p, up, -1.0f, rgb2, &w, NULL) == IRC_ERR_RANGE &&
+    CHECK(irc_cache_lookup_pixel(c, NULL, p, up, NULL, 0.01f, rgb2, &w, NULL) == IRC_ERR_NULL, "NULL");
+    CHECK(irc_cache_lookup_pixel(c, &px, p, up, NULL, -1.0f, rgb2, &w, NULL) == IRC_ERR_RANGE &&
               !memcmp(&copy, &px, sizeof px), "negative footprint");
 
     /* A detail point: the box's wall within half a footprint of the
@@ -472,17 +472,17 @@ TEST(test_pixel_kept)
         irc_pixel d;
         memset(&d, 0, sizeof d);
         irc_cache_stats(c, &a);
-        CHECK(irc_cache_lookup_pixel(c, &d, o, up, 1.0f, rgb, &w, NULL) == IRC_DETAIL, "detail");
+        CHECK(irc_cache_lookup_pixel(c, &d, o, up, NULL, 1.0f, rgb, &w, NULL) == IRC_DETAIL, "detail");
         irc_cache_stats(c, &b);
         CHECK(b.details == a.details + 1 && b.rays - a.rays <= 64 + 8 && b.rays - a.rays > 64,
               "a new detail at level 1: %llu rays", (unsigned long long)(b.rays - a.rays));
-        CHECK(irc_cache_lookup_pixel(c, &d, o, up, 1.0f, rgb2, &w, NULL) == IRC_DETAIL &&
+        CHECK(irc_cache_lookup_pixel(c, &d, o, up, NULL, 1.0f, rgb2, &w, NULL) == IRC_DETAIL &&
                   irc_cache_stats(c, &a) == IRC_OK && a.rays == b.rays &&
                   !memcmp(rgb, rgb2, sizeof rgb),
               "kept detail");
         CHECK(irc_progress(c, 256 * Q, NULL) == IRC_OK, "refine");
         irc_cache_stats(c, &a);
-        CHECK(irc_cache_lookup_pixel(c, &d, o, up, 1.0f, rgb2, &w, NULL) == IRC_DETAIL, "again");
+        CHECK(irc_cache_lookup_pixel(c, &d, o, up, NULL, 1.0f, rgb2, &w, NULL) == IRC_DETAIL, "again");
         irc_cache_stats(c, &b);
         CHECK(b.rays - a.rays == 64 && memcmp(rgb, rgb2, sizeof rgb) != 0,
               "a kept detail refined with %llu rays (64 lacked)",
@@ -515,7 +515,7 @@ TEST(test_progress_pixel_records)
         if (!(c = block_cache(&cfg, 64, 0)))
             return;
         CHECK(!prog || irc_progress(c, 4 * Q, NULL) == IRC_OK, "progress");
-        CHECK(irc_cache_lookup_or_compute_px(c, p, up, 2.0f, rgb, &w, NULL) == IRC_OK &&
+        CHECK(irc_cache_lookup_or_compute_px(c, p, up, NULL, 2.0f, rgb, &w, NULL) == IRC_OK &&
                   irc_cache_record(c, 0, &r) == IRC_OK, "a record");
         CHECK(prog ? r.radius >= 2.0f / 0.2f * 0.9999f : r.radius < 10.0f,
               "%s: R %.3f against footprint / a = 10", prog ? "progressive" : "plain", r.radius);
@@ -528,13 +528,13 @@ TEST(test_progress_pixel_records)
         return;
     memset(&px, 0, sizeof px);
     CHECK(irc_progress(c, 4 * Q, NULL) == IRC_OK, "progress");
-    CHECK(irc_cache_lookup_pixel(c, &px, p, up, 1e-3f, rgb, &w, NULL) == IRC_OK &&
+    CHECK(irc_cache_lookup_pixel(c, &px, p, up, NULL, 1e-3f, rgb, &w, NULL) == IRC_OK &&
               irc_cache_record(c, 0, &r) == IRC_OK, "the pixel's record");
     CHECK(irc_progress(c, 128 * Q, NULL) == IRC_OK, "refine");
     irc_cache_stats(c, &a);
     d = 1.5f * 0.2f * r.radius; /* past a R, within blend a R = 2 a R */
     p[0] += d;
-    CHECK(irc_cache_lookup_pixel(c, &px, p, up, d, rgb, &w, NULL) == IRC_OK && w > 0.0f,
+    CHECK(irc_cache_lookup_pixel(c, &px, p, up, NULL, d, rgb, &w, NULL) == IRC_OK && w > 0.0f,
           "answered from the record: weight %g", w);
     irc_cache_stats(c, &b);
     CHECK(b.computes == a.computes && b.lookups == a.lookups + 1,

@@ -39,14 +39,15 @@ int irc_cache_lookup_gradient(irc_cache *c, const float p[3], const float n[3], 
 int irc_cache_lookup_or_compute(irc_cache *c, const float p[3], const float n[3],
                                 float rgb[3], float *weight, void *host)
 {
-    return irc_cache_lookup_or_compute_px(c, p, n, 0.0f, rgb, weight, host);
+    return irc_cache_lookup_or_compute_px(c, p, n, NULL, 0.0f, rgb, weight, host);
 }
 
 int irc_cache_lookup_or_compute_px(irc_cache *c, const float p[3], const float n[3],
-                                   float footprint, float rgb[3], float *weight, void *host)
+                                   const float ng[3], float footprint, float rgb[3],
+                                   float *weight, void *host)
 {
     irc__px px;
-    int st = irc__px_open(c, &irc__kind_irr, p, n, footprint, rgb, &px);
+    int st = irc__px_open(c, &irc__kind_irr, p, n, ng, footprint, rgb, &px);
     if (st < 0)
         return st;
     st = irc__detail_px(c, &px, rgb, host);

@@ -148,7 +148,7 @@ static int irc__more_run(irc__call *k, void *out)
 /* A kept detail estimate taken from its level to the one a detail has in
  * the cache's level (progressive.c, irc__detail_level), at (p, n). */
 static int irc__pixel_refine(irc_cache *c, irc_pixel_answer *px, const float p[3], const float n[3],
-                             void *host)
+                             const float ng[3], void *host)
 {
     irc__query q;
     irc__more m;
@@ -161,6 +161,8 @@ static int irc__pixel_refine(irc_cache *c, irc_pixel_answer *px, const float p[3
         q.n[a] = n[a];
         m.e[a] = px->e[a];
     }
+    if ((st = irc__query_ground(&q, ng)) < 0)
+        return st;
     m.from = px->level;
     m.to = irc__detail_level(c, irc__st(c)->progress - 1u);
     if ((st = irc__compute_at(c, &q, &m, host, irc__more_run, &rays, &waited)) < 0)
@@ -179,7 +181,7 @@ static int irc__pixel_refine(irc_cache *c, irc_pixel_answer *px, const float p[3
 
 /* Answer i of the pixel, when it serves (p, n) now: IRC_MISS when not. */
 static int irc__pixel_kept(irc_cache *c, irc_pixel_answer *px, const float p[3],
-                           const float n[3], float footprint, void *host)
+                           const float n[3], const float ng[3], float footprint, void *host)
 {
     const uint32_t epoch = irc__st(c)->progress + 1u;
     int st;
@@ -192,7 +194,7 @@ static int irc__pixel_kept(irc_cache *c, irc_pixel_answer *px, const float p[3],
     if (px->status != IRC_DETAIL || px->epoch < 2u || px->epoch > epoch)
         return IRC_MISS;
     if (px->level < irc__detail_level(c, epoch - 2u) &&
-        (st = irc__pixel_refine(c, px, p, n, host)) < 0)
+        (st = irc__pixel_refine(c, px, p, n, ng, host)) < 0)
         return st;
     px->epoch = epoch;
     return IRC_DETAIL;
@@ -205,7 +207,8 @@ static int irc__pixel_kept(irc_cache *c, irc_pixel_answer *px, const float p[3],
  * made for this pixel serves its next levels' samples, which land
  * anywhere in the pixel, instead of another being made beside it. */
 static int irc__pixel_fresh(irc_cache *c, const irc_pixel *pixel, const float p[3],
-                            const float n[3], float footprint, float rgb[3], float *w, void *host)
+                            const float n[3], const float ng[3], float footprint, float rgb[3],
+                            float *w, void *host)
 {
     irc__px px;
     int i, st;
@@ -215,24 +218,28 @@ static int irc__pixel_fresh(irc_cache *c, const irc_pixel *pixel, const float p[
             break;
     }
     if (i == 2)
-        return irc_cache_lookup_or_compute_px(c, p, n, footprint, rgb, w, host);
-    if ((st = irc__px_open(c, &irc__kind_irr, p, n, footprint, rgb, &px)) < 0)
+        return irc_cache_lookup_or_compute_px(c, p, n, ng, footprint, rgb, w, host);
+    if ((st = irc__px_open(c, &irc__kind_irr, p, n, ng, footprint, rgb, &px)) < 0)
         return st;
     px.loose = 1;
     return irc__px_finish(c, &px, IRC_MISS, rgb, w, host);
 }
 
 int irc_cache_lookup_pixel(irc_cache *c, irc_pixel *pixel, const float p[3], const float n[3],
-                           float footprint, float rgb[3], float *weight, void *host)
+                           const float ng[3], float footprint, float rgb[3], float *weight,
+                           void *host)
 {
     irc_pixel_answer *px;
-    float un[3], w = 0.0f;
+    irc__query q;
+    float *un = q.n, w = 0.0f;
     int st = irc__enter(c, &irc__kind_irr), a, i;
     if (st < 0)
         return st;
     if (!pixel || !rgb)
         return IRC_ERR_NULL;
-    if ((st = irc__check_vec(p)) < 0 || (st = irc__check_normal(n, un)) < 0)
+    /* the normal the point gathers around (n, or ng: irc__query_ground) */
+    if ((st = irc__check_vec(p)) < 0 || (st = irc__check_normal(n, un)) < 0 ||
+        (st = irc__query_ground(&q, ng)) < 0)
         return st;
     if (!irc__finite(footprint))
         return IRC_ERR_NONFINITE;
@@ -240,7 +247,7 @@ int irc_cache_lookup_pixel(irc_cache *c, irc_pixel *pixel, const float p[3], con
         return IRC_ERR_RANGE;
     for (i = 0; i < 2; i++) {
         px = &pixel->kept[i];
-        if ((st = irc__pixel_kept(c, px, p, un, footprint, host)) == IRC_MISS)
+        if ((st = irc__pixel_kept(c, px, p, un, ng, footprint, host)) == IRC_MISS)
             continue;
         if (st < 0)
             return st;
@@ -251,7 +258,7 @@ int irc_cache_lookup_pixel(irc_cache *c, irc_pixel *pixel, const float p[3], con
         pixel->older = 1u - (uint32_t)i;
         return st;
     }
-    if ((st = irc__pixel_fresh(c, pixel, p, un, footprint, rgb, &w, host)) < 0)
+    if ((st = irc__pixel_fresh(c, pixel, p, un, ng, footprint, rgb, &w, host)) < 0)
         return st;
     px = &pixel->kept[pixel->older & 1u];
     for (a = 0; a < 3; a++) {

@@ -45,6 +45,8 @@ typedef struct irc__marks {
 typedef struct irc__query {
     float p[3];
     float n[3];
+    float g[3];             /* the geometric normal on n's side, when under */
+    int under;              /* rays leaving below g fail uncast (trace.c) */
     int free;
     const uint32_t *hidden; /* records the lookup leaves out (cfg.
                                check_visibility): n_hidden ids, ascending */

@@ -17,6 +17,13 @@
 #include "store.h"
 #include "walk.h"
 
+/* A shading normal more than 60 degrees from the geometric one would have
+ * more than a third of its hemisphere below the surface, its rays failed
+ * uncast: the query gathers around the geometric normal there instead
+ * (on four Sponza views the rule with the failed rays below cut the time
+ * at equal error 1.5-2.3x: bench/README.md, "Rays under the surface"). */
+#define IRC__GATHER_COS 0.5f
+
 /* A finite point and a usable normal; no normal is a free point, for the
  * kinds that have them. */
 static int irc__query_make(const irc_cache *c, const float p[3], const float n[3],
@@ -41,6 +48,25 @@ static int irc__query_make(const irc_cache *c, const float p[3], const float n[3
     q->n_among = 0;
     q->marks = NULL;
     q->place = 0;
+    q->under = 0;
+    return IRC_OK;
+}
+
+int irc__query_ground(irc__query *q, const float ng[3])
+{
+    float g[3], d;
+    int st, k;
+    if (!ng)
+        return IRC_OK;
+    if ((st = irc__check_normal(ng, g)) < 0)
+        return st;
+    d = q->n[0] * g[0] + q->n[1] * g[1] + q->n[2] * g[2];
+    for (k = 0; k < 3; k++) {
+        q->g[k] = d < 0.0f ? -g[k] : g[k];
+        if (d < IRC__GATHER_COS && d > -IRC__GATHER_COS)
+            q->n[k] = q->g[k];
+    }
+    q->under = 1;
     return IRC_OK;
 }
 
@@ -265,10 +291,11 @@ static int irc__miss(irc_cache *c, irc__call *k, void *out, float *weight, void 
 }
 
 int irc__px_open(irc_cache *c, const irc__kind *want, const float p[3], const float n[3],
-                 float footprint, const void *out, irc__px *px)
+                 const float ng[3], float footprint, const void *out, irc__px *px)
 {
     int st;
-    if ((st = irc__open(c, want, out, p, n, &px->q)) < 0)
+    if ((st = irc__open(c, want, out, p, n, &px->q)) < 0 ||
+        (st = irc__query_ground(&px->q, ng)) < 0)
         return st;
     if (!irc__finite(footprint))
         return IRC_ERR_NONFINITE;
@@ -316,7 +343,7 @@ int irc__lookup_or_compute(irc_cache *c, const irc__kind *want, const float p[3]
                            const float n[3], void *out, float *weight, void *host)
 {
     irc__px px;
-    const int st = irc__px_open(c, want, p, n, 0.0f, out, &px);
+    const int st = irc__px_open(c, want, p, n, NULL, 0.0f, out, &px);
     return st < 0 ? st : irc__px_finish(c, &px, IRC_MISS, out, weight, host);
 }
 

@@ -23,8 +23,8 @@ int irc__lookup(irc_cache *c, const irc__kind *want, const irc__acc *ops, const 
 /* A lookup-or-compute in two halves, so that a kind's step between them
  * (the _px call's per-pixel answer, detail.c) takes the checked query and
  * adds to the same tally: irc__px_open checks everything once (the cache,
- * out, p, n, then the footprint: IRC_ERR_NONFINITE, IRC_ERR_RANGE when
- * negative); irc__px_finish takes the step's status: IRC_MISS looks up
+ * out, p, n, ng (NULL: none), then the footprint: IRC_ERR_NONFINITE,
+ * IRC_ERR_RANGE when negative); irc__px_finish takes the step's status: IRC_MISS looks up
  * and computes on a miss, in the claimed slot; any other counts the tally
  * (on success) and returns it.  The counters are written there only. */
 typedef struct irc__px {
@@ -36,11 +36,17 @@ typedef struct irc__px {
                     up again (progress.c) */
 } irc__px;
 int irc__px_open(irc_cache *c, const irc__kind *want, const float p[3], const float n[3],
-                 float footprint, const void *out, irc__px *px);
+                 const float ng[3], float footprint, const void *out, irc__px *px);
 int irc__px_finish(irc_cache *c, irc__px *px, int st, void *out, float *weight, void *host);
 /* Both halves with no step between and no footprint (SH records). */
 int irc__lookup_or_compute(irc_cache *c, const irc__kind *want, const float p[3],
                            const float n[3], void *out, float *weight, void *host);
+
+/* The query's geometric normal ng (NULL: none; IRC_ERR_NORMAL when zero
+ * or not finite), turned to n's side: its rays that leave below it fail
+ * uncast, and where n and ng lie more than 60 degrees apart the query
+ * gathers around ng instead (IRC__GATHER_COS, lookup.c). */
+int irc__query_ground(irc__query *q, const float ng[3]);
 
 /* irc_cache_neighbours: the ids a lookup at (p, n) would use. */
 int irc__neighbours(irc_cache *c, const float p[3], const float n[3], uint32_t *ids,

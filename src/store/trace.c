@@ -10,7 +10,7 @@
  * the host always sees the same arguments (its per-call pointer, the
  * record's position and normal) and the same checks apply.  Returns
  * IRC_OK or a negative code (the callback's own, passed through). */
-int irc__cast(irc__call *k, irc_ray *rays, irc_hit *hits, uint32_t count)
+static int irc__cast_run(irc__call *k, irc_ray *rays, irc_hit *hits, uint32_t count)
 {
     const irc_cache *c = k->c;
     irc_trace_args args;
@@ -33,6 +33,37 @@ int irc__cast(irc__call *k, irc_ray *rays, irc_hit *hits, uint32_t count)
         return IRC_ERR_CALLBACK;
     k->rays += count;
     return st;
+}
+
+/* A ray below the query's geometric surface would find that surface at
+ * a distance near 0, which no estimate can tell from geometry within
+ * reach: it fails uncast (IRC_RAY_FAILED, left out as the host's failed
+ * rays are), and the rays between such ones go to the host in runs, in
+ * their order.  Confirming rays, which run along the surface toward
+ * records on it, are cast whatever their direction. */
+int irc__cast(irc__call *k, irc_ray *rays, irc_hit *hits, uint32_t count)
+{
+    const float *g = k->q.g;
+    uint32_t i = 0, j;
+    int st;
+    if (!k->q.under || k->visibility_only == IRC_VISIBILITY_CONFIRM)
+        return irc__cast_run(k, rays, hits, count);
+    while (i < count) {
+        for (j = i; j < count; j++) {
+            const float *d = rays[j].dir;
+            if (d[0] * g[0] + d[1] * g[1] + d[2] * g[2] <= 0.0f)
+                break;
+        }
+        if (j > i && (st = irc__cast_run(k, rays + i, hits + i, j - i)) < 0)
+            return st;
+        for (i = j; i < count; i++) {
+            const float *d = rays[i].dir;
+            if (d[0] * g[0] + d[1] * g[1] + d[2] * g[2] > 0.0f)
+                break;
+            hits[i].status = IRC_RAY_FAILED;
+        }
+    }
+    return IRC_OK;
 }
 
 int irc__cast_visibility(irc__call *k, irc_ray *rays, irc_hit *hits, uint32_t count,
