@@ -677,7 +677,8 @@ IRC_API int irc_cache_lookup_or_compute(irc_cache *cache, const float p[3],
  * to 15 pixels) before [min_radius, max_radius], and points near finer
  * geometry get their own estimate first (cfg.irr.detail_pixels): that
  * answer returns IRC_DETAIL (weight 0), which a host that calls again for
- * the same pixel (more samples a pixel) may keep instead; its weight is 0
+ * the same pixel (more samples a pixel: docs/DESIGN.md, "Many samples a
+ * pixel") may keep instead; its weight is 0
  * as a computed record's, though nothing was stored: the status tells
  * them apart.  Otherwise
  * returns as irc_cache_lookup_or_compute; IRC_ERR_NORMAL for an ng zero or
