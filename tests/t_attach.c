@@ -197,8 +197,9 @@ static int use_more(irc_cache *c, irc_cache *healthy, unsigned char *snap, size_
 }
 
 /* Damaged blocks where users' blocks lie: every fourth bit of the first
- * 4 KiB flipped (every 17th in quick runs: make test's ASan stage) and
- * one random bit in every 64 bytes of the rest, one at a time,
+ * 4 KiB flipped (every 17th in quick runs: make test's ASan stage; every
+ * 61st in make check's) and one random bit in every 64 bytes of the rest
+ * (every 256 in make check's), one at a time,
  * for each record kind and feature set (the Hessian's with clock
  * eviction, leak guards and clamping: the set that once passed irc_attach
  * and aborted the next insert), both locking ports, and blocks at several
@@ -223,7 +224,8 @@ TEST(test_attach_damaged)
     unsigned char *snap = malloc(cap);
     unsigned long long rng = 4242, blocks = 0, accepted = 0;
     unsigned f, o, pt;
-    int misused = 0, changed = 0, step = irc_t_quick ? 17 : 4;
+    int misused = 0, changed = 0, step = irc_t_quick > 1 ? 61 : irc_t_quick ? 17 : 4;
+    const size_t rest = irc_t_quick > 1 ? 4 : 1; /* every rest-th 64 bytes past 4 KiB */
     tscene s;
     CHECK(snap != NULL, "malloc");
     if (!snap) return;
@@ -293,7 +295,7 @@ TEST(test_attach_damaged)
                         irc_fini(a);
                 }
                 nflips = (bytes < 4096 ? bytes : 4096) * 8;
-                for (k = 0; k < nflips + bytes / 64; k += k < nflips ? (size_t)step : 1) {
+                for (k = 0; k < nflips + bytes / 64; k += k < nflips ? (size_t)step : rest) {
                     const size_t bit =
                         k < nflips ? k : ((k - nflips) * 64 + (size_t)(xrand(&rng) * 64.0)) * 8 +
                                              (size_t)(xrand(&rng) * 8.0);

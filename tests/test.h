@@ -6,7 +6,7 @@
 
 extern int irc_t_fails;
 extern long irc_t_checks; /* CHECKs evaluated: a test that made none fails */
-extern int irc_t_quick; /* IRC_TEST_QUICK=1: sanitizer builds scale down */
+extern int irc_t_quick; /* IRC_TEST_QUICK: 1 sanitizer builds scale down, 2 make check */
 
 #define CHECK(cond, ...)                                                    \
     do {                                                                    \
