@@ -422,8 +422,8 @@ SMALL_TARGETS = adaptive-small fig15-small glossy-small sh-experiments-small sh-
 small-targets:
 	@echo $(SMALL_TARGETS)
 
-$(BUILD)/demo_tests: tests/t_demo.c tests/t_bounce.c tests/t_rework.c tests/harness.c tests/scenes.c $(EXP_IMGRAD) experiments/imgrad.h $(DEMO_LIBA) demo/*.h tests/*.h $(LIBA)
-	$(CC) $(TEST_CFLAGS) -Idemo -Iexperiments $(OPT) $(CFLAGS) tests/t_demo.c tests/t_bounce.c tests/t_rework.c tests/harness.c tests/scenes.c $(EXP_IMGRAD) $(DEMO_LIBA) $(LIBA) -o $@ -lm -lpthread
+$(BUILD)/demo_tests: tests/t_demo.c tests/t_bounce.c tests/harness.c tests/scenes.c $(EXP_IMGRAD) experiments/imgrad.h $(DEMO_LIBA) demo/*.h tests/*.h $(LIBA)
+	$(CC) $(TEST_CFLAGS) -Idemo -Iexperiments $(OPT) $(CFLAGS) tests/t_demo.c tests/t_bounce.c tests/harness.c tests/scenes.c $(EXP_IMGRAD) $(DEMO_LIBA) $(LIBA) -o $@ -lm -lpthread
 
 $(BUILD)/adaptive_tests: tests/t_adaptive.c tests/harness.c tests/scenes.c $(EXP_SAMPLING) experiments/sampling.h tests/*.h $(LIBA)
 	$(CC) $(TEST_CFLAGS) -Iexperiments $(OPT) $(CFLAGS) tests/t_adaptive.c tests/harness.c tests/scenes.c $(EXP_SAMPLING) $(LIBA) -o $@ -lm -lpthread

@@ -47,8 +47,8 @@ int wanted_family(const char *name)
  * maxr: max_radius, -1 the demo's view rule, 0 the library's; clamp: 0 or
  * 1; free: 1 free fill; blend: cfg.irr.blend; seed: the cache's seed; sm, sn: strata; ss:
  * super-samples; vis: 1 a lookup answered by a record out of sight makes a
- * record instead; fullpx, detail: cfg.irr.full_pixels, detail_pixels; final, place, boost,
- * filter, gfilter: render_opts's final_sweep and demo/rework.c's experiments). */
+ * record instead; fullpx, detail: cfg.irr.full_pixels, detail_pixels; final:
+ * render_opts's final_sweep). */
 void experiment_opts(render_opts *o)
 {
     const char *l = getenv("BENCH_SET");
@@ -71,10 +71,6 @@ void experiment_opts(render_opts *o)
         else if (!strcmp(name, "blend")) o->blend = (float)v;
         else if (!strcmp(name, "seed")) o->seed = (uint64_t)v;
         else if (!strcmp(name, "final")) o->final_sweep = v != 0.0;
-        else if (!strcmp(name, "filter")) o->filter = (float)v;
-        else if (!strcmp(name, "gfilter")) o->gfilter = (float)v;
-        else if (!strcmp(name, "place")) o->place_seed = (uint64_t)v;
-        else if (!strcmp(name, "boost")) o->boost = (float)v;
         else if (!strcmp(name, "vis")) o->check_visibility = v != 0.0 ? IRC_ON : IRC_OFF;
         else if (!strcmp(name, "sm")) o->strata_m = (uint32_t)v;
         else if (!strcmp(name, "sn")) o->strata_n = (uint32_t)v;

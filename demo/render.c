@@ -130,10 +130,6 @@ int renderer_init(renderer *r, const scene *s, const render_opts *o, char *err, 
             cfg.max_radius = r->o.max_radius = visible_size(r);
         cfg.threads = (uint32_t)o->threads;
         cfg.seed = o->seed;
-        if (o->place_seed && o->final_sweep) {
-            r->value_seed = o->seed;
-            cfg.seed = r->o.seed = o->place_seed;
-        }
         cfg.evict = IRC_EVICT_CLOCK;
         if ((st = irc_footprint(&cfg, o->max_records, &bytes)) < 0 ||
             !(r->block = malloc(bytes))) {
@@ -488,11 +484,8 @@ static void *worker(void *arg)
     }
     if (j->detail) { /* the final sweep: every pixel once more, all records in */
         j->ts[id].final = 1;
-        if (id == 0) {
+        if (id == 0)
             j->bits = 0;
-            if ((st = rework_records(j->r, &j->ts[0])) < 0)
-                j->error = st;
-        }
         pthread_barrier_wait(&j->wall);
         if ((st = shade_pass(j, &j->ts[id], id)) < 0)
             __atomic_store_n(&j->error, st, __ATOMIC_RELAXED);

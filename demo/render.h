@@ -38,18 +38,6 @@ typedef struct render_opts {
                               pixel again with a plain lookup, so that it
                               blends every record near it (a pixel whose
                               _px call answered IRC_DETAIL keeps it) */
-    float filter;          /* final_sweep: before it, each record's E moves
-                              this far (0..1) toward the blended lookup at
-                              its own point (irradiance filtering) */
-    float gfilter;         /* ... and its gradients this far toward the
-                              lookup's */
-    uint64_t place_seed;   /* final_sweep, nonzero: the fill runs with this
-                              seed, then every record's E and gradients are
-                              computed again with seed (placement fixed,
-                              values not) */
-    float boost;           /* final_sweep, > 0: records serving at least
-                              this many pixels computed again with 4x the
-                              rays before it */
     uint32_t max_records;
     float min_radius, max_radius; /* max < 0: 0.1 x the diagonal of what
                                      the camera sees; 0: the library's */
@@ -147,7 +135,6 @@ typedef struct renderer {
     void *deeper_block[MAX_BOUNCES];
     level_ctx ctx[MAX_BOUNCES];
     irc_config cfg;        /* the first level cache's configuration */
-    uint64_t value_seed;   /* o.place_seed: the seed records are revalued with */
     unsigned char *detail_map; /* optional, w x h: 1 where render_image's
                                   pixel was answered per pixel (IRC_DETAIL) */
 } renderer;
@@ -186,12 +173,5 @@ int render_hidden(const renderer *r, const float p[3], const float q[3]);
  * seen by the camera as white dots. */
 int render_records(renderer *r, float *rgb);
 
-/* Between the fill and the final sweep (rework.c): the records revalued
- * with another seed (o.place_seed), those serving many pixels computed
- * again with more rays (o.boost), then filtered (o.filter, o.gfilter);
- * nothing when those are 0.  Called by one thread while the others wait;
- * ts is its state.  Returns 0 or a negative code. */
-struct tstate;
-int rework_records(renderer *r, struct tstate *ts);
 
 #endif

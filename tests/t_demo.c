@@ -630,8 +630,7 @@ TEST(test_cache_save_killed)
 }
 
 #define TESTS(X) X(test_cache_save_killed) X(test_sun) X(test_bvh_soup) X(test_bvh_shipped_scenes) X(test_reference_sphere_plane) X(test_leak_scene) X(test_deterministic_fill) X(test_detail_map) \
-    X(test_image_gradient) X(test_glossy_lobe) X(test_bounces_furnace) X(test_bounces_tilted_normals) \
-    X(test_rework_filter) X(test_rework_place) X(test_rework_boost)
+    X(test_image_gradient) X(test_glossy_lobe) X(test_bounces_furnace) X(test_bounces_tilted_normals)
 TESTS(TEST_DECL)
 
 int main(int argc, char **argv)
