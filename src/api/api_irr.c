@@ -46,12 +46,12 @@ int irc_cache_lookup_or_compute_px(irc_cache *c, const float p[3], const float n
                                    const float ng[3], float footprint, float rgb[3],
                                    float *weight, void *host)
 {
-    irc__px px;
-    int st = irc__px_open(c, &irc__kind_irr, p, n, ng, footprint, rgb, &px);
+    irc__loc px;
+    int st = irc__loc_open(c, &irc__kind_irr, p, n, ng, footprint, rgb, &px);
     if (st < 0)
         return st;
     st = irc__detail_px(c, &px, rgb, host);
-    return irc__px_finish(c, &px, st, rgb, weight, host);
+    return irc__loc_finish(c, &px, st, rgb, weight, host);
 }
 
 int irc_cache_record(irc_cache *c, uint32_t id, irc_record *out)

@@ -426,7 +426,7 @@ static int irc__move_checked(const irc_config *cfg, irc_cache *head, size_t was,
     }
     head->home = (irc_cache *)(void *)(b + pad);
     /* A writer killed inside the lock left it mid-write: repaired, not
-     * refused (repair.c). */
+     * refused (lock.c, irc__repair_locked). */
     if (irc__st(head)->writing || irc__st(head)->torn) {
         irc__repair_locked(head);
         irc__st(head)->writing = 0;

@@ -210,7 +210,7 @@ static int irc__pixel_fresh(irc_cache *c, const irc_pixel *pixel, const float p[
                             const float n[3], const float ng[3], float footprint, float rgb[3],
                             float *w, void *host)
 {
-    irc__px px;
+    irc__loc px;
     int i, st;
     for (i = 0; i < 2; i++) {
         const irc_pixel_answer *k = &pixel->kept[i];
@@ -219,10 +219,10 @@ static int irc__pixel_fresh(irc_cache *c, const irc_pixel *pixel, const float p[
     }
     if (i == 2)
         return irc_cache_lookup_or_compute_px(c, p, n, ng, footprint, rgb, w, host);
-    if ((st = irc__px_open(c, &irc__kind_irr, p, n, ng, footprint, rgb, &px)) < 0)
+    if ((st = irc__loc_open(c, &irc__kind_irr, p, n, ng, footprint, rgb, &px)) < 0)
         return st;
     px.loose = 1;
-    return irc__px_finish(c, &px, IRC_MISS, rgb, w, host);
+    return irc__loc_finish(c, &px, IRC_MISS, rgb, w, host);
 }
 
 int irc_cache_lookup_pixel(irc_cache *c, irc_pixel *pixel, const float p[3], const float n[3],

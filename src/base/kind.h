@@ -175,10 +175,10 @@ typedef struct irc__kind {
     void (*pack)(const irc_cache *c, const void *rec, const float un[3], void *dst);
     void (*unpack)(const irc_cache *c, const void *src, void *rec);
     void (*answer)(const irc_cache *c, const void *rec, void *out);
-    /* answer's value blended with the neighbours' weighted mean that out
+    /* answer's value mixed into the neighbours' weighted mean that out
      * already holds, of total weight w > 0 (lookups that reach past a R:
      * cfg.irr.blend); NULL for a kind whose lookups never do */
-    void (*blend)(const irc_cache *c, const void *rec, void *out, float w);
+    void (*mix_in)(const irc_cache *c, const void *rec, void *out, float w);
     /* Its fields and features of a resolved config as a host writes them
      * (irc_cache_config: a switch as IRC_ON or IRC_OFF, bare records by
      * name); NULL: as resolved */

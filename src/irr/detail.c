@@ -84,7 +84,7 @@ static int irc__detail_run(irc__call *k, void *out)
     return k->progress ? irc__irr_progressive_e(k, dt->e) : irc__irr_estimate_on(k, 0u, dt->e);
 }
 
-int irc__detail_px(irc_cache *c, irc__px *px, float rgb[3], void *host)
+int irc__detail_px(irc_cache *c, irc__loc *px, float rgb[3], void *host)
 {
     irc__detail dt;
     uint32_t rays;

@@ -11,6 +11,6 @@
  * written), IRC_MISS when the point is not detail or no slot is to be had
  * (the lookup answers), or a negative code; its rays and counts go to
  * px's tally. */
-int irc__detail_px(irc_cache *c, irc__px *px, float rgb[3], void *host);
+int irc__detail_px(irc_cache *c, irc__loc *px, float rgb[3], void *host);
 
 #endif

@@ -288,13 +288,13 @@ static void irc__irr_answer(const irc_cache *c, const void *rec, void *out)
 /* The computed record, at its own point (t = 0 of the blended weight),
  * taken into the neighbours' mean that out holds, of weight w: the
  * lookup's own accumulator, one record more. */
-static void irc__irr_blend(const irc_cache *c, const void *rec, void *out, float w)
+static void irc__irr_mix_in(const irc_cache *c, const void *rec, void *out, float w)
 {
     float *rgb = (float *)out, a[4];
     (void)c;
     IRC_MEMCPY(a, rgb, 3 * sizeof(float));
     a[3] = w;
-    (void)irc__irr_mean(a, irc__blend_weight(0.0f), ((const irc_record *)rec)->e);
+    (void)irc__irr_mean(a, irc__biweight(0.0f), ((const irc_record *)rec)->e);
     IRC_MEMCPY(rgb, a, 3 * sizeof(float));
 }
 
@@ -575,7 +575,7 @@ static void irc__irr_reach(const irc_config *cfg, float *reach_a, float *w_inner
 {
     if (cfg->irr.blend > 1.0f) {
         *reach_a = cfg->accuracy * cfg->irr.blend;
-        *w_inner = irc__blend_weight(1.0f / cfg->irr.blend);
+        *w_inner = irc__biweight(1.0f / cfg->irr.blend);
     }
 }
 
@@ -603,7 +603,7 @@ const irc__kind irc__kind_irr = {
     .pack = irc__irr_pack,
     .unpack = irc__irr_unpack,
     .answer = irc__irr_answer,
-    .blend = irc__irr_blend,
+    .mix_in = irc__irr_mix_in,
     .publish = irc__irr_publish,
     .reach = irc__irr_reach,
     .lookup = &irc__irr_lookup};

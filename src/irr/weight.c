@@ -95,7 +95,7 @@ IRC__PER_RECORD float irc__normal_term(const float n[3], const float ni[3])
     return irc__sqrtf(0.5f * (ex * ex + ey * ey + ez * ez));
 }
 
-float irc__blend_weight(float t)
+float irc__biweight(float t)
 {
     const float u = 1.0f - t * t;
     return u * u;
@@ -111,7 +111,7 @@ float irc__blend_weight(float t)
 static inline float irc__weight_of(const irc_cache *c, float e)
 {
     if (c->w_inner > 0.0f)
-        return irc__blend_weight(e / c->reach_a);
+        return irc__biweight(e / c->reach_a);
     return e > 1.0f / IRC__W_MAX ? 1.0f / e : IRC__W_MAX;
 }
 

@@ -20,7 +20,8 @@ float irc__weigh_extrapolate(const irc_cache *c, const irc__rec *r, const float 
 void irc__extrapolate_grad(const irc_cache *c, const irc__rec *r, const float ni[3],
                            const float val[3], float f, irc_gradient *g);
 float irc__grad_scale(const irc__grad *g, int ch);
-/* The blended lookup's weight (1 - t^2)^2 at t = e / (blend a), t in [0, 1) */
-float irc__blend_weight(float t);
+/* The biweight (1 - t^2)^2, t in [0, 1): a record's weight at t = e /
+ * (blend a) in lookups that reach past a R */
+float irc__biweight(float t);
 
 #endif

@@ -106,7 +106,8 @@ int irc_merge(irc_cache *c, uint64_t fingerprint, const void *data, size_t size)
     for (i = 0; i < count; i++)
         irc__convert(c, d + IRC__SNAP_HEAD + (size_t)i * c->rec_size,
                      irc__bytes(c, irc__st(c)->count + i), 0);
-    /* Counted in before the sort moves them among the others (repair.c). */
+    /* Counted in before the sort moves them among the others: the repair
+     * after a death (lock.c) keeps the records counted and drops the rest. */
     irc__st(c)->count = n;
     irc__sort(c, 0, n);
     kept = irc__unique(c, 0, n);

@@ -194,8 +194,8 @@ static int irc__offer_computed(irc_cache *c, const void *rec, void *out, float *
         return st;
     t->add[IRC__C_LOOKUPS]++;
     t->add[IRC__C_NOT_STORED] += st == IRC_ERR_FULL;
-    if (*weight > 0.0f && c->kind->blend)
-        c->kind->blend(c, rec, out, *weight);
+    if (*weight > 0.0f && c->kind->mix_in)
+        c->kind->mix_in(c, rec, out, *weight);
     else
         c->kind->answer(c, rec, out);
     *weight = 0.0f;
@@ -290,8 +290,8 @@ static int irc__miss(irc_cache *c, irc__call *k, void *out, float *weight, void 
     return st;
 }
 
-int irc__px_open(irc_cache *c, const irc__kind *want, const float p[3], const float n[3],
-                 const float ng[3], float footprint, const void *out, irc__px *px)
+int irc__loc_open(irc_cache *c, const irc__kind *want, const float p[3], const float n[3],
+                 const float ng[3], float footprint, const void *out, irc__loc *px)
 {
     int st;
     if ((st = irc__open(c, want, out, p, n, &px->q)) < 0 ||
@@ -307,7 +307,7 @@ int irc__px_open(irc_cache *c, const irc__kind *want, const float p[3], const fl
     return IRC_OK;
 }
 
-int irc__px_finish(irc_cache *c, irc__px *px, int st, void *out, float *weight, void *host)
+int irc__loc_finish(irc_cache *c, irc__loc *px, int st, void *out, float *weight, void *host)
 {
     irc__call k;
     irc__marks marks;
@@ -342,9 +342,9 @@ int irc__px_finish(irc_cache *c, irc__px *px, int st, void *out, float *weight, 
 int irc__lookup_or_compute(irc_cache *c, const irc__kind *want, const float p[3],
                            const float n[3], void *out, float *weight, void *host)
 {
-    irc__px px;
-    const int st = irc__px_open(c, want, p, n, NULL, 0.0f, out, &px);
-    return st < 0 ? st : irc__px_finish(c, &px, IRC_MISS, out, weight, host);
+    irc__loc px;
+    const int st = irc__loc_open(c, want, p, n, NULL, 0.0f, out, &px);
+    return st < 0 ? st : irc__loc_finish(c, &px, IRC_MISS, out, weight, host);
 }
 
 int irc__neighbours(irc_cache *c, const float p[3], const float n[3], uint32_t *ids,

@@ -22,22 +22,24 @@ int irc__lookup(irc_cache *c, const irc__kind *want, const irc__acc *ops, const 
 
 /* A lookup-or-compute in two halves, so that a kind's step between them
  * (the _px call's per-pixel answer, detail.c) takes the checked query and
- * adds to the same tally: irc__px_open checks everything once (the cache,
- * out, p, n, ng (NULL: none), then the footprint: IRC_ERR_NONFINITE,
- * IRC_ERR_RANGE when negative); irc__px_finish takes the step's status: IRC_MISS looks up
- * and computes on a miss, in the claimed slot; any other counts the tally
- * (on success) and returns it.  The counters are written there only. */
-typedef struct irc__px {
+ * adds to the same tally: irc__loc_open checks everything once (the
+ * cache, out, p, n, ng (NULL: none), then the footprint:
+ * IRC_ERR_NONFINITE, IRC_ERR_RANGE when negative); irc__loc_finish takes
+ * the step's status: IRC_MISS looks up and computes on a miss, in the
+ * claimed slot; any other counts the tally (on success) and returns it.
+ * The counters are written there only.  Every lookup-or-compute runs
+ * through them (loc), the plain calls with no step between. */
+typedef struct irc__loc {
     irc__query q;
     float footprint;
     irc__counts tally;
     int loose;   /* any record within the lookups' reach answers (blend a
                     R), not only within a R: a kept answer's point looked
                     up again (progress.c) */
-} irc__px;
-int irc__px_open(irc_cache *c, const irc__kind *want, const float p[3], const float n[3],
-                 const float ng[3], float footprint, const void *out, irc__px *px);
-int irc__px_finish(irc_cache *c, irc__px *px, int st, void *out, float *weight, void *host);
+} irc__loc;
+int irc__loc_open(irc_cache *c, const irc__kind *want, const float p[3], const float n[3],
+                 const float ng[3], float footprint, const void *out, irc__loc *px);
+int irc__loc_finish(irc_cache *c, irc__loc *px, int st, void *out, float *weight, void *host);
 /* Both halves with no step between and no footprint (SH records). */
 int irc__lookup_or_compute(irc_cache *c, const irc__kind *want, const float p[3],
                            const float n[3], void *out, float *weight, void *host);
