@@ -291,7 +291,7 @@ REAL_SCENES = $(BUILD)/scenes/sponza.obj $(BUILD)/scenes/bunny.obj $(BUILD)/scen
               $(patsubst demo/scenes/%,$(BUILD)/scenes/%,$(wildcard demo/scenes/sponza-*.scene \
                  demo/scenes/breakfast-room-*.scene demo/scenes/grey-white-room-*.scene \
                  demo/scenes/country-kitchen-*.scene))
-# The furnished interiors' models are not shipped (bench/README.md, "The
+# The furnished interiors' models are not shipped (bench/notes.md, "The
 # corpus"): where CORPUS holds them (NAME.obj.gz and NAME.mtl), they are
 # copied in too; make bench skips their views otherwise.
 CORPUS ?= ../shared/data/real-scenes
@@ -536,7 +536,7 @@ $(BUILD)/minimal_cpp: examples/minimal.cpp $(LIBA)
 	       -o $@ -lm $(THREAD_LIBS)
 examples: $(BUILD)/minimal $(BUILD)/threads $(BUILD)/levels $(BUILD)/passes $(BUILD)/minimal_cpp
 
-# irrcache in an Embree 3 tracer on the Sponza atrium (bench/README.md, "On real
+# irrcache in an Embree 3 tracer on the Sponza atrium (bench/notes.md, "On real
 # geometry"): installs libembree-dev from Debian's packages when missing;
 # neither the library nor make test needs Embree.
 $(BUILD)/embree: examples/embree.c $(LOADER_SRC) demo/scene.h $(LIBA)
@@ -551,7 +551,7 @@ bench-core: $(BUILD)/bench_core
 	$(BUILD)/bench_core
 
 # The cache in a small path tracer of its own, called at every sample of
-# every pixel (bench/README.md, "In a path tracer's hands"); BEFORE=<commit>
+# every pixel (bench/notes.md, "In a path tracer's hands"); BEFORE=<commit>
 # also runs the same host against that commit's library.
 $(BUILD)/bench_host: bench/host.c bench/host_scene.h bench/bench_util.h $(LIBA)
 	$(CC) -std=c99 $(WARN) -Iinclude -Ibench $(OPT) bench/host.c $(LIBA) -o $@ -lm $(THREAD_LIBS)
@@ -561,9 +561,9 @@ bench-host: $(BUILD)/bench_host $(BUILD)/bench_progressive
 $(BUILD)/bench_progressive: bench/progressive.c bench/host_scene.h bench/bench_util.h $(LIBA)
 	$(CC) -std=c99 $(WARN) -Iinclude -Ibench $(OPT) bench/progressive.c $(LIBA) -o $@ -lm $(THREAD_LIBS)
 
-# One lookup workload for profilers (bench/README.md: "Where the lookup time goes"):
+# One lookup workload for profilers (bench/notes.md: "Where the lookup time goes"):
 # rates, entries scanned and passed, and a checksum of the answers.
-# The lookup anchor (bench/README.md, "The lookup anchor"): instructions a
+# The lookup anchor (bench/notes.md, "The lookup anchor"): instructions a
 # lookup of irrcache and of a pbrt-v2-style octree on the same records.
 bench-anchor: $(BUILD)/bench_anchor
 	sh bench/anchor.sh $(BUILD)/bench_anchor 100000 $(BUILD)/bench/anchor.csv
@@ -572,12 +572,12 @@ bench-lookups: $(BUILD)/bench_lookups
 	for o in scanline random; do for n in 100000 1000000; do for f in "" pass; do \
 	  $(BUILD)/bench_lookups $$o 200000 $$n $$f count || exit 1; done; done; done
 
-# One record workload for profilers (bench/README.md: "Speed and memory"): time a
+# One record workload for profilers (bench/notes.md: "Speed and memory"): time a
 # record and a checksum of the records, per feature set.
 bench-records: $(BUILD)/bench_records
 	for f in bare both sh shgrad; do $(BUILD)/bench_records $$f 2000 || exit 1; done
 
-# Speed against error on every shipped scene (bench/README.md: "Speed against
+# Speed against error on every shipped scene (bench/notes.md: "Speed against
 # error").  BENCH_QUICK=1: small images, fewer runs (over 12 minutes).
 BENCH_RUN_SRC = bench/bench.c bench/report.c bench/bounces.c bench/select.c
 # Its rays come from Embree where Embree is installed (make bench installs
@@ -602,7 +602,7 @@ bench: real-scenes
 	$(MAKE) -s $(BUILD)/bench_run $(BUILD)/glossy
 	sh bench/bench.sh $(BUILD)/bench_run
 
-# Several bounces (bench/README.md, "Several bounces"): path tracing, the
+# Several bounces (bench/notes.md, "Several bounces"): path tracing, the
 # cache at the first level with path-traced gathers, a cache at every level,
 # on the Cornell box at 2 and 3 bounces and the Sponza atrium at 2.
 BOUNCE_SCENES ?= bounces3-cornell,bounces2-cornell,bounces2-sponza-atrium
@@ -658,11 +658,11 @@ clean:
 .PHONY: print-lists small-targets bench-embree-small bench-progressive bench-progressive-small adaptive-small fig15-small glossy-small sh-experiments-small sh-animation-small bench-bounces-small cycles fingerprint amalgamation embree-example all lib cross embedded-test embedded-host size examples test check coverage demo real-scenes fig15 adaptive glossy sh-experiments sh-animation fuzz fuzz-long replay bench-core bench-host bench-anchor bench-lookups bench-records bench bench-bounces bench-fill farm-demo install uninstall clean
 
 # Which records answer the worst pixels of a Sponza render, and why
-# (bench/README.md, "On real geometry"); needs make bench's cached references.
+# (bench/notes.md, "On real geometry"); needs make bench's cached references.
 $(BUILD)/outliers: experiments/outliers.c $(DEMO_LIBA) demo/*.h $(LIBA)
 	$(CC) $(DEMO_CFLAGS) experiments/outliers.c $(DEMO_LIBA) $(LIBA) -o $@ -lm -lpthread
 
-# How many pixels the records serve (bench/README.md: "Where the records go").
+# How many pixels the records serve (bench/notes.md: "Where the records go").
 $(BUILD)/reach: experiments/reach.c $(DEMO_LIBA) demo/*.h $(LIBA)
 	$(CC) $(DEMO_CFLAGS) experiments/reach.c $(DEMO_LIBA) $(LIBA) -o $@ -lm -lpthread
 $(BUILD)/probes: experiments/probes.c $(DEMO_LIBA) demo/*.h $(LIBA)

@@ -17,11 +17,11 @@
  * seeds and averaged; its own noise, the RMSE between the two over 2, is
  * reported.  References are cached in build/bench/ and reused.
  *
- * Writes build/bench/bench.csv, build/bench/table.md (bench/README.md's table),
+ * Writes build/bench/bench.csv, build/bench/table.md (bench/notes.md's table),
  * one data file per scene and method and build/bench/plot.gp for gnuplot.
  *   bench [quick]
  * BENCH_SCENES and BENCH_METHODS (comma-separated names) restrict a run to
- * some scenes and methods, for experiments; such a run leaves bench/README.md
+ * some scenes and methods, for experiments; such a run leaves bench/notes.md
  * alone (bench.sh).
  */
 #define _POSIX_C_SOURCE 200809L
@@ -44,7 +44,7 @@ static const bscene scenes[] = {
     {"sponza-gallery", "build/scenes/sponza-gallery.scene", 640, 480, 160, 120, 0, 0, 0, 8, 0, 0},
     {"sponza-floor", "build/scenes/sponza-floor.scene", 640, 480, 160, 120, 0, 0, 0, 8, 0, 0},
     {"sponza-capitals", "build/scenes/sponza-capitals.scene", 640, 480, 160, 120, 0, 0, 0, 8, 0, 0},
-    /* Furnished interiors (bench/README.md, "The corpus"): their models
+    /* Furnished interiors (bench/notes.md, "The corpus"): their models
      * are not shipped. */
     {"breakfast-table", "build/scenes/breakfast-room-table.scene", 640, 480, 160, 120, 0, 0, 0, 8,
      0, 1},
@@ -54,7 +54,7 @@ static const bscene scenes[] = {
      8, 0, 1},
     {"greywhite-fireplace", "build/scenes/grey-white-room-fireplace.scene", 640, 480, 160, 120, 0, 0,
      0, 8, 0, 1},
-    /* A sunlit kitchen of 1M triangles, many small objects (bench/README.md,
+    /* A sunlit kitchen of 1M triangles, many small objects (bench/notes.md,
      * "The corpus"): not shipped either. */
     {"kitchen-window", "build/scenes/country-kitchen-window.scene", 640, 480, 160, 120, 0, 0, 0, 8,
      0, 1},
@@ -294,7 +294,8 @@ static int reference(ctx *c, const bscene *b)
         int rw, rh;
         char bn[16] = ""; /* one bounce: the name references always had */
         /* "-ua": rays below the surface left out at every bounce, not
-         * only at the camera's hits ("-u"; bench/README.md) */
+         * only at the camera's hits ("-u"; bench/notes.md, "Rays under the
+         * surface") */
         if (c->bounces > 1)
             snprintf(bn, sizeof bn, "-b%d-ua", c->bounces);
         snprintf(path, sizeof path, OUT "/ref-%s-%dx%d-s%d-o%d-r%d-l%d%s-u-seed%d.exr", b->name,
@@ -332,7 +333,7 @@ static int reference(ctx *c, const bscene *b)
     return 0;
 }
 
-/* Record noise (bench/README.md, "Noise and bias"): two renders that
+/* Record noise (bench/notes.md, "Noise and bias"): two renders that
  * differ only in the cache's seed differ by the records' noise alone, so
  * noise^2 = sum (T1 - T2)^2 / 2 over the lattice, relative to the
  * reference's sum of squares.  Its share of the run's squared error is
@@ -673,7 +674,7 @@ int main(int argc, char **argv)
         if (scene_load(b->path, &c.s, err, sizeof err) < 0) {
             fprintf(stderr, "%s\n", err);
             if (b->optional) {
-                printf("%s: skipped, its model is absent (bench/README.md, \"The corpus\")\n",
+                printf("%s: skipped, its model is absent (bench/README.md, \"Scenes and models\")\n",
                        b->name);
                 continue;
             }

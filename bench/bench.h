@@ -84,7 +84,7 @@ const char *bench_rays(void);
 extern const char *const methods[NMETHODS];      /* short names (CSV, BENCH_METHODS) */
 extern const char *const method_names[NMETHODS]; /* the table's */
 
-/* The table of one scene's runs (bench/README.md, "Speed against error"). */
+/* The table of one scene's runs (bench/notes.md, "Speed against error"). */
 void table(ctx *c, const bscene *b, FILE *md);
 /* Each cache method at the defaults against brute force at equal error. */
 void defaults_table(ctx *c, const bscene *b, FILE *md);

@@ -2,8 +2,9 @@
 # bench.sh DRIVER -- what make bench runs: the driver (build/bench_run), then
 # the plots with gnuplot (installed from Debian's packages when we are root
 # with apt, as make test installs its tools; without it, CSV and table
-# only), then the table into bench/README.md between its two marker lines
-# (full runs only: quick figures are not for the documents).
+# only), then the table into bench/notes.md between its two marker lines
+# (full runs only: quick figures are not for the documents; bench/README.md
+# is the manual, "Speed against error" in bench/notes.md the dated record).
 # BENCH_SCENES, BENCH_METHODS (see select.c): partial runs leave it alone.
 set -e
 driver=$1
@@ -38,8 +39,8 @@ if [ "${BENCH_QUICK:-0}" != 1 ] && [ -z "${BENCH_SCENES}${BENCH_METHODS}" ]; the
     awk -v table=build/bench/table.md '
         /<!-- bench:begin -->/ { print; while ((getline l < table) > 0) print l; skip = 1; next }
         /<!-- bench:end -->/ { skip = 0 }
-        !skip { print }' bench/README.md > build/bench/README.md.new
-    if grep -q "<!-- bench:end -->" build/bench/README.md.new; then
-        mv build/bench/README.md.new bench/README.md && echo "bench/README.md: table updated"
+        !skip { print }' bench/notes.md > build/bench/notes.md.new
+    if grep -q "<!-- bench:end -->" build/bench/notes.md.new; then
+        mv build/bench/notes.md.new bench/notes.md && echo "bench/notes.md: table updated"
     fi
 fi

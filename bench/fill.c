@@ -6,8 +6,9 @@
  * and on every core, alternating, REPS times each; prints the median wall
  * time, records, rays, the indirect term's relative RMSE against a
  * brute-force reference on every 4th pixel, and whether repeated renders
- * came out bit-identical.  The ratio passes/free is the figure bench/README.md
- * quotes (target: at most 1.10).
+ * came out bit-identical.  The ratio passes/free is the figure docs/DESIGN.md
+ * quotes ("Fill passes: the same records whatever the threads"; target: at
+ * most 1.10).
  */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>

@@ -16,7 +16,7 @@
  *   ./build/bench_lookups ORDER L N [pass|morton] [count]   ORDER: scanline | random
  *
  * Instructions per lookup: run it under callgrind with L = 0 and L = 10000
- * and divide the difference by 10000 (bench/README.md, "Speed and memory").
+ * and divide the difference by 10000 (bench/notes.md, "Speed and memory").
  */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>

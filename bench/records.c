@@ -10,7 +10,7 @@
  *                                             both | hess | sh | shgrad
  *
  * Instructions per record: run it under callgrind with K = 0 and K = 1000
- * and divide the difference by 1000 (bench/README.md, "Speed and memory").  Built
+ * and divide the difference by 1000 (bench/notes.md, "Speed and memory").  Built
  * with -DBENCH_PRINT_GRADIENTS it prints each irradiance record's
  * gradients, one line a channel, so that two builds can be compared record
  * by record.

@@ -1,5 +1,5 @@
 /*
- * report.c -- make bench's table (bench/README.md, "Speed against error") and the
+ * report.c -- make bench's table (bench/notes.md, "Speed against error") and the
  * gnuplot data, from the runs bench.c made.
  */
 #include <math.h>

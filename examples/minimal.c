@@ -6,9 +6,9 @@
 
 #include "irrcache.h"
 
-/* Written for 0.4: another minor changes the config and what it costs. */
-#if IRC_VERSION_MAJOR != 0 || IRC_VERSION_MINOR != 4
-#error "written for irrcache 0.4 (CHANGES.md, Upgrading)"
+/* Written for 0.5: another minor changes the config and what it costs. */
+#if IRC_VERSION_MAJOR != 0 || IRC_VERSION_MINOR != 5
+#error "written for irrcache 0.5 (CHANGES.md, Upgrading)"
 #endif
 
 /* Cast each ray against a black unit ball centred at (0, 0, 2). */

@@ -1,5 +1,5 @@
 /*
- * probes.c -- why a view's pixels become per-pixel estimates (bench/README.md,
+ * probes.c -- why a view's pixels become per-pixel estimates (bench/notes.md,
  * "Rays under the surface").  For every camera hit of SCENE at WxH it casts
  * the eight detail probes the _px call casts (60 degrees from the normal,
  * 45 degrees apart; src/irr/detail.c) around the normal the demo passes,

@@ -1,5 +1,5 @@
 /*
- * reach.c -- how many pixels a cache render's records serve (bench/README.md,
+ * reach.c -- how many pixels a cache render's records serve (bench/notes.md,
  * "Where the records go").  Renders SCENE's indirect term at WxH, one
  * thread, the demo's defaults at a (strata MxN, 0x0 the library's), then
  * reads every record back and prints the distribution of its reach a R in

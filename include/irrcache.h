@@ -60,12 +60,12 @@ extern "C" {
  * major, or another minor while the major is 0, is another ABI, config and
  * cost (CHANGES.md, "Upgrading from 0.3"), so a host written for 0.4
  * refuses any other at build time:
- *     #if IRC_VERSION_MAJOR != 0 || IRC_VERSION_MINOR != 4
+ *     #if IRC_VERSION_MAJOR != 0 || IRC_VERSION_MINOR != 5
  *     #error "written for irrcache 0.4: see its CHANGES.md"
  *     #endif
  * and at run time irc_version_number() / 100 == IRC_VERSION_NUMBER / 100. */
 #define IRC_VERSION_MAJOR 0
-#define IRC_VERSION_MINOR 4
+#define IRC_VERSION_MINOR 5
 #define IRC_VERSION_PATCH 0
 #define IRC_VERSION_NUMBER \
     (IRC_VERSION_MAJOR * 10000 + IRC_VERSION_MINOR * 100 + IRC_VERSION_PATCH)
@@ -374,7 +374,7 @@ typedef struct irc_config {
      * IRC_MAX_STRATA.  Default: they follow a, so that one knob sets a
      * record's cost: M = 8 from a = 0.375, 16 from 0.25, 32 from 0.125, 64
      * below 0.125 and 128 below 0.0625 (and at any smaller a), and N = 4 M
-     * (SH records: 16 x 64).  Why: bench/README.md, "One knob". */
+     * (SH records: 16 x 64).  Why: bench/notes.md, "One knob". */
     uint32_t strata_theta;
     uint32_t strata_phi;
     /* Scratch slots: record computations at once, 1..64 (default 1), each
@@ -387,12 +387,12 @@ typedef struct irc_config {
     uint32_t evict;          /* an irc_evict (default IRC_EVICT_NONE) */
     /* An irc_switch: neighbour clamping (Krivanek et al. 2006) at every
      * insert, R <= R_j + |x - x_j| both ways.  On for irradiance records, off
-     * for SH records (why: bench/README.md, "On real geometry"). */
+     * for SH records (why: bench/notes.md, "On real geometry"). */
     uint32_t clamp_neighbours;
     /* An irc_switch: confirming rays (V-Ray's "check sample visibility"):
      * the lookup_or_compute calls cast a ray toward each record they would
      * use (up to 32) and leave out those hit before 0.9 of the way.  On for
-     * irradiance records, off for SH (why: bench/README.md, "Confirming rays
+     * irradiance records, off for SH (why: bench/notes.md, "Confirming rays
      * on curved surfaces"); IRC_NO_SIGHT builds refuse it. */
     uint32_t check_visibility;
     /* Fields of one record kind: a kind's own, zero for its defaults,
@@ -405,12 +405,12 @@ typedef struct irc_config {
         uint32_t supersamples;
         /* An irc_switch: records keep a leak guard (irc_record.leak_guard,
          * 8 bytes) against light through thin walls.  Off by default (why:
-         * bench/README.md, "On real geometry"). */
+         * bench/notes.md, "On real geometry"). */
         uint32_t leak_guard;
         /* Bounds in pixels on the reach a R of a _px call's record
          * (pbrt-v2's pixel spacings).  Finite (past IRC_RADIUS_CAP: as
          * IRC_RADIUS_CAP, as for every pixel count here); 0: the
-         * defaults, none and 15 (why: bench/README.md, "The corpus");
+         * defaults, none and 15 (why: bench/notes.md, "The corpus");
          * negative: unbounded;
          * max_pixels >= min_pixels (a default one is at least min_pixels). */
         float min_pixels;
@@ -425,7 +425,7 @@ typedef struct irc_config {
          * within detail_pixels x footprint gets its own M x N estimate (E
          * alone, stored nowhere, weight 0, a lookup but not a hit; not so
          * when no slot is free with no_wait, or in the cache's own
-         * callback).  Finite; 0: 0.5; negative: off (why: bench/README.md,
+         * callback).  Finite; 0: 0.5; negative: off (why: bench/notes.md,
          * "Detail computed per pixel"). */
         float detail_pixels;
         /* Lookups average the records within blend x the reach a R that
@@ -434,7 +434,7 @@ typedef struct irc_config {
          * from every record within blend a R, weighted (1 - t^2)^2 at t =
          * e / (blend a), e Ward's distance, so each record's noise is
          * shared by more pixels.  1: Ward's weight 1/e within a R (0.3's
-         * lookups).  Finite, 1..4; 0: 2 (why: bench/README.md, "Noise and
+         * lookups).  Finite, 1..4; 0: 2 (why: bench/notes.md, "Noise and
          * bias"). */
         float blend;
     } irr;
@@ -516,7 +516,7 @@ typedef struct irc_cache irc_cache; /* lives inside cfg.buffer; opaque */
  * IRC_OK and writes *bytes, IRC_ERR_CONFIG when that would not fit a
  * size_t, or a negative error code.  Sizing: a lookup-or-compute makes at
  * most one record, so a frame of one lookup a pixel needs max_records =
- * pixels at most, at every setting (what views make: bench/README.md,
+ * pixels at most, at every setting (what views make: bench/notes.md,
  * "The corpus"); a host that looks up at several points a pixel (one a
  * sample) can make up to one a lookup, so size it by the distinct points
  * or evict.  A full pool computes every later miss again
@@ -667,7 +667,7 @@ IRC_API int irc_cache_lookup_or_compute(irc_cache *cache, const float p[3],
  * geometric surface fail without reaching the callback (left out of the
  * estimate, as IRC_RAY_FAILED is: they would find the surface itself at
  * distance 0, making tiny records; 1.5-2.3x the time at equal error on
- * four Sponza views: bench/README.md, "Rays under the surface"); where n
+ * four Sponza views: bench/notes.md, "Rays under the surface"); where n
  * lies more than 60 degrees from ng, the point gathers and looks up
  * around ng instead.  footprint: the width of one pixel at p, the
  * square root of the area it covers on the surface (pbrt's sqrt(|dp/dx x

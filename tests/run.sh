@@ -16,6 +16,8 @@
 #   stage 5  the header alone as C99 and as C++; no allocator symbol in
 #            libirrcache.a; no thread or I/O header in src/; the documents
 #            list every status, public call and source file (tests/docs.sh);
+#            bench/README.md's variables table names every BENCH_* variable
+#            and BENCH_SET key, and no other (tests/bench_vars.sh);
 #            every test is in a suite's list (tests/listed.sh); no cycle
 #            among the library's modules (tests/cycles.sh); the refactors'
 #            fingerprint runs (make fingerprint);
@@ -318,6 +320,7 @@ src_headers() {
 }
 check src-headers src_headers
 check docs sh tests/docs.sh
+check bench-vars sh tests/bench_vars.sh
 check listed sh tests/listed.sh
 check cycles $MAKE -s BUILD=build cycles
 check fingerprint $MAKE -s BUILD=build fingerprint

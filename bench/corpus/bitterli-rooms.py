@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 # bitterli-rooms.py -- three of Bitterli's Mitsuba scenes to plain OBJ + MTL, for the
-# benchmark's corpus (bench/README.md, "The corpus").
+# benchmark's corpus (bench/notes.md, "The corpus").
 #
 # Source: public GitHub repository jgarciapueyo/mitsuba2-transient-scenes,
 #   commit ab67c4caa9228aa9d4115aeb90c3d3bab0aaf7b5, one folder a room (scene.xml,

@@ -10,7 +10,7 @@
  * coarser a: irc__theta_for), whose noise is copied to every pixel they
  * serve (on the bench's corpus, without a pixel floor, 16 x 64 records
  * held the error at 2.5-5.5% at a = 0.2, and 32 x 128 halved it:
- * bench/README.md, "The corpus"); 16 x 64 for SH records, whose two
+ * bench/notes.md, "The corpus"); 16 x 64 for SH records, whose two
  * hemispheres double the rays and were not measured so. */
 #define IRC__DEF_THETA 32u
 #define IRC__FINE_THETA 128u /* the rows' default at the finest a: 65,536 rays a record */
@@ -42,7 +42,7 @@ static int irc__radii_resolve(irc_config *out)
 /* An irradiance record's rows by default follow a, so that one knob sets
  * what a record costs: at a = 0.4, 0.3 and 0.2 the grids 8 x 32, 16 x 64
  * and 32 x 128 lay on the lower envelope of error against CPU time on two
- * Sponza views (bench/README.md, "One knob"); each coarser grid has a
+ * Sponza views (bench/notes.md, "One knob"); each coarser grid has a
  * quarter of the rays and twice the noise, which coarser placement no
  * longer hides.  Below a = 0.125 the rows double each time a halves, to
  * IRC__FINE_THETA: at 32 x 128 the records' own noise stopped the error

@@ -10,7 +10,7 @@
  * from the point's own hemisphere, not stored.  With the full grid: a
  * record within a pixel of such geometry would serve about that pixel
  * alone, so the estimate costs what the record would, and a coarser one
- * spreads per-pixel noise over every detail pixel (bench/README.md,
+ * spreads per-pixel noise over every detail pixel (bench/notes.md,
  * "Detail computed per pixel").
  */
 #include "../block/form.h"

@@ -167,7 +167,7 @@ static void irc__row_coeffs(const irc__grid *g, const float *restrict below,
  * over each row for the cosines), so a constant changes nothing but would
  * cancel: in bench/records.c's scene the largest change against sums
  * in double was 1.5e-4 of the translational gradient's length (2.9e-4 of
- * the rotational's) without it, 1.6e-5 (1.1e-4) with it (bench/README.md, "Where
+ * the rotational's) without it, 1.6e-5 (1.1e-4) with it (bench/notes.md, "Where
  * the record time goes"). */
 typedef struct irc__row_sums {
     float t1[4], t2[4]; /* translational, along t1 and t2 */

@@ -413,11 +413,11 @@ static int irc__irr_features(irc_config *cfg)
 /* cfg.irr.full_pixels by default: off.  On the Sponza atrium (a = 0.2,
  * 16 x 64) coarse records cost their noise on every pixel they serve:
  * relative RMSE 0.0342 -> 0.087 with 32, 0.079 with 8 and a 1-pixel
- * floor (bench/README.md, "Records that cost what they serve"). */
+ * floor (bench/notes.md, "Records that cost what they serve"). */
 #define IRC__DEF_FULL_PIXELS (-1.0f)
 /* cfg.irr.detail_pixels by default: half a pixel.  On the Cornell box it
  * cut the error 8x (a ceiling row beside the light's edge); on six real
- * views the error stayed within 7% for 0.77-0.99x the time (bench/README.md,
+ * views the error stayed within 7% for 0.77-0.99x the time (bench/notes.md,
  * "Detail computed per pixel"). */
 #define IRC__DEF_DETAIL_PIXELS 0.5f
 
@@ -425,7 +425,7 @@ static int irc__irr_features(irc_config *cfg)
  * 240, a = 0.3, 16 x 64, one thread, paired) blend 2 cut the relative
  * RMSE 6-13% and the 99th percentile 20-35% for 0.4% more rays (more
  * confirming rays a lookup); 3 cut the atrium's a little more, with more
- * bias (bench/README.md, "Noise and bias").  A reach four times the
+ * bias (bench/notes.md, "Noise and bias").  A reach four times the
  * placement's already averages some 16 times the records. */
 #define IRC__DEF_BLEND 2.0f
 #define IRC__BLEND_MAX 4.0f

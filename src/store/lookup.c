@@ -21,7 +21,7 @@
  * more than a third of its hemisphere below the surface, its rays failed
  * uncast: the query gathers around the geometric normal there instead
  * (on four Sponza views the rule with the failed rays below cut the time
- * at equal error 1.5-2.3x: bench/README.md, "Rays under the surface"). */
+ * at equal error 1.5-2.3x: bench/notes.md, "Rays under the surface"). */
 #define IRC__GATHER_COS 0.5f
 
 /* A finite point and a usable normal; no normal is a free point, for the
