@@ -142,10 +142,13 @@ $(LIBSO): $(LIBSO_REAL)
 	ln -sf $(notdir $(LIBSO_REAL)) $@
 
 # ---------------------------------------------------------------- tests
-TEST_SRC = tests/main.c tests/harness.c tests/scenes.c tests/t_record.c tests/t_lookup.c \
-           tests/t_index.c tests/t_compact.c tests/t_api.c tests/t_threads.c tests/t_visibility.c tests/t_sight.c tests/t_attach.c tests/t_sh.c \
-           tests/t_shrec.c tests/t_hard.c tests/t_store.c tests/t_embed.c tests/t_hessian.c \
-           tests/t_snapshot.c tests/t_pass.c tests/t_share.c tests/t_kill.c tests/t_levels.c tests/t_detail.c tests/t_progress.c tests/t_config.c tests/t_normals.c tests/kind_occ.c
+TEST_SRC = tests/main.c tests/harness.c tests/scenes.c tests/t_record.c tests/t_lookup.c tests/t_index.c \
+           tests/t_index_shape.c tests/t_compact.c tests/t_api.c tests/t_bad_input.c tests/t_threads.c \
+           tests/t_visibility.c tests/t_sight.c tests/t_attach.c tests/t_sh.c tests/t_shrec.c \
+           tests/t_sh_lookup.c tests/t_hard.c tests/t_store.c tests/t_embed.c tests/t_hessian.c \
+           tests/t_reach.c tests/t_snapshot.c tests/t_pass.c tests/t_share.c tests/t_kill.c tests/t_levels.c \
+           tests/t_detail.c tests/t_detail_pixels.c tests/t_pixel_footprint.c tests/t_progress.c \
+           tests/t_config.c tests/t_normals.c tests/kind_occ.c
 # The tests exercise every threaded port; the library holds one of them.
 TEST_PORTS = $(filter-out $(PORT),posix c11)
 TEST_PORT_OBJ = $(TEST_PORTS:%=$(BUILD)/tests/port_%.o)
@@ -422,8 +425,8 @@ SMALL_TARGETS = adaptive-small fig15-small glossy-small sh-experiments-small sh-
 small-targets:
 	@echo $(SMALL_TARGETS)
 
-$(BUILD)/demo_tests: tests/t_demo.c tests/t_bounce.c tests/harness.c tests/scenes.c $(EXP_IMGRAD) experiments/imgrad.h $(DEMO_LIBA) demo/*.h tests/*.h $(LIBA)
-	$(CC) $(TEST_CFLAGS) -Idemo -Iexperiments $(OPT) $(CFLAGS) tests/t_demo.c tests/t_bounce.c tests/harness.c tests/scenes.c $(EXP_IMGRAD) $(DEMO_LIBA) $(LIBA) -o $@ -lm -lpthread
+$(BUILD)/demo_tests: tests/t_demo.c tests/t_demo_render.c tests/t_bounce.c tests/harness.c tests/scenes.c $(EXP_IMGRAD) experiments/imgrad.h $(DEMO_LIBA) demo/*.h tests/*.h $(LIBA)
+	$(CC) $(TEST_CFLAGS) -Idemo -Iexperiments $(OPT) $(CFLAGS) tests/t_demo.c tests/t_demo_render.c tests/t_bounce.c tests/harness.c tests/scenes.c $(EXP_IMGRAD) $(DEMO_LIBA) $(LIBA) -o $@ -lm -lpthread
 
 $(BUILD)/adaptive_tests: tests/t_adaptive.c tests/harness.c tests/scenes.c $(EXP_SAMPLING) experiments/sampling.h tests/*.h $(LIBA)
 	$(CC) $(TEST_CFLAGS) -Iexperiments $(OPT) $(CFLAGS) tests/t_adaptive.c tests/harness.c tests/scenes.c $(EXP_SAMPLING) $(LIBA) -o $@ -lm -lpthread

@@ -285,6 +285,13 @@ irc_config scene_config(tscene *s, uint32_t features, uint32_t m, uint32_t n)
     return cfg;
 }
 
+irc_config sh_config(tscene *s, uint32_t features, uint32_t m, uint32_t n, uint32_t bands)
+{
+    irc_config cfg = scene_config(s, features, m, n);
+    cfg.sh.bands = bands;
+    return cfg;
+}
+
 void disk_record(irc_record *r, float e, float rad)
 {
     memset(r, 0, sizeof *r);

@@ -74,6 +74,8 @@ double box_plane_e(const tscene *s, const double p[3]);
 
 /* A config for scene s with the given features and strata (0 = default). */
 irc_config scene_config(tscene *s, uint32_t features, uint32_t m, uint32_t n);
+/* The same for an SH cache of the given bands. */
+irc_config sh_config(tscene *s, uint32_t features, uint32_t m, uint32_t n, uint32_t bands);
 /* A record by hand: at the origin, normal +z, irradiance e in every
  * channel, radius rad, the rest zero. */
 void disk_record(irc_record *r, float e, float rad);
