@@ -581,7 +581,7 @@ bench-records: $(BUILD)/bench_records
 	for f in bare both sh shgrad; do $(BUILD)/bench_records $$f 2000 || exit 1; done
 
 # Speed against error on every shipped scene (bench/notes.md: "Speed against
-# error").  BENCH_QUICK=1: small images, fewer runs (over 12 minutes).
+# error").  BENCH_QUICK=1: small images, one real view, fewer runs (32 s).
 BENCH_RUN_SRC = bench/bench.c bench/report.c bench/bounces.c bench/select.c
 # Its rays come from Embree where Embree is installed (make bench installs
 # libembree-dev as root; BENCH_RAYS=bvh picks the demo's BVH at run time),
