@@ -15,7 +15,7 @@ int main()
                      IRC_VERSION_STRING);
         return 1;
     }
-    irc_config cfg = irc_config();
+    irc_config cfg = IRC_CONFIG_INIT;
     // A black unit ball centred at (0, 0, 2) under a sky of radiance 1.
     cfg.trace = [](const irc_trace_args *a) -> int {
         for (uint32_t i = 0; i < a->count; i++) {

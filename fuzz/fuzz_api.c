@@ -209,9 +209,18 @@ static int call(fuzz_in *in, irc_cache *c, uint32_t cap)
         }
         /* fall through */
     case 3:
-        s = op == 2            ? irc_cache_lookup(c, p, n, rgb, &w)
-            : fz_u8(in) & 1    ? irc_cache_lookup_or_compute(c, p, n, rgb, &w, NULL)
-                               : irc_cache_lookup_or_compute_px(c, p, n, NULL, fz_float(in), rgb, &w, NULL);
+        if (op == 2)
+            s = irc_cache_lookup(c, p, n, rgb, &w);
+        else if (fz_u8(in) & 1)
+            s = irc_cache_lookup_or_compute(c, p, n, rgb, &w, NULL);
+        else { /* with a geometric normal of any value, or none */
+            float ng[3];
+            const int with_ng = fz_u8(in) & 1;
+            if (with_ng)
+                read_vec(in, ng);
+            s = irc_cache_lookup_or_compute_px(c, p, n, with_ng ? ng : NULL, fz_float(in), rgb,
+                                               &w, NULL);
+        }
         if (s >= 0)
             for (k = 0; k < 3; k++)
                 check(rgb[k] >= 0.0f && rgb[k] <= 3.4028235e38f);

@@ -9,7 +9,7 @@ static int trace(const irc_trace_args *a)
 int header_cpp_use(void);
 int header_cpp_use(void)
 {
-    irc_config cfg = irc_config();
+    irc_config cfg = IRC_CONFIG_INIT;
     size_t bytes = 0;
     cfg.trace = trace;
     cfg.features = IRC_FEATURE_TRANSLATION | IRC_FEATURE_ROTATION;

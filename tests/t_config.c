@@ -18,6 +18,9 @@
 #pragma GCC diagnostic ignored "-Wmissing-braces"
 #pragma GCC diagnostic ignored "-Wincompatible-pointer-types"
 #endif
+#if defined(__clang__)
+#pragma clang diagnostic ignored "-Wliteral-conversion"
+#endif
 static irc_config old_03(void)
 {
     /* 0.3: trace, context, max_batch, features, accuracy, min_radius,
