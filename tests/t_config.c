@@ -1,6 +1,7 @@
 /* t_config.c -- a config that cannot be misread: the version field that
  * refuses initialisers written for other versions, and the resolved config
  * read back (irc_cache_config) against the header's documented rules. */
+#define IRC_EXPERIMENTAL /* irc_join */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -40,7 +41,8 @@ static irc_config old_04(tscene *s)
 #pragma GCC diagnostic pop
 #endif
 
-/* Every call that takes a config refuses it and touches nothing. */
+/* Every call that takes a config refuses it and touches nothing (the
+ * block; join's view is not read before the config is checked). */
 static void refused(irc_config cfg, const char *what)
 {
     unsigned char *block = (unsigned char *)malloc(1u << 20), *copy = (unsigned char *)malloc(1u << 20);
@@ -60,6 +62,10 @@ static void refused(irc_config cfg, const char *what)
           what);
     CHECK(irc_init(&cfg, 16, &c) == IRC_ERR_VERSION && !c, "%s: init", what);
     CHECK(irc_attach(&cfg, &c) == IRC_ERR_VERSION && !c, "%s: attach", what);
+    {
+        static double view[IRC_VIEW_BYTES / sizeof(double) + 1];
+        CHECK(irc_join(&cfg, view, sizeof view, &c) == IRC_ERR_VERSION && !c, "%s: join", what);
+    }
     CHECK(memcmp(block, copy, 1u << 20) == 0, "%s: block touched", what);
     free(block);
     free(copy);

@@ -495,7 +495,11 @@ int irc_join(const irc_config *cfg, void *view, size_t view_size, irc_cache **ou
     char name[16];
     size_t at;
     int st;
-    if (!cfg || !out || !cfg->buffer || !cfg->trace || !view)
+    if (!cfg || !out)
+        return IRC_ERR_NULL;
+    if (cfg->version != IRC_CONFIG_VERSION)
+        return IRC_ERR_VERSION;
+    if (!cfg->buffer || !cfg->trace || !view)
         return IRC_ERR_NULL;
     /* IRC_VIEW_BYTES, not this build's sizeof: a host sized by less would
      * fail only under a later build. */
