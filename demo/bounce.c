@@ -169,12 +169,19 @@ int host_trace(const irc_trace_args *a)
 int levels_init(renderer *r, const irc_config *base, float span, char *err, size_t n)
 {
     int k;
-    float a = base->accuracy > 0.0f ? base->accuracy : 0.2f;
-    uint32_t m = base->strata_theta ? base->strata_theta : 16u;
-    uint32_t nn = base->strata_phi ? base->strata_phi : 64u;
+    float a;
+    uint32_t m, nn;
     const uint32_t div = r->o.level_strata > 0 ? (uint32_t)r->o.level_strata : 1u;
+    irc_config first; /* the first level's a and strata as the library chose them */
     if (r->o.gather != GATHER_CACHE)
         return 0;
+    if ((k = irc_cache_config(r->cache, &first)) < 0) {
+        snprintf(err, n, "level 1 cache: %s", irc_strerror(k));
+        return -1;
+    }
+    a = first.accuracy;
+    m = first.strata_theta;
+    nn = first.strata_phi;
     for (k = 2; k <= r->o.bounces; k++) {
         irc_config cfg = *base;
         size_t bytes;
@@ -184,7 +191,8 @@ int levels_init(renderer *r, const irc_config *base, float span, char *err, size
         r->ctx[k - 1].level = k;
         cfg.context = &r->ctx[k - 1];
         cfg.accuracy = a > 4.0f ? 4.0f : a;
-        cfg.features &= ~(uint32_t)IRC_FEATURE_SH; /* deeper levels need E only */
+        /* deeper levels need E only */
+        cfg.features &= ~(uint32_t)(IRC_FEATURE_SH | IRC_FEATURE_SH_GRADIENT);
         cfg.sh.bands = 0;
         /* Radiance's ambient resolution: a deeper level's lookups come
          * from hits anywhere, with no pixel to bound a record's size, so

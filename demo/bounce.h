@@ -56,7 +56,8 @@ void cast(const renderer *r, const irc_ray *rays, irc_hit *hits, uint32_t count,
 int host_trace(const irc_trace_args *a);
 
 /* The caches of levels 2 .. bounces (GATHER_CACHE): base's config with
- * accuracy x level_scale^(k-1), strata / level_strata^(k-1), radii in
+ * the first level's accuracy x level_scale^(k-1) and strata /
+ * level_strata^(k-1) (as r->cache resolved them), radii in
  * [level_min_radius x span, span], filled freely.  0, or -1 with err
  * set. */
 int levels_init(renderer *r, const irc_config *base, float span, char *err, size_t n);

@@ -263,14 +263,15 @@ static void report(FILE *f, const cli *c, const renderer *r, const render_stats 
 {
     double busy = st->trace_s + st->cache_s;
     fprintf(f, "%s: %s", c->scene, c->o.mode == MODE_CACHE ? "cache" : "reference");
-    if (c->o.mode == MODE_CACHE) { /* 0: the library's default */
-        char a[32] = "default", strata[32] = "default";
-        if (c->o.accuracy > 0.0f)
-            snprintf(a, sizeof a, "%g", c->o.accuracy);
-        if (c->o.strata_m)
-            snprintf(strata, sizeof strata, "%ux%u", c->o.strata_m, c->o.strata_n);
-        fprintf(f, " (%s, a %s, strata %s, max radius %g)", features_name(c->o.features), a,
-                strata, r->o.max_radius);
+    if (c->o.mode == MODE_CACHE) { /* as the library resolved every 0 */
+        irc_config got;
+        if (irc_cache_config(r->cache, &got) == IRC_OK) {
+            fprintf(f, " (%s, a %g, strata %ux%u", features_name(c->o.features), got.accuracy,
+                    got.strata_theta, got.strata_phi);
+            if (got.irr.blend > 0.0f) /* irradiance records */
+                fprintf(f, ", blend %g", got.irr.blend);
+            fprintf(f, ", max radius %g)", r->o.max_radius);
+        }
     }
     else
         fprintf(f, " (%d rays per shading point)", c->o.ref_rays);
