@@ -25,10 +25,13 @@
  *     write lock; the trace callback runs with no lock held.  With
  *     irc_port_none, one thread at a time.
  *   - Stability: while the major version is 0, a minor release may change
- *     the block's layout (irc_attach refuses an older block) but keeps these
- *     contracts, but for the calls behind IRC_EXPERIMENTAL (at the end).
+ *     the block's layout (irc_attach refuses an older block), the config
+ *     (IRC_CONFIG_VERSION refuses an older one) and a call's arguments;
+ *     CHANGES.md, "Upgrading", lists each change.  The calls behind
+ *     IRC_EXPERIMENTAL (at the end) may change in any release.
  *   - Determinism: for a callback that answers a ray the same way, a record
- *     is a pure function of (p, n, config, seed, the _px call's footprint),
+ *     is a pure function of (p, n, config, seed, the _px call's ng and
+ *     footprint),
  *     bit for bit on any thread; which records a multi-threaded fill stores
  *     depends on timing, unless it fills in passes ("Fill passes").
  *   - Errors: every call returns an int: IRC_OK (0), a positive informational
@@ -37,10 +40,11 @@
  *     for the port's lock object.  A negative code from the trace callback
  *     is passed through unchanged: keep host codes below IRC_ERR_LAST.
  *
- * Quick start (examples/minimal.c is a complete host): a config zeroed but
- * for trace and context (zero fields: the measured defaults), irc_footprint,
- * irc_init in a block of that size, irc_cache_lookup_or_compute_px at each
- * camera ray's hit with the pixel's footprint there, irc_fini.
+ * Quick start (examples/minimal.c is a complete host): irc_config cfg =
+ * IRC_CONFIG_INIT, then trace and context (the fields left 0: the measured
+ * defaults), irc_footprint, irc_init in a block of that size,
+ * irc_cache_lookup_or_compute_px at each camera ray's hit with both
+ * normals and the pixel's footprint there, irc_fini.
  *
  * Vectors are float[3] in the host's world space and units (nothing depends
  * on the scene's scale).  Irradiance E is the integral of L cos over the
