@@ -102,8 +102,9 @@ typedef enum irc_status {
     IRC_DETAIL = 3,           /* the _px call: answered by the point's own
                                  estimate (cfg.irr.detail_pixels), stored
                                  nowhere (*weight 0 as for a computed
-                                 record, though none was made); a host that comes back to the same
-                                 pixel may keep the value (irc_stats.details) */
+                                 record, though none was made); a host
+                                 that comes back to the same pixel may
+                                 keep the value (irc_stats.details) */
     IRC_ERR_NULL = -1,        /* a required pointer, or cfg.trace, is NULL */
     IRC_ERR_CONFIG = -2,      /* a config field out of its range; a handle not
                                  of a live cache (never made, finished, not
@@ -670,21 +671,20 @@ IRC_API int irc_cache_lookup_or_compute(irc_cache *cache, const float p[3],
  * hemisphere is gathered around n, and its rays that leave below the
  * geometric surface fail without reaching the callback (left out of the
  * estimate, as IRC_RAY_FAILED is: they would find the surface itself at
- * distance 0, making tiny records; 1.5-2.3x the time at equal error on
- * four Sponza views: bench/notes.md, "Rays under the surface"); where n
- * lies more than 60 degrees from ng, the point gathers and looks up
- * around ng instead.  footprint: the width of one pixel at p, the
- * square root of the area it covers on the surface (pbrt's sqrt(|dp/dx x
- * dp/dy|) from ray differentials; irc_pixel_footprint for a pinhole
- * camera); 0 is the plain call.  A record computed here gets a reach a R
+ * distance 0, making tiny records; left in, they cost 1.5-2.3x the time
+ * at equal error on four Sponza views: bench/notes.md, "Rays under the
+ * surface"); where n lies more than 60 degrees from ng, the point gathers
+ * and looks up around ng instead.  footprint: the width of one pixel at
+ * p, the square root of the area it covers on the surface (pbrt's
+ * sqrt(|dp/dx x dp/dy|) from ray differentials; irc_pixel_footprint for a
+ * pinhole camera); 0 is the plain call.  A record computed here gets a reach a R
  * in [cfg.irr.min_pixels, cfg.irr.max_pixels] x footprint (by default none
  * to 15 pixels) before [min_radius, max_radius], and points near finer
  * geometry get their own estimate first (cfg.irr.detail_pixels): that
  * answer returns IRC_DETAIL (weight 0), which a host that calls again for
  * the same pixel (more samples a pixel: docs/DESIGN.md, "Many samples a
- * pixel") may keep instead; its weight is 0
- * as a computed record's, though nothing was stored: the status tells
- * them apart.  Otherwise
+ * pixel") may keep instead; its weight is 0 as a computed record's,
+ * though nothing was stored: the status tells them apart.  Otherwise
  * returns as irc_cache_lookup_or_compute; IRC_ERR_NORMAL for an ng zero or
  * not finite, IRC_ERR_NONFINITE (nothing done) for a footprint not
  * finite, else IRC_ERR_RANGE for a negative one.
@@ -1051,7 +1051,8 @@ IRC_API int irc_sh_radiance(const irc_sh *sh, const float w[3], float rgb[3]);
  * empty cache, else IRC_ERR_RANGE.  Records a snapshot or merge brings in
  * count as holding the level's rays.  A record keeps no geometric normal:
  * its new rays are all cast (a host whose shading normals differ from its
- * geometric ones fails those below in its callback, or passes ng as n).  Returns IRC_OK, IRC_ERR_UNSUPPORTED
+ * geometric ones fails those below in its callback, or passes ng as n).
+ * Returns IRC_OK, IRC_ERR_UNSUPPORTED
  * (SH, VISIBILITY, HESSIAN or supersamples), or a negative code; the
  * callback's stops the refinement: the records before it are refined,
  * the rest keep their rays, and the cache is at the new level.
@@ -1090,8 +1091,8 @@ typedef struct irc_pixel {
  * used less recently.  Calls for one irc_pixel must not run concurrently;
  * zero it again after irc_cache_clear, irc_snapshot_read or irc_merge, and
  * use it with one cache only.  ng as the _px call's; a kept detail
- * estimate's new rays take the sample's ng.  Returns as the _px call, IRC_ERR_NULL for
- * a NULL pixel; *pixel changes only on success.
+ * estimate's new rays take the sample's ng.  Returns as the _px call,
+ * IRC_ERR_NULL for a NULL pixel; *pixel changes only on success.
  */
 IRC_API int irc_cache_lookup_pixel(irc_cache *cache, irc_pixel *pixel, const float p[3],
                                    const float n[3], const float ng[3], float footprint,
