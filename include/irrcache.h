@@ -18,9 +18,10 @@
  *     after irc_attach() (same build of the library, same ABI).
  *   - Thread safety: with a locking port (this build's default is POSIX
  *     threads), every call may run concurrently from any threads on one
- *     cache, except irc_init, irc_attach, irc_cache_clear, irc_snapshot_read,
- *     irc_merge, irc_pass_begin, irc_pass_end, irc_progress and irc_fini, which must not
- *     run concurrently with anything else on that cache.  Lookups take the
+ *     cache, except irc_init, irc_attach, irc_cache_clear,
+ *     irc_snapshot_read, irc_merge, irc_pass_begin, irc_pass_end,
+ *     irc_progress and irc_fini, which must not run concurrently with
+ *     anything else on that cache.  Lookups take the
  *     port's read lock; inserts (and the insert of lookup_or_compute) its
  *     write lock; the trace callback runs with no lock held.  With
  *     irc_port_none, one thread at a time.
