@@ -672,8 +672,7 @@ IRC_API int irc_cache_lookup_or_compute(irc_cache *cache, const float p[3],
  * hemisphere is gathered around n, and its rays that leave below the
  * geometric surface fail without reaching the callback (left out of the
  * estimate, as IRC_RAY_FAILED is: they would find the surface itself at
- * distance 0, making tiny records; left in, they cost 1.5-2.3x the time
- * at equal error on four Sponza views: bench/notes.md, "Rays under the
+ * distance 0, making tiny records: bench/notes.md, "Rays under the
  * surface"); where n lies more than 60 degrees from ng, the point gathers
  * and looks up around ng instead.  footprint: the width of one pixel at
  * p, the square root of the area it covers on the surface (pbrt's

@@ -60,7 +60,7 @@ int irc__query_ground(irc__query *q, const float ng[3])
         return IRC_OK;
     if ((st = irc__check_normal(ng, g)) < 0)
         return st;
-    d = q->n[0] * g[0] + q->n[1] * g[1] + q->n[2] * g[2];
+    d = irc__dot3(q->n, g);
     for (k = 0; k < 3; k++) {
         q->g[k] = d < 0.0f ? -g[k] : g[k];
         if (d < IRC__GATHER_COS && d > -IRC__GATHER_COS)

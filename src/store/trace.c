@@ -49,19 +49,12 @@ int irc__cast(irc__call *k, irc_ray *rays, irc_hit *hits, uint32_t count)
     if (!k->q.under || k->visibility_only == IRC_VISIBILITY_CONFIRM)
         return irc__cast_run(k, rays, hits, count);
     while (i < count) {
-        for (j = i; j < count; j++) {
-            const float *d = rays[j].dir;
-            if (d[0] * g[0] + d[1] * g[1] + d[2] * g[2] <= 0.0f)
-                break;
-        }
+        for (j = i; j < count && irc__dot3(rays[j].dir, g) > 0.0f; j++)
+            ;
         if (j > i && (st = irc__cast_run(k, rays + i, hits + i, j - i)) < 0)
             return st;
-        for (i = j; i < count; i++) {
-            const float *d = rays[i].dir;
-            if (d[0] * g[0] + d[1] * g[1] + d[2] * g[2] > 0.0f)
-                break;
+        for (i = j; i < count && irc__dot3(rays[i].dir, g) <= 0.0f; i++)
             hits[i].status = IRC_RAY_FAILED;
-        }
     }
     return IRC_OK;
 }
